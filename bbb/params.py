@@ -52,7 +52,8 @@ class Params:
         _check("A", self.A, self.A >= 0, "A ≥ 0")
         _check("f", self.f, self.f > 0, "f > 0")
         _check("S", self.S, self.S > 0, "S > 0")
-        _check("R", self.R, self.R >= self.S / 2, f"R ≥ S/2 = {self.S / 2:g} (arcs must close the floor), or inf")
+        _check("R", self.R, self.R >= self.S / 2,
+               f"R ≥ S/2 = {self.S / 2:g} (arcs must close the floor), or inf")
         _check("alpha", self.alpha, 0 < self.alpha <= 1, "0 < alpha ≤ 1")
         _check("beta", self.beta, 0 <= self.beta <= 1, "0 ≤ beta ≤ 1")
 
@@ -64,7 +65,9 @@ class Params:
         values = dict(PRESETS[name])
         unknown = set(overrides) - {fl.name for fl in fields(cls)}
         if unknown:
-            raise ValueError(f"unknown Params field(s) {sorted(unknown)}; allowed: g, A, f, R, S, alpha, beta")
+            raise ValueError(
+                f"unknown Params field(s) {sorted(unknown)}; allowed: g, A, f, R, S, alpha, beta"
+            )
         values.update(overrides)
         if "f" not in values:
             raise ValueError("Params.f (floor frequency, Hz) must be given, e.g. preset(name, f=60.0)")
