@@ -68,24 +68,29 @@ def lower_bound(h, Ga, G1a, Gb, da, db, vx, g, A, w, R):
 @njit(cache=True)
 def refine_root(a, b, Ga, Gb, y, vy, s, dj, vx, g, A, w, R, half_s, tol_t):
     """Newton safeguarded by bisection on a bracket with G(a) > 0 ≥ G(b)."""
-    t = b
-    if Ga != Gb:
-        t = b - Gb * (b - a) / (Gb - Ga)
-    if not (a < t <= b):
+    t = b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else 0.5 * (a + b)
+    if not (a < t < b):
         t = 0.5 * (a + b)
     for _ in range(200):
         G, G1 = gap(t, y, vy, s, dj, vx, g, A, w, R, half_s)
         if G > 0.0:
             a = t
+            Ga = G
         else:
             b = t
-        tn = t - G / G1 if G1 != 0.0 else 0.5 * (a + b)
-        if not (a < tn < b):
+            Gb = G
+        if G1 != 0.0:
+            tn = t - G / G1
+            # a converged Newton step is accurate to O(step²): stop only on those
+            if a <= tn <= b and abs(tn - t) <= tol_t:
+                return tn
+        if b - a <= tol_t:
+            break
+        if not (G1 != 0.0 and a < tn < b):
             tn = 0.5 * (a + b)
-        if abs(tn - t) <= tol_t or b - a <= tol_t:
-            return tn
         t = tn
-    return t
+    # bracket below tol_t without a Newton step inside it: secant, O(width²) accurate
+    return b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else b
 
 
 @njit(cache=True)
