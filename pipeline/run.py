@@ -13,10 +13,12 @@ before marking the chunk done.  It is read by the client, not the workers.
 
 from __future__ import annotations
 
+import logging
 import os
 import socket
 import sys
 import time
+import traceback
 import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -217,6 +219,9 @@ def _connect(scheduler: str | None, workers: int | None):
         dashboard_address=":0" if _has_bokeh() else None,
         # numba would otherwise start one thread per core in every worker for prange loops
         env={"NUMBA_NUM_THREADS": "1"},
+        # A failed task is reported once, by the client (RunFailed names the chunk, the cause
+        # and where it was raised); the workers' own log tracebacks would bury that line.
+        silence_logs=logging.CRITICAL,
     )
     return Client(cluster), cluster
 
@@ -275,12 +280,25 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
             try:
                 res: ChunkResult = fut.result()
             except Exception as e:
+                where = _where(fut)
                 client.cancel(list(futures))
                 raise RunFailed(f"chunk f = {f:g} Hz, family {fam}, chunk {ci} failed: "
-                                f"{type(e).__name__}: {e}") from e
+                                f"{type(e).__name__}: {e}{where}") from e
             report.computed.append(res.key)
             report.collisions += res.collisions
             report.task_seconds += res.seconds
             bar.update(1)
     finally:
         bar.close()
+
+
+def _where(fut) -> str:
+    """' (at file:line in function)' of the innermost frame of a failed task, if known."""
+    try:
+        frames = traceback.extract_tb(fut.traceback())
+    except Exception:  # no traceback available from this scheduler
+        return ""
+    if not frames:
+        return ""
+    fr = frames[-1]
+    return f" (at {os.path.basename(fr.filename)}:{fr.lineno} in {fr.name})"

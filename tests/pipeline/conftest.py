@@ -1,0 +1,82 @@
+"""Fixtures: the tiny workflow as a file, and a real dask scheduler with two workers."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import pytest
+
+from .helpers import QUIET, TINY
+
+
+@pytest.fixture(scope="session")
+def tiny_workflow(tmp_path_factory) -> Path:
+    """The tiny workflow as a file (one file for the whole session, so its path is stable)."""
+    path = tmp_path_factory.mktemp("wf") / "tiny.toml"
+    path.write_text(TINY)
+    return path
+
+
+@pytest.fixture(scope="session")
+def reference(tiny_workflow, tmp_path_factory):
+    """The tiny workflow run through a real LocalCluster with 2 workers: (store path, report).
+
+    Shared by every test that needs a finished store, so the suite runs it once.
+    """
+    from pipeline.run import run_study
+    from pipeline.workflow import load_workflow
+
+    path = tmp_path_factory.mktemp("ref") / "tiny.zarr"
+    report = run_study(load_workflow(tiny_workflow), path, workers=2, **QUIET)
+    return path, report
+
+
+@pytest.fixture
+def dask_cluster(tmp_path):
+    """A real `dask scheduler` and two `dask worker` processes on 127.0.0.1 (random port).
+
+    Yields the scheduler address; every process started here is stopped by its pid.
+    """
+    sched_file = tmp_path / "scheduler.json"
+    env = dict(os.environ, NUMBA_NUM_THREADS="1")
+    procs = []
+
+    def start(args):
+        p = subprocess.Popen([sys.executable, "-m", *args], env=env, cwd=tmp_path,
+                             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        procs.append(p)
+        return p
+
+    try:
+        start(["distributed.cli.dask_scheduler", "--host", "127.0.0.1", "--port", "0",
+               "--no-dashboard", "--scheduler-file", str(sched_file)])
+        deadline = time.monotonic() + 60
+        while not sched_file.exists() or not sched_file.read_text().strip():
+            assert time.monotonic() < deadline, "dask scheduler did not start"
+            assert procs[0].poll() is None, "dask scheduler exited"
+            time.sleep(0.1)
+        time.sleep(0.1)  # let the scheduler finish writing the file
+        address = json.loads(sched_file.read_text())["address"]
+        for i in range(2):
+            start(["distributed.cli.dask_worker", address, "--nthreads", "1", "--no-nanny",
+                   "--no-dashboard", "--host", "127.0.0.1", "--name", f"w{i}"])
+        from distributed import Client
+
+        with Client(address, timeout="30s") as c:
+            c.wait_for_workers(2, timeout=60)
+        yield address
+    finally:
+        # Workers first (they say goodbye to the scheduler), then the scheduler.
+        for p in reversed(procs):
+            if p.poll() is None:
+                p.terminate()
+            try:
+                p.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                p.kill()
+                p.wait()

@@ -1,0 +1,84 @@
+"""Reducing a store to tables: D(f) with CIs, ergodicity columns, counters."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from pipeline.reduce import default_out_dir, reduce_store
+from pipeline.run import compute_chunk
+from pipeline.store import StudyStore
+from pipeline.workflow import parse_workflow
+
+from .helpers import TINY
+
+REQUIRED = ["f", "D", "D_lo", "D_hi", "D_last", "n_particles", "t_max", "ergodic", "EB",
+            "D_rest", "D_launched"]
+
+
+@pytest.fixture(scope="module")
+def tables(reference, tmp_path_factory):
+    out = tmp_path_factory.mktemp("tables")
+    reduce_store(reference[0], out, echo=lambda s: None)
+    return out
+
+
+def test_diffusion_table_has_the_required_columns(tables):
+    df = pd.read_parquet(tables / "diffusion.parquet")
+    assert set(REQUIRED) <= set(df.columns)
+    assert list(df["f"]) == [54.0, 60.0] and (df["n_particles"] == 16).all()
+
+
+def test_d_is_finite_and_positive_where_particles_move(tables):
+    df = pd.read_parquet(tables / "diffusion.parquet")
+    moving = df["n_moving"] > 0
+    assert moving.all()  # Γ > 1 at both frequencies: particles lift off and move
+    for col in ("D", "D_lo", "D_hi", "D_last", "EB"):
+        assert np.isfinite(df.loc[moving, col]).all(), col
+    assert (df.loc[moving, "D"] > 0).all()
+    assert (df["D_lo"] <= df["D"]).all() and (df["D"] <= df["D_hi"]).all()
+
+
+def test_csv_holds_the_same_table_as_parquet(tables):
+    pq = pd.read_parquet(tables / "diffusion.parquet")
+    csv = pd.read_csv(tables / "diffusion.csv")
+    pd.testing.assert_frame_equal(pq.astype({"ergodic": bool}), csv, check_exact=False,
+                                  rtol=1e-12)
+
+
+def test_reduction_is_deterministic(reference, tables, tmp_path):
+    reduce_store(reference[0], tmp_path, echo=lambda s: None)
+    pd.testing.assert_frame_equal(pd.read_parquet(tables / "diffusion.parquet"),
+                                  pd.read_parquet(tmp_path / "diffusion.parquet"))
+
+
+def test_counters_table_has_a_row_per_frequency_and_family(tables):
+    df = pd.read_csv(tables / "counters.csv")
+    assert len(df) == 4 and set(df["family"]) == {"rest", "launched"}
+    assert (df["collisions_per_s"] > 0).all() and (df["anomalies_per_s"] == 0).all()
+
+
+def test_default_output_goes_beside_the_store():
+    study = parse_workflow(TINY, source="tiny.toml")
+    assert default_out_dir("runs/tiny.zarr", study) == "runs/tiny"
+
+
+def test_partial_store_reduces_only_done_chunks(tmp_path):
+    study = parse_workflow(TINY, source="tiny.toml")
+    store = StudyStore.create_or_open(tmp_path / "p.zarr", study)
+    for fi in range(2):
+        for mi in range(2):
+            compute_chunk(store, fi, mi, 0)
+    df = reduce_store(store.path, tmp_path / "out", echo=lambda s: None)["diffusion"]
+    assert (df["n_particles"] == 8).all()  # 2 families x 1 done chunk of 4
+
+
+def test_collisions_only_store_gets_counters_but_no_diffusion_table(tmp_path):
+    text = TINY.replace("[observables.positions]\n", "")
+    study = parse_workflow(text, source="coll.toml")
+    store = StudyStore.create_or_open(tmp_path / "c.zarr", study)
+    compute_chunk(store, 0, 0, 0)
+    tables = reduce_store(store.path, tmp_path / "out", echo=lambda s: None)
+    assert set(tables) == {"counters"} and not (tmp_path / "out" / "diffusion.csv").exists()
+    assert (tmp_path / "out" / "counters.parquet").exists()

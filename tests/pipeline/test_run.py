@@ -1,0 +1,84 @@
+"""Running a study on real Dask clusters: reproducibility, resume, fault reporting."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from pipeline.run import RunFailed, compute_chunk, run_study
+from pipeline.store import StudyStore
+from pipeline.workflow import load_workflow, parse_workflow
+
+from .helpers import QUIET as quiet
+from .helpers import TINY, assert_same_store, store_arrays
+
+
+def test_local_cluster_run_completes_every_chunk(reference):
+    path, report = reference
+    store = StudyStore.open(path)
+    assert store.done().all() and len(report.computed) == report.n_chunks == 8
+    assert report.workers == 2 and report.collisions > 0
+    x = store_arrays(path)
+    assert np.isfinite(x["positions"]).all()
+    assert x["n_collisions"].sum() == report.collisions
+    assert (x["n_recorded"] > 0).any()
+
+
+def test_one_worker_gives_bit_identical_arrays(reference, tiny_workflow, tmp_path):
+    run_study(load_workflow(tiny_workflow), tmp_path / "one.zarr", workers=1, **quiet)
+    assert_same_store(reference[0], tmp_path / "one.zarr")
+
+
+def test_scheduler_and_worker_processes_give_the_local_cluster_store(
+        reference, tiny_workflow, tmp_path, dask_cluster):
+    report = run_study(load_workflow(tiny_workflow), tmp_path / "remote.zarr",
+                       scheduler=dask_cluster, **quiet)
+    assert report.workers == 2
+    assert_same_store(reference[0], tmp_path / "remote.zarr")
+
+
+def test_resume_recomputes_only_unfinished_chunks(reference, tiny_workflow, tmp_path):
+    study = load_workflow(tiny_workflow)
+    path = tmp_path / "resumed.zarr"
+    # The last-submitted chunk writes its data, then fails before being marked done.
+    with pytest.raises(RunFailed, match=r"f = 60 Hz, family launched, chunk 1 failed"):
+        run_study(study, path, workers=2, fail_chunks="60:launched:1", **quiet)
+    done = StudyStore.open(path).done()
+    assert 0 < done.sum() < done.size and not done[1, 1, 1]
+    unfinished = {(study.frequencies[fi], study.families[mi].name, ci)
+                  for fi, mi, ci in zip(*np.nonzero(~done), strict=True)}
+    report = run_study(study, path, workers=2, fail_chunks="", **quiet)
+    assert set(report.computed) == unfinished and report.skipped == done.sum()
+    assert_same_store(reference[0], path)
+
+
+def test_rerunning_a_finished_store_computes_nothing(reference, tiny_workflow):
+    report = run_study(load_workflow(tiny_workflow), reference[0], workers=2, **quiet)
+    assert report.computed == [] and report.skipped == report.n_chunks
+
+
+def test_a_task_run_twice_writes_the_same_bytes(reference, tiny_workflow, tmp_path):
+    # Dask may run a task twice; here the same chunk is recomputed in this process.
+    path = tmp_path / "twice.zarr"
+    study = load_workflow(tiny_workflow)
+    store = StudyStore.create_or_open(path, study)
+    for _ in range(2):
+        compute_chunk(store, 1, 0, 1)
+    a, b = store_arrays(reference[0]), store_arrays(path)
+    sl = store.chunk_particles(1)
+    assert np.array_equal(a["positions"][1, 0, sl], b["positions"][1, 0, sl])
+    assert np.array_equal(a["collisions"][1, 0, sl], b["collisions"][1, 0, sl], equal_nan=True)
+
+
+def test_adding_frequencies_and_families_leaves_old_results_unchanged(reference, tmp_path):
+    bigger = parse_workflow(
+        TINY.replace("[54.0, 60.0]", "[60.0, 66.0, 54.0]")
+        .replace("[families.rest]", '[families.dropped]\ninitial = "dropped"\n\n[families.rest]'),
+        source="bigger.toml")
+    run_study(bigger, tmp_path / "bigger.zarr", workers=2, **quiet)
+    a, b = store_arrays(reference[0]), store_arrays(tmp_path / "bigger.zarr")
+    # reference order: f (54, 60) x (rest, launched); bigger: f (60, 66, 54) x (dropped, rest,
+    # launched)
+    for fa, fb in ((0, 2), (1, 0)):
+        for ma, mb in ((0, 1), (1, 2)):
+            assert np.array_equal(a["positions"][fa, ma], b["positions"][fb, mb])

@@ -1,0 +1,156 @@
+"""The Zarr store: layout readable by xarray, chunk alignment, done-markers, refusals."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+import pytest
+import xarray as xr
+import zarr
+
+from pipeline.store import StoreError, StudyStore
+from pipeline.workflow import parse_workflow
+
+from .helpers import TINY
+
+
+@pytest.fixture
+def study():
+    return parse_workflow(TINY, source="tiny.toml")
+
+
+@pytest.fixture
+def store(tmp_path, study):
+    return StudyStore.create_or_open(tmp_path / "s.zarr", study)
+
+
+class FakeRun:
+    """Stands in for a bbb SimRun with recognisable values (the store only reads arrays)."""
+
+    def __init__(self, study, value: float):
+        acc, obs = study.accuracy, study.observables
+        n, t, k = acc.chunk_size, len(study.sample_times()), obs.collisions_record
+        self.positions = np.full((n, t), value)
+        self.collisions_dense = np.full((n, k, 5), value)
+        self.n_recorded = np.full(n, k, dtype=np.int64)
+        self.counters = {c: np.full(n, 3, dtype=np.int64)
+                         for c in ("collisions", "sticks", "liftoffs", "recorded", "anomalies")}
+
+
+def test_xarray_opens_the_store_with_named_dims_and_coords(store, study):
+    store.consolidate()
+    ds = xr.open_zarr(store.path)
+    assert ds["positions"].dims == ("frequency", "family", "particle", "time")
+    assert ds["collisions"].dims == ("frequency", "family", "particle", "collision", "field")
+    assert list(ds["frequency"].values) == [54.0, 60.0]
+    assert list(ds["family"].values) == ["rest", "launched"]
+    assert list(ds["field"].values) == ["t", "x", "y", "vx", "vy"]
+    assert "initial" in ds.coords
+    assert ds["time"].values[-1] == study.accuracy.t_max
+
+
+def test_one_chunk_per_frequency_family_and_ensemble_chunk(store, study):
+    g = store.group()
+    cs, T = study.accuracy.chunk_size, len(study.sample_times())
+    assert g["positions"].chunks == (1, 1, cs, T)
+    assert g["collisions"].chunks == (1, 1, cs, study.observables.collisions_record, 5)
+    assert g["n_collisions"].chunks == (1, 1, cs)
+    assert g["done"].shape == (2, 2, study.accuracy.n_chunks) and g["done"].chunks == (1, 1, 1)
+
+
+def test_root_attrs_hold_workflow_params_numerics_version(store, study):
+    attrs = store.group().attrs
+    assert attrs["workflow_toml"] == TINY
+    assert attrs["params"]["alpha"] == 0.7 and "f" not in attrs["params"]
+    assert attrs["numerics"] == study.accuracy.numerics().as_dict()
+    assert attrs["accuracy"]["n_particles"] == 8
+    assert attrs["bbb_version"] and attrs["fingerprint"] == study.fingerprint()
+
+
+def test_a_task_writes_only_its_own_chunk_files(store, study):
+    before = _chunk_files(store.path)
+    store.write_chunk(1, 0, 1, FakeRun(study, 5.0), 0.1)
+    new = _chunk_files(store.path) - before
+    # every data array gained exactly its chunk (1, 0, 1, ...) and nothing else
+    assert new and all(key.split("/c/")[1].startswith("1/0/1") for key in new)
+    x = store.group()["positions"][...]
+    assert np.all(x[1, 0, 4:8] == 5.0) and np.isnan(x[1, 0, :4]).all() and np.isnan(x[0]).all()
+
+
+def test_done_is_marked_after_the_data_and_only_then(store, study):
+    store.write_chunk(0, 1, 0, FakeRun(study, 1.0), 0.1, mark_done=False)
+    assert not store.done().any()  # data written, chunk not done: a re-run recomputes it
+    store.write_chunk(0, 1, 0, FakeRun(study, 1.0), 0.1)
+    assert store.done()[0, 1, 0] and store.done().sum() == 1
+
+
+def test_chunk_writes_are_idempotent(store, study):
+    store.write_chunk(0, 0, 0, FakeRun(study, 2.0), 0.1)
+    first = store.group()["collisions"][...]
+    store.write_chunk(0, 0, 0, FakeRun(study, 2.0), 0.2)
+    assert np.array_equal(first, store.group()["collisions"][...], equal_nan=True)
+
+
+def test_reopening_with_the_same_workflow_keeps_the_data(store, study):
+    store.write_chunk(0, 0, 0, FakeRun(study, 2.0), 0.1)
+    again = StudyStore.create_or_open(store.path, study)
+    assert again.done()[0, 0, 0]
+
+
+def test_a_different_workflow_is_refused_naming_the_difference(store):
+    other = parse_workflow(TINY.replace("seed = 7", "seed = 8"), source="tiny.toml")
+    with pytest.raises(StoreError, match=r"different workflow \(seed: store 7, workflow 8\)"):
+        StudyStore.create_or_open(store.path, other)
+
+
+def test_different_params_are_refused(store):
+    other = parse_workflow(TINY.replace('preset = "klages2004"', 'preset = "matyas2004"'),
+                           source="tiny.toml")
+    with pytest.raises(StoreError, match=r"params\.(R|alpha)"):
+        StudyStore.create_or_open(store.path, other)
+
+
+def test_new_reduce_settings_are_accepted_and_recorded(store):
+    other = parse_workflow(TINY + "[analysis]\nci = 0.9\n", source="tiny.toml")
+    StudyStore.create_or_open(store.path, other)
+    assert StudyStore.open(store.path).study.analysis.ci == 0.9
+
+
+def test_open_returns_the_study_it_was_made_by(store, study):
+    assert StudyStore.open(store.path).study == study
+
+
+def test_a_directory_that_is_not_a_store_is_refused(tmp_path, study):
+    (tmp_path / "notes").mkdir()
+    (tmp_path / "notes" / "a.txt").write_text("x")
+    with pytest.raises(StoreError, match="not a Zarr store"):
+        StudyStore.create_or_open(tmp_path / "notes", study)
+
+
+def test_another_zarr_group_is_refused(tmp_path, study):
+    zarr.open_group(str(tmp_path / "other.zarr"), mode="w")
+    with pytest.raises(StoreError, match="not a bbb study store"):
+        StudyStore.create_or_open(tmp_path / "other.zarr", study)
+
+
+def test_interrupted_layout_creation_is_redone(tmp_path, study):
+    zarr.open_group(str(tmp_path / "s.zarr"), mode="w", attributes={"bbb_creating": True})
+    store = StudyStore.create_or_open(tmp_path / "s.zarr", study)
+    assert store.group().attrs["fingerprint"] == study.fingerprint()
+
+
+def test_unwritable_path_is_refused(tmp_path, study):
+    (tmp_path / "file").write_text("a file cannot hold a store")  # refused even for root
+    with pytest.raises(StoreError, match="cannot create"):
+        StudyStore.create_or_open(tmp_path / "file" / "s.zarr", study)
+
+
+def _chunk_files(path) -> set[str]:
+    out = set()
+    for root, _, files in os.walk(path):
+        for f in files:
+            rel = os.path.relpath(os.path.join(root, f), path)
+            if "/c/" in rel:
+                out.add(rel)
+    return out
