@@ -82,8 +82,8 @@ class RunReport:
         done = self.skipped + len(self.computed)
         return (f"{self.name}: {done}/{self.n_chunks} chunks done ({len(self.computed)} computed, "
                 f"{self.skipped} already done), {self.collisions:.3g} collisions in "
-                f"{self.wall:.1f} s on {self.workers} workers = {self.collisions_per_s:.3g} "
-                f"collisions/s -> {self.store}")
+                f"{self.wall:.1f} s wall ({self.task_seconds:.1f} s in tasks) on {self.workers} "
+                f"workers = {self.collisions_per_s:.3g} collisions/s -> {self.store}")
 
 
 # -------------------------------------------------------------------------------------------
@@ -154,6 +154,7 @@ def run_study(
     workers: int | None = None,
     progress: bool = True,
     fail_chunks: str | None = None,
+    dashboard: bool = True,
     echo: Callable[[str], None] = print,
 ) -> RunReport:
     """Compute every chunk of ``study`` not yet done in the store at ``store_path``.
@@ -161,6 +162,7 @@ def run_study(
     scheduler -- address of an existing Dask scheduler (``tcp://host:port``); None starts a
                  LocalCluster with ``workers`` processes (default: the number of cores)
     fail_chunks -- fault injection, as BBB_FAIL_CHUNKS (default: read from the environment)
+    dashboard -- serve the Dask dashboard of a LocalCluster (needs bokeh) and print its link
 
     Raises RunFailed naming the chunk if a task fails; finished chunks stay done.
     """
@@ -187,12 +189,15 @@ def run_study(
         echo(f"{study.name}: resuming, {report.skipped} of {done.size} chunks already done")
 
     warm = warm_numba(study)  # compile in this process first: workers then only load the cache
-    client, cluster = _connect(scheduler, workers)
+    client, cluster = _connect(scheduler, workers, dashboard)
     try:
         report.workers = len(client.scheduler_info(n_workers=-1)["workers"])
-        report.dashboard = _dashboard(client)
+        report.dashboard = _dashboard(client, cluster, dashboard)
+        link = report.dashboard or ("off" if not dashboard else "unavailable (pip install bokeh)")
         echo(f"{study.name}: {len(todo)} chunks on {report.workers} workers; numba warm-up "
-             f"{warm:.1f} s; dashboard: {report.dashboard or 'unavailable (pip install bokeh)'}")
+             f"{warm:.1f} s; dashboard: {link}")
+        if cluster is None:
+            _check_workers_see_store(client, store_path)
         _warm_workers(client, study)
         _execute(client, store, todo, fails, report, progress)
     finally:
@@ -205,7 +210,7 @@ def run_study(
     return report
 
 
-def _connect(scheduler: str | None, workers: int | None):
+def _connect(scheduler: str | None, workers: int | None, dashboard: bool):
     from distributed import Client, LocalCluster
 
     if scheduler:
@@ -216,7 +221,10 @@ def _connect(scheduler: str | None, workers: int | None):
     n = workers or os.cpu_count() or 1
     cluster = LocalCluster(
         n_workers=n, threads_per_worker=1, processes=True,
-        dashboard_address=":0" if _has_bokeh() else None,
+        # ":0": a free port (None would still bind the fixed :8787 for the scheduler's http
+        # server, clashing with any other cluster on this machine)
+        dashboard_address=":0",
+        scheduler_kwargs={"dashboard": dashboard and _has_bokeh()},
         # numba would otherwise start one thread per core in every worker for prange loops
         env={"NUMBA_NUM_THREADS": "1"},
         # A failed task is reported once, by the client (RunFailed names the chunk, the cause
@@ -234,11 +242,26 @@ def _has_bokeh() -> bool:
     return True
 
 
-def _dashboard(client) -> str | None:
+def _dashboard(client, cluster, wanted: bool) -> str | None:
+    if cluster is not None and not (wanted and _has_bokeh()):
+        return None
     try:
-        return client.dashboard_link if _has_bokeh() else None
+        return client.dashboard_link
     except Exception:  # no dashboard on this scheduler
         return None
+
+
+def _check_workers_see_store(client, store_path: str) -> None:
+    """With a remote scheduler the store must be on storage every worker sees."""
+    if "://" in store_path and not store_path.startswith("file://"):
+        return  # an fsspec URL: the workers open it themselves
+    local = store_path.removeprefix("file://")
+    seen = client.run(os.path.exists, os.path.join(local, "zarr.json"))
+    blind = sorted(w for w, ok in seen.items() if not ok)
+    if blind:
+        raise RunFailed(f"--store {store_path}: not visible to {len(blind)} of {len(seen)} "
+                        f"workers (e.g. {blind[0]}); with --scheduler the store must be on a "
+                        "shared filesystem or an fsspec URL (s3://, gs://, ...)")
 
 
 def _warm_workers(client, study: Study) -> None:

@@ -40,8 +40,8 @@ record = 40
 record_from = 2.0
 """
 
-# run_study keyword arguments for tests: no progress bar, no printing.
-QUIET = dict(progress=False, echo=lambda s: None)
+# run_study keyword arguments for tests: no progress bar, no dashboard, no printing.
+QUIET = dict(progress=False, dashboard=False, echo=lambda s: None)
 
 # Arrays whose contents are a deterministic function of the workflow (chunk_seconds is not).
 NON_REPRODUCIBLE = {"chunk_seconds"}
