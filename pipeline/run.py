@@ -23,7 +23,7 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from .store import StudyStore, _is_local
+from .store import StudyStore, _is_local, run_lock
 from .workflow import Study
 
 __all__ = [
@@ -172,6 +172,13 @@ def run_study(
         store_path = os.path.abspath(store_path)  # workers may run in another directory
     fails = parse_fail_chunks(os.environ.get(FAIL_ENV) if fail_chunks is None else fail_chunks,
                               study)
+    with run_lock(store_path):
+        return _run_locked(study, store_path, scheduler, workers, progress, fails, dashboard,
+                           echo, t_start)
+
+
+def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboard, echo,
+                t_start) -> RunReport:
     store = StudyStore.create_or_open(store_path, study)
     store.consolidate()  # readable by xarray.open_zarr even if the run is interrupted
     done = store.done()

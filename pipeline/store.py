@@ -34,8 +34,12 @@ workflow of another fingerprint is refused.
 from __future__ import annotations
 
 import datetime as _dt
+import json
 import os
+import socket
 import warnings
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import asdict, dataclass
 from importlib import metadata
 from typing import Any
@@ -45,7 +49,8 @@ import zarr
 
 from .workflow import Study
 
-__all__ = ["StoreError", "StudyStore", "COLLISION_FIELDS", "LAYOUT_VERSION", "package_version"]
+__all__ = ["StoreError", "StudyStore", "run_lock", "COLLISION_FIELDS", "LAYOUT_VERSION",
+           "package_version"]
 
 LAYOUT_VERSION = 1
 COLLISION_FIELDS = ("t", "x", "y", "vx", "vy")
@@ -183,6 +188,77 @@ class StudyStore:
 
 
 # -------------------------------------------------------------------------------------------
+@contextmanager
+def run_lock(path: str) -> Iterator[None]:
+    """Hold ``<store>.lock`` (beside a local store) while a run writes to the store.
+
+    The lock records the holder's host, pid and start time.  A second run is refused with
+    that information; a lock left by a killed run on this host (its pid is gone) is stale and
+    taken over.  fsspec URLs are not locked (no atomic create on object stores).
+    """
+    if "://" in path and not path.startswith("file://"):
+        yield
+        return
+    lock = path.removeprefix("file://").rstrip("/") + ".lock"
+    me = {"host": socket.gethostname(), "pid": os.getpid(),
+          "started": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")}
+    try:
+        os.makedirs(os.path.dirname(os.path.abspath(lock)), exist_ok=True)
+    except OSError as e:
+        raise StoreError(f"{path}: cannot create its directory ({e.strerror})") from None
+    for _ in range(3):
+        try:
+            fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+        except FileExistsError:
+            holder = _read_lock(lock)
+            if holder.get("host") == me["host"] and not _pid_alive(holder.get("pid")):
+                _remove(lock)  # stale: its run was killed on this machine
+                continue
+            raise StoreError(
+                f"{path}: in use by another bbb run (host {holder.get('host', '?')}, pid "
+                f"{holder.get('pid', '?')}, since {holder.get('started', '?')}); if no run is "
+                f"active, delete {lock}") from None
+        except OSError as e:
+            raise StoreError(f"{path}: cannot create the lock {lock} ({e.strerror})") from None
+        with os.fdopen(fd, "w") as fh:
+            json.dump(me, fh)
+        break
+    else:
+        raise StoreError(f"{path}: could not take the lock {lock}; delete it if no run is active")
+    try:
+        yield
+    finally:
+        if _read_lock(lock).get("pid") == me["pid"]:
+            _remove(lock)
+
+
+def _read_lock(lock: str) -> dict:
+    try:
+        with open(lock) as fh:
+            return json.load(fh)
+    except (OSError, ValueError):  # gone, or written only half by a killed run
+        return {}
+
+
+def _pid_alive(pid) -> bool:
+    if not isinstance(pid, int) or pid <= 0:
+        return False
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # exists, owned by someone else
+        return True
+    return True
+
+
+def _remove(path: str) -> None:
+    try:
+        os.remove(path)
+    except FileNotFoundError:
+        pass
+
+
 def _open_group(path: str) -> zarr.Group | None:
     try:
         return zarr.open_group(path, mode="r")

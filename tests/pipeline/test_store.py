@@ -2,14 +2,18 @@
 
 from __future__ import annotations
 
+import json
 import os
+import socket
+import subprocess
+from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
 import zarr
 
-from pipeline.store import StoreError, StudyStore
+from pipeline.store import StoreError, StudyStore, run_lock
 from pipeline.workflow import parse_workflow
 
 from .helpers import TINY
@@ -154,3 +158,26 @@ def _chunk_files(path) -> set[str]:
             if "/c/" in rel:
                 out.add(rel)
     return out
+
+
+def test_a_held_store_is_refused_naming_the_holder(tmp_path):
+    path = str(tmp_path / "s.zarr")
+    with run_lock(path):
+        with pytest.raises(StoreError, match=rf"in use by another bbb run .*pid {os.getpid()}"):
+            with run_lock(path):
+                pass
+    assert not os.path.exists(path + ".lock")  # released
+
+
+def test_a_stale_lock_of_a_dead_process_is_taken_over(tmp_path):
+    path = str(tmp_path / "s.zarr")
+    dead = _dead_pid()
+    Path(path + ".lock").write_text(json.dumps({"host": socket.gethostname(), "pid": dead}))
+    with run_lock(path):
+        assert json.loads(Path(path + ".lock").read_text())["pid"] == os.getpid()
+
+
+def _dead_pid() -> int:
+    p = subprocess.Popen(["true"])
+    p.wait()
+    return p.pid
