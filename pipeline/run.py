@@ -61,7 +61,11 @@ class ChunkResult:
 
 @dataclass
 class RunReport:
-    """The outcome of :func:`run_study`; ``summary()`` is the one-line report."""
+    """The outcome of :func:`run_study`; ``summary()`` is the one-line report.
+
+    wall: the whole run, s; compute_wall: from the first task submitted to the last result, s
+    (wall minus cluster start-up and numba warm-up); task_seconds: summed task wall times, s.
+    """
 
     name: str
     store: str
@@ -71,6 +75,7 @@ class RunReport:
     collisions: int = 0
     task_seconds: float = 0.0
     wall: float = 0.0
+    compute_wall: float = 0.0
     workers: int = 0
     dashboard: str | None = None
 
@@ -82,8 +87,9 @@ class RunReport:
         done = self.skipped + len(self.computed)
         return (f"{self.name}: {done}/{self.n_chunks} chunks done ({len(self.computed)} computed, "
                 f"{self.skipped} already done), {self.collisions:.3g} collisions in "
-                f"{self.wall:.1f} s wall ({self.task_seconds:.1f} s in tasks) on {self.workers} "
-                f"workers = {self.collisions_per_s:.3g} collisions/s -> {self.store}")
+                f"{self.wall:.1f} s wall ({self.compute_wall:.1f} s computing, "
+                f"{self.task_seconds:.1f} s in tasks) on {self.workers} workers = "
+                f"{self.collisions_per_s:.3g} collisions/s -> {self.store}")
 
 
 # -------------------------------------------------------------------------------------------
@@ -206,7 +212,11 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
         if cluster is None:
             _check_workers_see_store(client, store_path)
         _warm_workers(client, study)
-        _execute(client, store, todo, fails, report, progress)
+        t_compute = time.perf_counter()
+        try:
+            _execute(client, store, todo, fails, report, progress)
+        finally:
+            report.compute_wall = time.perf_counter() - t_compute
     finally:
         client.close()
         if cluster is not None:
