@@ -50,7 +50,7 @@ def default_out_dir(store_path: str, study: Study) -> str:
 def reduce_store(store_path: str | os.PathLike, out_dir: str | os.PathLike | None = None,
                  *, echo: Callable[[str], None] = print) -> dict[str, pd.DataFrame]:
     """Write the tables of one store to ``out_dir`` (default: beside the store); returns them."""
-    store = StudyStore.open(os.fspath(store_path))
+    store = StudyStore.open(store_path)
     study = store.study
     out = Path(out_dir if out_dir is not None else default_out_dir(store.path, study))
     out.mkdir(parents=True, exist_ok=True)

@@ -23,7 +23,7 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from .store import StudyStore, _is_local, run_lock
+from .store import StudyStore, _is_local, normalize_path, run_lock
 from .workflow import Study
 
 __all__ = [
@@ -173,9 +173,7 @@ def run_study(
     Raises RunFailed naming the chunk if a task fails; finished chunks stay done.
     """
     t_start = time.perf_counter()
-    store_path = os.fspath(store_path)
-    if _is_local(store_path) and "://" not in store_path:
-        store_path = os.path.abspath(store_path)  # workers may run in another directory
+    store_path = normalize_path(store_path)
     fails = parse_fail_chunks(os.environ.get(FAIL_ENV) if fail_chunks is None else fail_chunks,
                               study)
     with run_lock(store_path):
@@ -270,10 +268,9 @@ def _dashboard(client, cluster, wanted: bool) -> str | None:
 
 def _check_workers_see_store(client, store_path: str) -> None:
     """With a remote scheduler the store must be on storage every worker sees."""
-    if "://" in store_path and not store_path.startswith("file://"):
+    if not _is_local(store_path):
         return  # an fsspec URL: the workers open it themselves
-    local = store_path.removeprefix("file://")
-    seen = client.run(os.path.exists, os.path.join(local, "zarr.json"))
+    seen = client.run(os.path.exists, os.path.join(store_path, "zarr.json"))
     blind = sorted(w for w, ok in seen.items() if not ok)
     if blind:
         raise RunFailed(f"--store {store_path}: not visible to {len(blind)} of {len(seen)} "

@@ -49,7 +49,7 @@ import zarr
 
 from .workflow import Study
 
-__all__ = ["StoreError", "StudyStore", "run_lock", "COLLISION_FIELDS", "LAYOUT_VERSION",
+__all__ = ["StoreError", "StudyStore", "run_lock", "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
            "package_version"]
 
 LAYOUT_VERSION = 1
@@ -75,8 +75,17 @@ def package_version() -> str:
         return "unknown"
 
 
+def normalize_path(path: str | os.PathLike) -> str:
+    """A store path as used everywhere: ``file://`` URLs become plain local paths, and local
+    paths absolute (workers may run in another directory); other URLs are kept."""
+    path = os.fspath(path)
+    if path.startswith("file://"):
+        path = path.removeprefix("file://")
+    return path if "://" in path else os.path.abspath(path)
+
+
 def _is_local(path: str) -> bool:
-    return "://" not in path or path.startswith("file://")
+    return "://" not in path
 
 
 @dataclass(frozen=True)
@@ -90,7 +99,7 @@ class StudyStore:
     @classmethod
     def create_or_open(cls, path: str | os.PathLike, study: Study) -> StudyStore:
         """Create the whole layout, or reopen an existing store made by the same workflow."""
-        path = os.fspath(path)
+        path = normalize_path(path)
         existing = _open_group(path)
         if existing is not None:
             attrs = dict(existing.attrs)
@@ -115,7 +124,7 @@ class StudyStore:
     @classmethod
     def open(cls, path: str | os.PathLike) -> StudyStore:
         """Open an existing store read-only, with the Study it was made by."""
-        path = os.fspath(path)
+        path = normalize_path(path)
         g = _open_group(path)
         if g is None:
             raise StoreError(f"{path}: no such store")
@@ -196,10 +205,11 @@ def run_lock(path: str) -> Iterator[None]:
     that information; a lock left by a killed run on this host (its pid is gone) is stale and
     taken over.  fsspec URLs are not locked (no atomic create on object stores).
     """
-    if "://" in path and not path.startswith("file://"):
+    path = normalize_path(path)
+    if not _is_local(path):
         yield
         return
-    lock = path.removeprefix("file://").rstrip("/") + ".lock"
+    lock = path.rstrip("/") + ".lock"
     me = {"host": socket.gethostname(), "pid": os.getpid(),
           "started": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")}
     try:

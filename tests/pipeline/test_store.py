@@ -181,3 +181,16 @@ def _dead_pid() -> int:
     p = subprocess.Popen(["true"])
     p.wait()
     return p.pid
+
+
+def test_fsspec_urls_are_stores_too(study, tmp_path):
+    # memory:// goes through zarr's FsspecStore like s3:// would; file:// is a local path.
+    from pipeline.run import compute_chunk
+
+    for url in ("memory://bbb-test/s.zarr", f"file://{tmp_path}/s.zarr"):
+        store = StudyStore.create_or_open(url, study)
+        compute_chunk(store, 1, 1, 0)
+        again = StudyStore.open(url)
+        assert again.study == study and again.done().sum() == 1
+        assert np.isfinite(again.group()["positions"][1, 1, :4]).all()
+    assert (tmp_path / "s.zarr" / "zarr.json").exists()
