@@ -101,6 +101,9 @@ def _cmd_run(args) -> int:
     from .run import RunFailed, run_study
     from .workflow import load_workflow
 
+    if args.scheduler and args.workers:
+        raise UsageError("--workers sizes a LocalCluster; with --scheduler the cluster's own "
+                         "workers run the tasks (allowed: one of the two)")
     study = load_workflow(args.workflow)
     store = args.store or default_store_path(study.name)
     if "://" not in store:

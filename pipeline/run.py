@@ -137,7 +137,7 @@ def warm_numba(study: Study) -> float:
     return time.perf_counter() - t0
 
 
-def parse_fail_chunks(spec: str | None, study: Study) -> set[tuple[int, str, int]]:
+def parse_fail_chunks(spec: str | None) -> set[tuple[int, str, int]]:
     """``"60:rest:1,54.5:launched:0"`` -> {(60000, "rest", 1), (54500, "launched", 0)}."""
     out = set()
     for item in (spec or "").split(","):
@@ -174,8 +174,7 @@ def run_study(
     """
     t_start = time.perf_counter()
     store_path = normalize_path(store_path)
-    fails = parse_fail_chunks(os.environ.get(FAIL_ENV) if fail_chunks is None else fail_chunks,
-                              study)
+    fails = parse_fail_chunks(os.environ.get(FAIL_ENV) if fail_chunks is None else fail_chunks)
     with run_lock(store_path):
         return _run_locked(study, store_path, scheduler, workers, progress, fails, dashboard,
                            echo, t_start)

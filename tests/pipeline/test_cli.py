@@ -70,6 +70,7 @@ def test_usage_error_through_the_script_is_one_line_without_traceback(tmp_path):
     (["run", "wf.toml", "--workers", "0"], "--workers"),
     (["run", "wf.toml", "--workers", "two"], "--workers"),
     (["run", "/nonexistent/wf.toml"], "no such workflow file"),
+    (["run", "wf.toml", "--scheduler", "tcp://127.0.0.1:1", "--workers", "2"], "--workers"),
     (["reduce", "/nonexistent/s.zarr"], "no such store"),
     (["status", "/nonexistent/s.zarr"], "no such store"),
 ])
