@@ -45,6 +45,10 @@ class RunFailed(RuntimeError):
     """A task failed; the message names the frequency, family, chunk and cause."""
 
 
+class SchedulerUnreachable(ValueError):
+    """--scheduler names no reachable Dask scheduler (a usage error: nothing ran)."""
+
+
 class InjectedFailure(RuntimeError):
     """The failure asked for by BBB_FAIL_CHUNKS."""
 
@@ -182,25 +186,29 @@ def run_study(
 
 def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboard, echo,
                 t_start) -> RunReport:
-    store = StudyStore.create_or_open(store_path, study)
-    store.consolidate()  # readable by xarray.open_zarr even if the run is interrupted
-    done = store.done()
-    todo = [(fi, mi, ci)
-            for fi in range(len(study.frequencies))
-            for mi in range(len(study.families))
-            for ci in range(study.accuracy.n_chunks)
-            if not done[fi, mi, ci]]
-    report = RunReport(study.name, store_path, done.size, int(done.sum()))
-    if not todo:
-        echo(f"{study.name}: all {done.size} chunks already done in {store_path}")
-        report.wall = time.perf_counter() - t_start
-        return report
-    if report.skipped:
-        echo(f"{study.name}: resuming, {report.skipped} of {done.size} chunks already done")
-
-    warm = warm_numba(study)  # compile in this process first: workers then only load the cache
-    client, cluster = _connect(scheduler, workers, dashboard)
+    # An existing scheduler is reached first, so that a wrong address leaves no store behind;
+    # a LocalCluster starts only once the store is known to need work.
+    client, cluster = _connect(scheduler, None, dashboard) if scheduler else (None, None)
     try:
+        store = StudyStore.create_or_open(store_path, study)
+        store.consolidate()  # readable by xarray.open_zarr even if the run is interrupted
+        done = store.done()
+        todo = [(fi, mi, ci)
+                for fi in range(len(study.frequencies))
+                for mi in range(len(study.families))
+                for ci in range(study.accuracy.n_chunks)
+                if not done[fi, mi, ci]]
+        report = RunReport(study.name, store_path, done.size, int(done.sum()))
+        if not todo:
+            echo(f"{study.name}: all {done.size} chunks already done in {store_path}")
+            report.wall = time.perf_counter() - t_start
+            return report
+        if report.skipped:
+            echo(f"{study.name}: resuming, {report.skipped} of {done.size} chunks already done")
+
+        warm = warm_numba(study)  # compile here first: workers then only load the cache
+        if client is None:
+            client, cluster = _connect(None, workers, dashboard)
         report.workers = len(client.scheduler_info(n_workers=-1)["workers"])
         report.dashboard = _dashboard(client, cluster, dashboard)
         link = report.dashboard or ("off" if not dashboard else "unavailable (pip install bokeh)")
@@ -215,7 +223,8 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
         finally:
             report.compute_wall = time.perf_counter() - t_compute
     finally:
-        client.close()
+        if client is not None:
+            client.close()
         if cluster is not None:
             cluster.close()
     store.consolidate()
@@ -230,8 +239,10 @@ def _connect(scheduler: str | None, workers: int | None, dashboard: bool):
     if scheduler:
         try:
             return Client(scheduler, timeout="20s"), None
-        except OSError as e:
-            raise RunFailed(f"cannot reach the Dask scheduler at {scheduler}: {e}") from None
+        except (OSError, ValueError, TypeError) as e:
+            raise SchedulerUnreachable(f"--scheduler {scheduler}: cannot reach a Dask scheduler "
+                                       f"({e}); allowed: the address of a running scheduler, "
+                                       "e.g. tcp://host:8786") from None
     n = workers or os.cpu_count() or 1
     cluster = LocalCluster(
         n_workers=n, threads_per_worker=1, processes=True,

@@ -71,11 +71,15 @@ def test_usage_error_through_the_script_is_one_line_without_traceback(tmp_path):
     (["run", "wf.toml", "--workers", "two"], "--workers"),
     (["run", "/nonexistent/wf.toml"], "no such workflow file"),
     (["run", "wf.toml", "--scheduler", "tcp://127.0.0.1:1", "--workers", "2"], "--workers"),
+    (["run", "WF", "--scheduler", "nonsense", "--store", "S"], "cannot reach a Dask scheduler"),
     (["reduce", "/nonexistent/s.zarr"], "no such store"),
     (["status", "/nonexistent/s.zarr"], "no such store"),
 ])
-def test_usage_errors_exit_2_with_one_line(argv, needle, capsys):
+def test_usage_errors_exit_2_with_one_line(argv, needle, capsys, tiny_workflow, tmp_path):
+    store = tmp_path / "s.zarr"
+    argv = [str(tiny_workflow) if a == "WF" else str(store) if a == "S" else a for a in argv]
     assert main(argv) == 2
+    assert not store.exists()
     err = capsys.readouterr().err
     assert err.startswith("bbb: error: ") and err.count("\n") == 1 and needle in err
 
