@@ -28,7 +28,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 
-from bbb.approx import floor_t0, spiral  # noqa: E402
+from bbb.approx import spiral  # noqa: E402
 from bbb.locking import creep_speed, flight_time_max, flight_times  # noqa: E402
 
 from .collisions import as_store, states  # noqa: E402
@@ -168,17 +168,17 @@ def figure1(store: str | os.PathLike | StudyStore, tables: Mapping[str, pd.DataF
         phase = c["phase"][jm]
         y_floor = -p.A * math.sin(2 * math.pi * phase)
         ax.plot(xf, y_floor - depth(xf - cells * p.S, p.R), color="0.2", lw=0.9,
-                label=f"floor at phase {phase:.2f} (collision ★)")
+                label=f"floor at phase {phase:.2f} of its period (at collision $\\star$)")
         ax.plot(xf, -depth(xf - cells * p.S, p.R), color="0.6", lw=0.6, ls="--",
-                label="floor at rest height")
+                label="floor at its rest height")
         for k in np.unique(cells):
             if x_lo < k * p.S < x_hi:
                 ax.plot([k * p.S], [y_floor], marker="+", color="0.5", ms=3, mew=0.5)
-        ax.plot(x_all, y_all, color="tab:red", lw=0.8, label="computed trajectory")
+        ax.plot(x_all, y_all, color="tab:red", lw=0.8, label="computed trajectory (bbb)")
         ax.plot(c["x"][j0:j1 + 1], c["y"][j0:j1 + 1], "o", color="tab:red", ms=2.2)
         ax.plot([c["x"][jm]], [c["y"][jm]], marker="*", color="k", ms=7, ls="none")
         y_lo = min(y_floor, 0.0) - p.A - 0.05 * (y_all.max() - y_all.min())
-        y_hi = y_all.max() + 0.1 * (y_all.max() - y_all.min())
+        y_hi = y_all.max() + 0.35 * (y_all.max() - y_all.min())
         ax.set_xlim(x_lo, x_hi)
         ax.set_ylim(y_lo, y_hi)
         # vertical exaggeration: 1 mm of y drawn this many times longer than 1 mm of x
@@ -190,14 +190,13 @@ def figure1(store: str | os.PathLike | StudyStore, tables: Mapping[str, pd.DataF
         ax.annotate("", xy=(xa, p.A), xytext=(xa, -p.A),
                     arrowprops={"arrowstyle": "<->", "lw": 0.6, "color": "0.3"})
         ax.text(xa - 0.05 * pad, 0.0, "2A", ha="right", va="center", fontsize=6.5, color="0.3")
-        ax.text(0.01, 0.97, f"vertical scale ×{exag:.0f}", transform=ax.transAxes, ha="left",
-                va="top", fontsize=6.5, color="0.3")
-        ax.text(0.5, 0.97, f"R = {p.R:g} mm, S = {p.S:g} mm, A = {p.A:g} mm, f = {p.f:g} Hz",
-                transform=ax.transAxes, ha="center", va="top", fontsize=6.5)
+        ax.text(0.01, 0.02, f"vertical scale exaggerated ×{exag:.0f}", transform=ax.transAxes,
+                ha="left", va="bottom", fontsize=6, color="0.3")
         ax.set_xlabel("x (mm)")
         ax.set_ylabel("y (mm)")
-        ax.legend(loc="upper right", bbox_to_anchor=(1.0, 0.9), fontsize=6)
-        ax.set_title("(a)", loc="left")
+        ax.legend(loc="upper left", fontsize=5.5, ncol=3, handlelength=1.5, columnspacing=1.0)
+        ax.set_title(f"(a)  R = {p.R:g} mm, S = {p.S:g} mm, A = {p.A:g} mm, f = {p.f:g} Hz",
+                     loc="left")
         # (b) the frame at collision jm, true scale
         xc, yc = c["x"][jm], c["y"][jm]
         w = 0.3
@@ -232,7 +231,7 @@ def figure1(store: str | os.PathLike | StudyStore, tables: Mapping[str, pd.DataF
         bx.set_aspect("equal")
         bx.set_xlabel("x (mm)")
         bx.set_ylabel("y (mm)")
-        bx.set_title("(b) collision ★, true scale", loc="left")
+        bx.set_title(r"(b) collision $\star$, true scale", loc="left")
         return _save(fig, out_dir, name)
 
 
@@ -256,10 +255,62 @@ def _not_ergodic(table: pd.DataFrame) -> np.ndarray:
     return (e == False).fillna(False).to_numpy(bool)  # noqa: E712 -- pandas nullable boolean
 
 
+def _draw_D(ax, main: pd.DataFrame, cols: tuple[str, str, str], ergo: pd.DataFrame | None,
+            main_family: str, *, legend: bool, small: bool = False) -> list[tuple[float, float]]:
+    """Shading, the main curve with error bars, other families outside its CI; returns the
+    (f, top of error bar) of everything drawn, for placing labels."""
+    f = main["f"].to_numpy(float)
+    D, lo, hi = (main[c].to_numpy(float) for c in cols)
+    labelled: set[str] = set()
+    for tbl in (main, ergo):
+        if tbl is None:
+            continue
+        several = len(_families_in(tbl)) > 1
+        kind = "not ergodic (families / EB)" if several else "EB above threshold (1 family)"
+        for a, b in _spans(tbl["f"].to_numpy(float), _not_ergodic(tbl)):
+            ax.axvspan(a, b, color="0.8" if several else "0.92", lw=0, zorder=0,
+                       label=None if (kind in labelled or not legend) else kind)
+            labelled.add(kind)
+    ms = 1.4 if small else 1.8
+    ax.errorbar(f, D, yerr=[D - lo, hi - D], fmt="o", ms=ms, color="k", ecolor="0.35",
+                elinewidth=0.5, capsize=0.8, capthick=0.4, lw=0, zorder=3,
+                label=(f"{main_family} (95 % CI)" if main_family else "95 % CI") if legend else None)
+    ax.plot(f, D, color="k", lw=0.4, zorder=2)
+    tops = list(zip(f, hi, strict=True))
+    ref = (f"D_{main_family}", f"D_{main_family}_lo", f"D_{main_family}_hi")
+    if ergo is not None and ref[0] in ergo:
+        for i, fam in enumerate(x for x in _families_in(ergo) if x != main_family):
+            d, dlo, dhi = (ergo[c].to_numpy(float) for c in (f"D_{fam}", f"D_{fam}_lo", f"D_{fam}_hi"))
+            out = (d < ergo[ref[1]].to_numpy(float)) | (d > ergo[ref[2]].to_numpy(float))
+            if out.any():
+                fo = ergo["f"].to_numpy(float)[out]
+                ax.errorbar(fo, d[out], yerr=[(d - dlo)[out], (dhi - d)[out]], fmt="s",
+                            ms=ms + 0.6, mfc="none", color=_color(fam, i), elinewidth=0.5,
+                            capsize=0.8, lw=0, zorder=4,
+                            label=f"{fam}, outside {main_family} CI" if legend else None)
+                tops += list(zip(fo, dhi[out], strict=True))
+    return tops
+
+
+def _letters(ax, tops: list[tuple[float, float]], letters: Mapping[str, float],
+             f_grid: np.ndarray, lim: tuple[float, float] | None = None) -> None:
+    ft = np.array([t[0] for t in tops])
+    ht = np.array([t[1] for t in tops])
+    for letter, fl in letters.items():
+        if lim is not None and not lim[0] <= fl <= lim[1]:
+            continue
+        j = int(np.argmin(np.abs(f_grid - fl)))
+        if abs(f_grid[j] - fl) <= 0.5:
+            near = np.abs(ft - f_grid[j]) <= 0.8
+            ax.annotate(f"({letter})", (f_grid[j], np.nanmax(ht[near])), xytext=(0, 2),
+                        textcoords="offset points", ha="center", va="bottom", fontsize=6)
+
+
 def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, pd.DataFrame],
             out_dir: str | os.PathLike, *, name: str = "fig2_diffusion",
             letters: Mapping[str, float] | None = PANELS, main_family: str = "rest",
-            integer_lines: bool = False) -> list[Path]:
+            integer_lines: bool = False, inset: tuple[float, float] | None = (50.0, 67.0)
+            ) -> list[Path]:
     """Fig. 2: D(f) with its bootstrap 95 % CI on every point.
 
     tables["diffusion"]   -- the main curve (the ``main_family`` columns if it has several)
@@ -267,11 +318,14 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
                              outside the main family's CI at the same f (same table)
     tables["locking"]     -- optional: adds a lower panel k(f) (k_max and k_peak) with the
                              integer (and, unless ``integer_lines``, half-integer) lines
-    Shaded: frequencies whose ergodicity verdict is negative (in any given table).
-    ``letters`` marks Fig. 3's panels at their frequencies (None: no letters).
+    Shaded: frequencies whose ergodicity verdict is negative -- darker where the verdict
+    compares several families, lighter where it rests on the EB of one family only.
+    ``letters`` marks Fig. 3's panels at their frequencies (None: no letters); ``inset``
+    (f range, Hz) repeats that range magnified in an inset (None: no inset).
     """
     main = tables["diffusion"].sort_values("f")
-    cD, clo, chi = main_columns(main, main_family)
+    cols = main_columns(main, main_family)
+    ergo = tables.get("ergodicity")
     title = None
     if store is not None:
         st = as_store(store)
@@ -280,53 +334,34 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
                  f"({st.study.accuracy.preset}: {st.study.accuracy.n_particles} particles, "
                  f"{st.study.accuracy.t_max:g} s)")
     lock = tables.get("locking")
+    f = main["f"].to_numpy(float)
     with plt.rc_context(STYLE):
         if lock is not None:
             fig, (ax, kx) = plt.subplots(2, 1, figsize=(COLUMN, 3.6), sharex=True,
                                          gridspec_kw={"height_ratios": [2.0, 1.2], "hspace": 0.08})
         else:
-            fig, ax = plt.subplots(figsize=(COLUMN, 2.4))
+            fig, ax = plt.subplots(figsize=(COLUMN, 2.6))
             kx = None
-        f = main["f"].to_numpy(float)
-        D, lo, hi = (main[c].to_numpy(float) for c in (cD, clo, chi))
-        shaded = False
-        for tbl in (main, tables.get("ergodicity")):
-            if tbl is None:
-                continue
-            for a, b in _spans(tbl["f"].to_numpy(float), _not_ergodic(tbl)):
-                ax.axvspan(a, b, color="0.85", lw=0, zorder=0,
-                           label=None if shaded else "ergodicity verdict negative")
-                shaded = True
-        ax.errorbar(f, D, yerr=[D - lo, hi - D], fmt="o", ms=1.8, color="k", ecolor="0.35",
-                    elinewidth=0.5, capsize=0.8, capthick=0.4, lw=0,
-                    label=f"{main_family}, 95 % CI" if main_family else "95 % CI", zorder=3)
-        ax.plot(f, D, color="k", lw=0.4, zorder=2)
-        ergo = tables.get("ergodicity")
-        if ergo is not None:
-            ref = (f"D_{main_family}", f"D_{main_family}_lo", f"D_{main_family}_hi")
-            for i, fam in enumerate(x for x in _families_in(ergo) if x != main_family):
-                if ref[0] not in ergo:
-                    break
-                d, dlo, dhi = (ergo[c].to_numpy(float)
-                               for c in (f"D_{fam}", f"D_{fam}_lo", f"D_{fam}_hi"))
-                out = (d < ergo[ref[1]].to_numpy(float)) | (d > ergo[ref[2]].to_numpy(float))
-                if out.any():
-                    fo = ergo["f"].to_numpy(float)[out]
-                    ax.errorbar(fo, d[out], yerr=[(d - dlo)[out], (dhi - d)[out]], fmt="s",
-                                ms=2.4, mfc="none", color=_color(fam, i), elinewidth=0.5,
-                                capsize=0.8, lw=0, zorder=4,
-                                label=f"{fam} (outside the {main_family} CI)")
+        tops = _draw_D(ax, main, cols, ergo, main_family, legend=True)
+        top = max((t[1] for t in tops if np.isfinite(t[1])), default=1.0)
+        lo_all = main[cols[1]].to_numpy(float)
+        bottom = min(0.0, float(np.nanmin(lo_all))) if np.isfinite(lo_all).any() else 0.0
+        ax.set_ylim(bottom, 1.1 * top)
         if letters:
-            top = np.nanmax(hi) if np.isfinite(hi).any() else 1.0
-            for letter, fl in letters.items():
-                j = int(np.argmin(np.abs(f - fl)))
-                if abs(f[j] - fl) <= 0.5:
-                    ax.annotate(f"({letter})", (f[j], hi[j]), xytext=(0, 4),
-                                textcoords="offset points", ha="center", fontsize=6.5)
-            ax.set_ylim(top=1.12 * top)
-        ax.set_ylim(bottom=min(0.0, float(np.nanmin(lo)) if np.isfinite(lo).any() else 0.0))
+            _letters(ax, tops, letters, f, lim=None if inset is None else (inset[1], np.inf))
+        if inset is not None and np.any((f >= inset[0]) & (f <= inset[1])):
+            ix = ax.inset_axes([0.07, 0.5, 0.42, 0.46])
+            sel = (main["f"] >= inset[0] - 0.5) & (main["f"] <= inset[1] + 0.5)
+            esel = None if ergo is None else ergo[(ergo["f"] >= inset[0]) & (ergo["f"] <= inset[1])]
+            itops = _draw_D(ix, main[sel], cols, esel, main_family, legend=False, small=True)
+            itop = max((t[1] for t in itops if np.isfinite(t[1])), default=1.0)
+            ix.set_xlim(inset[0] - 0.5, inset[1] + 0.5)
+            ix.set_ylim(bottom, 1.18 * itop)
+            ix.tick_params(labelsize=5.5, length=2)
+            if letters:
+                _letters(ix, itops, letters, f, lim=inset)
         ax.set_ylabel(r"$D$ (mm$^2$/s)")
-        ax.legend(loc="upper left", fontsize=6)
+        ax.legend(loc="lower right", fontsize=5.5, handlelength=1.2)
         if title:
             ax.set_title(title, fontsize=6.5)
         if kx is not None:
@@ -393,8 +428,8 @@ def figure3(store: str | os.PathLike | StudyStore | Sequence[str | os.PathLike |
                     flights.append(flight_times(s["t"], s["y"], s["vy"], p.g))
                     step = max(1, y.size // max_points)
                     col = _color(fam.name, i)
-                    ax.plot(y[::step], v[::step], ",", color=col, alpha=0.6, rasterized=True,
-                            ms=0.5)
+                    ax.plot(y[::step], v[::step], ".", color=col, alpha=0.5, rasterized=True,
+                            ms=0.6, mew=0)
                     if y.size and fam.name not in seen:
                         ax.plot([], [], "o", ms=2, color=col, label=fam.name)
                         seen[fam.name] = True
@@ -408,16 +443,21 @@ def figure3(store: str | os.PathLike | StudyStore | Sequence[str | os.PathLike |
                 if math.isfinite(t_max):
                     tc = np.linspace(0.0, t_max, 4000)
                     ys, vs = spiral(p.A, fp, p.g, p.alpha, tc)
-                    ax.plot(ys, vs, color="tab:red", lw=0.6)
-                    ax.text(0.98, 0.03, f"$t_{{max}}$ = {1e3 * t_max:.1f} ms\n"
-                            f"$t_0$ = {1e3 * floor_t0(fp):.2f} ms", transform=ax.transAxes,
-                            ha="right", va="bottom", fontsize=5.5, color="tab:red")
+                    ax.plot(ys, vs, color="tab:red", lw=0.6,
+                            label="Eqs. (8)-(9)" if letter == spiral_panels[0] else None)
+                    ax.text(0.98, 0.98, f"$t_{{max}}$ = {1e3 * t_max:.1f} ms",
+                            transform=ax.transAxes, ha="right", va="top", fontsize=5.5,
+                            color="tab:red")
+                    ax.set_ylim(top=ax.get_ylim()[1] + 0.12 * np.ptp(ax.get_ylim()))
         for ax in axes[-1]:
             ax.set_xlabel(r"$y$ (mm)")
         for ax in axes[:, 0]:
             ax.set_ylabel(r"$v_y^+$ (mm/s)")
         if seen:
             axes[0, 0].legend(loc="upper left", fontsize=5.5, markerscale=1.0, handlelength=0.8)
+        for ax, letter in zip(axes.ravel(), panels, strict=False):
+            if letter == (spiral_panels[0] if spiral_panels else None) and ax.get_legend_handles_labels()[0]:
+                ax.legend(loc="upper left", fontsize=5.5, handlelength=1.2)
         return _save(fig, out_dir, name)
 
 

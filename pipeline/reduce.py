@@ -19,7 +19,7 @@ verdict      the verdict's reasons, '; '-joined
 
 ``counters.parquet`` / ``counters.csv`` (every store), one row per (frequency, family):
 collisions, sticks, liftoffs (and any other bbb counter) per particle per second, and the
-summed task wall time of its chunks (s).
+summed simulation time of its chunks (s, from chunk_seconds).
 """
 
 from __future__ import annotations

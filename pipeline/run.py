@@ -55,11 +55,13 @@ class InjectedFailure(RuntimeError):
 
 @dataclass(frozen=True)
 class ChunkResult:
-    """What a task reports back: its key, collisions simulated, wall time (s), worker host."""
+    """What a task reports back: its key, collisions simulated, the wall time of the
+    simulation and of the store writes (s), and the worker's host."""
 
     key: ChunkKey
     collisions: int
     seconds: float
+    write_seconds: float
     host: str
 
 
@@ -68,7 +70,8 @@ class RunReport:
     """The outcome of :func:`run_study`; ``summary()`` is the one-line report.
 
     wall: the whole run, s; compute_wall: from the first task submitted to the last result, s
-    (wall minus cluster start-up and numba warm-up); task_seconds: summed task wall times, s.
+    (wall minus cluster start-up and numba warm-up); task_seconds: summed simulation times of
+    the tasks, s; write_seconds: summed time the tasks spent writing to the store, s.
     """
 
     name: str
@@ -78,6 +81,7 @@ class RunReport:
     computed: list[ChunkKey] = field(default_factory=list)
     collisions: int = 0
     task_seconds: float = 0.0
+    write_seconds: float = 0.0
     wall: float = 0.0
     compute_wall: float = 0.0
     workers: int = 0
@@ -117,7 +121,7 @@ def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = Fal
     if fail:
         raise InjectedFailure(f"{FAIL_ENV} asked this chunk to fail after writing its data")
     return ChunkResult((f, fam.name, ci), int(run.counters["collisions"].sum()), seconds,
-                       socket.gethostname())
+                       time.perf_counter() - t0 - seconds, socket.gethostname())
 
 
 def warm_numba(study: Study) -> float:
@@ -334,6 +338,7 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
             report.computed.append(res.key)
             report.collisions += res.collisions
             report.task_seconds += res.seconds
+            report.write_seconds += res.write_seconds
             bar.update(1)
     finally:
         bar.close()

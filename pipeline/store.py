@@ -19,7 +19,7 @@ collisions     (frequency, family, particle, collision, field)  f8  (1, 1, chunk
 n_recorded     (frequency, family, particle)  valid rows   i8      (1, 1, chunk_size) [coll.]
 n_collisions, n_sticks, n_liftoffs  (frequency, family, particle)  i8  (1, 1, chunk_size)
 done           (frequency, family, chunk)   bool           b1      (1, 1, 1)
-chunk_seconds  (frequency, family, chunk)   task wall, s   f8      (1, 1, 1)   not reproducible
+chunk_seconds  (frequency, family, chunk)   simulate, s    f8      (1, 1, 1)   not reproducible
 =============  ==========================================  ======  ===========================
 
 One Dask task computes one (frequency, family, chunk) and writes exactly one chunk of every
@@ -170,7 +170,7 @@ class StudyStore:
     def write_chunk(self, fi: int, mi: int, ci: int, run: Any, seconds: float,
                     mark_done: bool = True) -> None:
         """Write one task's results (a bbb SimRun) into its own chunk of every array, then
-        mark it done.  Indices: fi frequency, mi family, ci chunk; seconds: the task's wall time.
+        mark it done.  Indices: fi frequency, mi family, ci chunk; seconds: its simulation time.
 
         Idempotent: Dask may run a task twice, and a rerun writes the same bytes.
         mark_done=False leaves a written chunk unfinished (fault injection in tests).
@@ -323,7 +323,7 @@ def _create_layout(g: zarr.Group, study: Study) -> None:
     data("done", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "bool", False, "",
          "chunk completely written")
     data("chunk_seconds", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "float64",
-         np.nan, "s", "wall time of the chunk's task (not reproducible)")
+         np.nan, "s", "wall time of the chunk's simulation (not reproducible)")
 
 
 def _root_attrs(study: Study) -> dict[str, Any]:
