@@ -350,7 +350,7 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
         if letters:
             _letters(ax, tops, letters, f, lim=None if inset is None else (inset[1], np.inf))
         if inset is not None and np.any((f >= inset[0]) & (f <= inset[1])):
-            ix = ax.inset_axes([0.07, 0.5, 0.42, 0.46])
+            ix = ax.inset_axes([0.07, 0.53, 0.36, 0.43])
             sel = (main["f"] >= inset[0] - 0.5) & (main["f"] <= inset[1] + 0.5)
             esel = None if ergo is None else ergo[(ergo["f"] >= inset[0]) & (ergo["f"] <= inset[1])]
             itops = _draw_D(ix, main[sel], cols, esel, main_family, legend=False, small=True)
@@ -443,10 +443,9 @@ def figure3(store: str | os.PathLike | StudyStore | Sequence[str | os.PathLike |
                 if math.isfinite(t_max):
                     tc = np.linspace(0.0, t_max, 4000)
                     ys, vs = spiral(p.A, fp, p.g, p.alpha, tc)
-                    ax.plot(ys, vs, color="tab:red", lw=0.6,
-                            label="Eqs. (8)-(9)" if letter == spiral_panels[0] else None)
-                    ax.text(0.98, 0.98, f"$t_{{max}}$ = {1e3 * t_max:.1f} ms",
-                            transform=ax.transAxes, ha="right", va="top", fontsize=5.5,
+                    ax.plot(ys, vs, color="tab:red", lw=0.6)
+                    ax.text(0.03, 0.97, f"Eqs. (8)-(9), $t_{{max}}$ = {1e3 * t_max:.1f} ms",
+                            transform=ax.transAxes, ha="left", va="top", fontsize=5.5,
                             color="tab:red")
                     ax.set_ylim(top=ax.get_ylim()[1] + 0.12 * np.ptp(ax.get_ylim()))
         for ax in axes[-1]:
@@ -455,9 +454,6 @@ def figure3(store: str | os.PathLike | StudyStore | Sequence[str | os.PathLike |
             ax.set_ylabel(r"$v_y^+$ (mm/s)")
         if seen:
             axes[0, 0].legend(loc="upper left", fontsize=5.5, markerscale=1.0, handlelength=0.8)
-        for ax, letter in zip(axes.ravel(), panels, strict=False):
-            if letter == (spiral_panels[0] if spiral_panels else None) and ax.get_legend_handles_labels()[0]:
-                ax.legend(loc="upper left", fontsize=5.5, handlelength=1.2)
         return _save(fig, out_dir, name)
 
 
