@@ -1,0 +1,77 @@
+"""A tiny study store for the figure and report tests, made once per test session through
+the real pipeline (run_study on a 2-worker LocalCluster, then reduce_store)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from PIL import Image
+
+# Fig. 3's frequencies 54 (1/1 spot for launched particles), 60 (VHO), 72 (two-loop spiral)
+# and 78; two families; positions for D(f) and collisions for the locking analysis.
+TINY_FIGURES = """\
+[study]
+name = "tiny_figures"
+seed = 11
+
+[params]
+preset = "klages2004"
+
+[frequencies]
+values = [54.0, 60.0, 72.0, 78.0]
+
+[families.rest]
+initial = "rest"
+
+[families.launched]
+initial = "launched"
+launch_speed = [0.0, 150.0]
+
+[accuracy]
+preset = "draft"
+n_particles = 8
+chunk_size = 8
+t_max = 12.0
+sample_dt = 0.5
+n_resamples = 50
+
+[observables.positions]
+
+[observables.collisions]
+record = 400
+record_from = 2.0
+"""
+
+
+def tiny_store(tmp_path_factory) -> tuple[str, dict[str, pd.DataFrame]]:
+    """(store path, {"diffusion": D(f) table, "locking": locking table}), built once."""
+    from pipeline.collisions import locking_table
+    from pipeline.reduce import reduce_store
+    from pipeline.run import run_study
+    from pipeline.workflow import parse_workflow
+
+    base = Path(tmp_path_factory.getbasetemp()) / "tiny_figures"
+    store = base / "tiny_figures.zarr"
+    if not (base / "ready").exists():
+        base.mkdir(parents=True, exist_ok=True)
+        run_study(parse_workflow(TINY_FIGURES), store, workers=2, progress=False,
+                  dashboard=False, echo=lambda s: None)
+        reduce_store(store, base / "tables", echo=lambda s: None)
+        locking_table(store).to_csv(base / "tables" / "locking.csv", index=False)
+        (base / "ready").write_text("ok\n")
+    tables = {"diffusion": pd.read_parquet(base / "tables" / "diffusion.parquet"),
+              "locking": pd.read_csv(base / "tables" / "locking.csv")}
+    return str(store), tables
+
+
+def assert_png_drawn(path, min_size=(400, 300)) -> None:
+    """The PNG opens, is at least ``min_size`` pixels and is not blank: a good share of its
+    pixels are not background and they are not all one colour."""
+    with Image.open(path) as im:
+        assert im.size[0] >= min_size[0] and im.size[1] >= min_size[1], im.size
+        a = np.asarray(im.convert("L"), dtype=float)
+    ink = a < 200
+    assert ink.mean() > 0.01, f"{path}: only {100 * ink.mean():.2f} % of pixels drawn"
+    assert a.std() > 10.0, f"{path}: nearly uniform image"
