@@ -172,8 +172,10 @@ def _extremum_claim(kind: str, f0: float, window: float, text: str,
             found_main = (label, e)
         else:
             found_other.append((label, e))
-    if not ctx["curves"]:
-        return Row(text, "no D(f) table", "not measured")
+    covering = [lab for lab, (t, _) in ctx["curves"].items()
+                if t["f"].min() <= f0 - window and t["f"].max() >= f0 + window]
+    if not covering:
+        return Row(text, f"no D(f) curve spans {f0 - window:g}–{f0 + window:g} Hz", "not measured")
     parts = []
     if found_main:
         parts.append(f"{found_main[0]}: {_fmt_ext(found_main[1])}")
@@ -356,12 +358,18 @@ def _claim_nonergodic(ctx) -> Row:
     near = parts[(parts["f"] >= 53) & (parts["f"] <= 57)]
     bad = near[~near["agree"]]
     meas = ("families' D disagree at f = " + ", ".join(f"{x:g}" for x in bad["f"]) if len(bad)
-            else "families' D agree at every f in 53–57") + (
-        f"; reduce verdict non-ergodic at {', '.join(f'{x:g}' for x in near['f'][near['ergodic'] == False])}"  # noqa: E712
-        if (near["ergodic"] == False).any() else "")  # noqa: E712
-    return Row(text, meas, "agrees" if len(bad) else "disagrees",
-               "The families (rest, dropped, launched) start in different basins: the bouncing "
-               "state and creeping coexist." if len(bad) else "")
+            else "families' D agree at every f in 53–57")
+    negative = near["f"][near["ergodic"].astype("boolean").fillna(True).eq(False)]
+    if len(negative):
+        meas += f"; reduce verdict non-ergodic at {', '.join(f'{x:g}' for x in negative)}"
+    others = [f for f in parts["f"] if not 53 <= f <= 57 and f in set(parts["f"][~parts["agree"]])]
+    if others:
+        meas += f"; families' D also disagree at {', '.join(f'{x:g}' for x in others)}"
+    fams = ", ".join(_families(ergo))
+    verdict = "agrees" if len(bad) and not others else "partly" if len(bad) else "disagrees"
+    return Row(text, meas, verdict,
+               f"The families ({fams}) start in different basins: the bouncing state and "
+               "creeping coexist." if len(bad) else "")
 
 
 def _claim_ergodic(ctx) -> Row:
