@@ -90,7 +90,8 @@ def refine_root(a, b, Ga, Gb, y, vy, s, dj, vx, g, A, w, R, half_s, tol_t):
             tn = 0.5 * (a + b)
         t = tn
     # bracket below tol_t without a Newton step inside it: secant, O(width²) accurate
-    return b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else b
+    t = b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else b
+    return min(max(t, a), b)
 
 
 @njit(cache=True)
@@ -136,6 +137,9 @@ def search_piece(pa, pb, dj, y, vy, s, vx, g, A, w, R, half_s, from_surface, lif
         if a >= pb:
             return NO_COLLISION
         Ga, G1a = gap(a, y, vy, s, dj, vx, g, A, w, R, half_s)
+        if Ga <= 0.0:
+            # separation below rounding: the particle is back on the surface at a > 0
+            return a
     elif Ga <= 0.0:
         return a
     n = 0
@@ -240,9 +244,10 @@ def next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, tau_li
 
 
 @njit(cache=True)
-def collide(vx, vy, d, s, A, w, R, alpha, beta):
+def collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick):
     """Eqs. (5)-(6): restitution in the arc's normal/tangential frame, relative to the
-    floor velocity.  Returns (vx⁺, vy⁺, outgoing relative normal speed)."""
+    floor velocity.  Returns (vx⁺, vy⁺, outgoing relative normal speed); a speed below
+    ``v_stick`` means the particle sticks."""
     nx, ny = arc_normal(d, R)
     vf = floor_v(s, A, w)
     ux = vx
@@ -252,6 +257,14 @@ def collide(vx, vy, d, s, A, w, R, alpha, beta):
     # |un|: a grazing contact rounded to un ≥ 0 still reflects outward
     un_out = alpha * abs(un)
     ut_out = beta * ut
+    if un_out < v_stick:
+        # A cascade of ever smaller bounces (which ends in sticking) needs the surface to
+        # press on the particle: G'' ≤ 0 at G = G' = 0.  Where the arc falls away faster
+        # than gravity and floor pull the particle down (vx² c'' > g + a_f, a fast
+        # tangential touch), the particle flies off instead: leave with v_stick.
+        g2 = -g - floor_a(s, A, w) + (ut_out * ny) ** 2 * arc_curvature(d, R)
+        if g2 > 0.0 and abs(ut_out) >= v_stick:
+            un_out = v_stick
     return un_out * nx + ut_out * ny, vf + un_out * ny - ut_out * nx, un_out
 
 
@@ -366,7 +379,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
         s, tp = wrap_period(s + tau, tp, T)
         # on the surface exactly: the root is known to tol_t, the height to rounding
         y = floor_y(s, A, w) - arc_depth(d, R)
-        vx, vy, un_out = collide(vx, vy, d, s, A, w, R, alpha, beta)
+        vx, vy, un_out = collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick)
         n_coll += 1
         if not (math.isfinite(vx) and math.isfinite(vy)):
             n_anom += 1
