@@ -309,7 +309,7 @@ def _letters(ax, tops: list[tuple[float, float]], letters: Mapping[str, float],
 def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, pd.DataFrame],
             out_dir: str | os.PathLike, *, name: str = "fig2_diffusion",
             letters: Mapping[str, float] | None = PANELS, main_family: str = "rest",
-            integer_lines: bool = False, inset: tuple[float, float] | None = (50.0, 67.0)
+            inset: tuple[float, float] | None = (50.0, 67.0), legend_loc: str = "lower right"
             ) -> list[Path]:
     """Fig. 2: D(f) with its bootstrap 95 % CI on every point.
 
@@ -317,11 +317,12 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
     tables["ergodicity"]  -- optional: other families' D, drawn with their CI where they lie
                              outside the main family's CI at the same f (same table)
     tables["locking"]     -- optional: adds a lower panel k(f) (k_max and k_peak) with the
-                             integer (and, unless ``integer_lines``, half-integer) lines
+                             integer and half-integer lines
     Shaded: frequencies whose ergodicity verdict is negative -- darker where the verdict
     compares several families, lighter where it rests on the EB of one family only.
     ``letters`` marks Fig. 3's panels at their frequencies (None: no letters); ``inset``
-    (f range, Hz) repeats that range magnified in an inset (None: no inset).
+    (f range, Hz) repeats that range magnified in an inset (None: no inset); ``legend_loc``
+    places the legend.
     """
     main = tables["diffusion"].sort_values("f")
     cols = main_columns(main, main_family)
@@ -361,11 +362,11 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
             if letters:
                 _letters(ix, itops, letters, f, lim=inset)
         ax.set_ylabel(r"$D$ (mm$^2$/s)")
-        ax.legend(loc="lower right", fontsize=5.5, handlelength=1.2)
+        ax.legend(loc=legend_loc, fontsize=5.5, handlelength=1.2)
         if title:
             ax.set_title(title, fontsize=6.5)
         if kx is not None:
-            _k_panel(kx, lock, half=not integer_lines, paper=False)
+            _k_panel(kx, lock, half=True, paper=False)
             kx.set_xlabel(r"$f$ (Hz)")
         else:
             ax.set_xlabel(r"$f$ (Hz)")

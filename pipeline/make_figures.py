@@ -171,7 +171,8 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     paths += fg.figure2(stores["figure2_matyas2004"],
                         {"diffusion": tables["figure2_matyas2004"],
                          "locking": tables["locking_matyas2004"]},
-                        out, name="fig2_matyas2004", letters=None, integer_lines=True)
+                        out, name="fig2_matyas2004", letters=None, inset=None,
+                        legend_loc="upper left")
     log["wall_s"] = time.perf_counter() - t_start
     (out / "run_log.json").write_text(json.dumps(log, indent=2) + "\n")
     report = write_report(out, stores=stores, tables=tables, figures=paths, run_log=log)

@@ -39,7 +39,7 @@ def test_fig2_draws_d_of_f_with_error_bars_letters_and_other_families(made, tmp_
 def test_fig2_with_a_locking_table_adds_the_k_panel(made, tmp_path):
     store, t = made
     paths = fg.figure2(store, {"diffusion": t["diffusion"], "locking": t["locking"]}, tmp_path,
-                       name="fig2_k", letters=None, integer_lines=True)
+                       name="fig2_k", letters=None, inset=None)
     _check(paths, min_size=(900, 900))
 
 
