@@ -14,6 +14,7 @@ EB           ergodicity-breaking parameter Var(δ²)/<δ²>² at eb_lag, all fam
 EB_threshold eb_tolerance x its value for Brownian motion at that lag and run length
 ergodic      bbb.stats.ergodic_verdict: (a) the families' D agree within their CIs and (b) EB
              of every family and of the pool is below EB_threshold
+families_agree, eb_ok  the outcomes of (a) and (b) ((a) is true with a single family)
 D_<fam>, D_<fam>_lo, D_<fam>_hi, EB_<fam>  the same per initial-condition family
 verdict      the verdict's reasons, '; '-joined
 
@@ -112,6 +113,7 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
             n_moving=int(np.count_nonzero(np.ptp(x, axis=1) > 0)), t_max=acc.t_max,
             fit_from=est.fit_from, fit_to=est.fit_to, eb_lag=verdict.lag, EB=eb_pooled,
             EB_threshold=verdict.eb_threshold, ergodic=bool(verdict.ergodic),
+            families_agree=bool(verdict.agreement_ok), eb_ok=bool(verdict.eb_ok),
         )
         for name, d in verdict.D.items():
             row.update({f"D_{name}": d.D, f"D_{name}_lo": d.lo, f"D_{name}_hi": d.hi,
@@ -119,8 +121,9 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
         row["verdict"] = "; ".join(verdict.reasons)
         rows.append(row)
     df = pd.DataFrame(rows)
-    if "ergodic" in df:
-        df["ergodic"] = df["ergodic"].astype("boolean")
+    for col in ("ergodic", "families_agree", "eb_ok"):
+        if col in df:
+            df[col] = df[col].astype("boolean")
     return df
 
 

@@ -43,8 +43,8 @@ def test_d_is_finite_and_positive_where_particles_move(tables):
 def test_csv_holds_the_same_table_as_parquet(tables):
     pq = pd.read_parquet(tables / "diffusion.parquet")
     csv = pd.read_csv(tables / "diffusion.csv")
-    pd.testing.assert_frame_equal(pq.astype({"ergodic": bool}), csv, check_exact=False,
-                                  rtol=1e-12)
+    flags = {c: bool for c in ("ergodic", "families_agree", "eb_ok")}
+    pd.testing.assert_frame_equal(pq.astype(flags), csv, check_exact=False, rtol=1e-12)
 
 
 def test_reduction_is_deterministic(reference, tables, tmp_path):
