@@ -23,6 +23,15 @@ test-slow: $(STAMP)
 lint: $(STAMP)
 	$(VENV)/bin/ruff check .
 
+# the smoke study end to end: run on a local Dask cluster, then D(f) tables in runs/smoke/
+smoke: $(STAMP)
+	$(VENV)/bin/bbb run workflows/smoke.toml --store runs/smoke.zarr
+	$(VENV)/bin/bbb reduce runs/smoke.zarr --out runs/smoke
+
+# every figure and figures/REPORT.md; FAST=1 runs the same scenes at draft accuracy
+figures: $(STAMP)
+	$(PY) -m pipeline.make_figures $(if $(FAST),--fast,)
+
 clean:
 	rm -rf $(VENV) runs .pytest_cache
 
