@@ -104,4 +104,4 @@ def test_the_report_states_parameters_amplitude_accuracy_and_run_time(tmp_path_f
     assert text.count("\n| ") >= len(CLAIMS) + 1  # header + one row per claim
     assert "| A | 0.1 mm |" in text and "prints A = 0.01" in text
     assert "| figure2 | " in text and "| draft |" in text
-    assert "task time" in text and "Wall time of that invocation: 12 s" in text
+    assert "task time" in text and "runs and reductions behind it: 12 s" in text
