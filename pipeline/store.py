@@ -47,19 +47,16 @@ from typing import Any
 import numpy as np
 import zarr
 
+from bbb.record import COLLISION_FIELDS, COUNTER_NAMES
+
 from .workflow import Study
 
 __all__ = ["StoreError", "StudyStore", "run_lock", "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
            "package_version"]
 
 LAYOUT_VERSION = 1
-COLLISION_FIELDS = ("t", "x", "y", "vx", "vy")
 # Per-particle counters kept from bbb's SimRun.counters ('recorded' is stored as n_recorded).
-try:
-    from bbb.record import COUNTER_NAMES as _BBB_COUNTERS
-except ImportError:  # the contract's minimum
-    _BBB_COUNTERS = ("collisions", "sticks", "liftoffs")
-COUNTERS = tuple(c for c in _BBB_COUNTERS if c != "recorded")
+COUNTERS = tuple(c for c in COUNTER_NAMES if c != "recorded")
 SEEDING = ("SeedSequence(workflow seed, spawn_key=(round(f * 1000), "
            "zlib.crc32(family name), chunk index))")
 
@@ -310,7 +307,7 @@ def _create_layout(g: zarr.Group, study: Study) -> None:
         K = obs.collisions_record
         coord("collision", np.arange(K), "int64", "", f"collision index from t = "
               f"{obs.collisions_from:g} s")
-        coord("field", list(COLLISION_FIELDS), str, "s, mm, mm, mm/s, mm/s",
+        coord("field", list(COLLISION_FIELDS), str, "s, mm, mm, mm/s, mm/s, floor phase (1)",
               "post-collision state component")
         data("collisions", ("frequency", "family", "particle", "collision", "field"),
              (F, M, N, K, len(COLLISION_FIELDS)), (1, 1, cs, K, len(COLLISION_FIELDS)), "float64",

@@ -13,6 +13,7 @@ import pytest
 import xarray as xr
 import zarr
 
+from bbb.record import COLLISION_FIELDS
 from pipeline.store import StoreError, StudyStore, run_lock
 from pipeline.workflow import parse_workflow
 
@@ -36,7 +37,7 @@ class FakeRun:
         acc, obs = study.accuracy, study.observables
         n, t, k = acc.chunk_size, len(study.sample_times()), obs.collisions_record
         self.positions = np.full((n, t), value)
-        self.collisions_dense = np.full((n, k, 5), value)
+        self.collisions_dense = np.full((n, k, len(COLLISION_FIELDS)), value)
         self.n_recorded = np.full(n, k, dtype=np.int64)
         self.counters = {c: np.full(n, 3, dtype=np.int64)
                          for c in ("collisions", "sticks", "liftoffs", "recorded", "anomalies")}
@@ -49,7 +50,7 @@ def test_xarray_opens_the_store_with_named_dims_and_coords(store, study):
     assert ds["collisions"].dims == ("frequency", "family", "particle", "collision", "field")
     assert list(ds["frequency"].values) == [54.0, 60.0]
     assert list(ds["family"].values) == ["rest", "launched"]
-    assert list(ds["field"].values) == ["t", "x", "y", "vx", "vy"]
+    assert list(ds["field"].values) == ["t", "x", "y", "vx", "vy", "phase"]
     assert "initial" in ds.coords
     assert ds["time"].values[-1] == study.accuracy.t_max
 
@@ -58,7 +59,7 @@ def test_one_chunk_per_frequency_family_and_ensemble_chunk(store, study):
     g = store.group()
     cs, T = study.accuracy.chunk_size, len(study.sample_times())
     assert g["positions"].chunks == (1, 1, cs, T)
-    assert g["collisions"].chunks == (1, 1, cs, study.observables.collisions_record, 5)
+    assert g["collisions"].chunks == (1, 1, cs, study.observables.collisions_record, 6)
     assert g["n_collisions"].chunks == (1, 1, cs)
     assert g["done"].shape == (2, 2, study.accuracy.n_chunks) and g["done"].chunks == (1, 1, 1)
 
