@@ -1,4 +1,4 @@
-"""The ``bbb`` command line: ``bbb run``, ``bbb reduce``, ``bbb status``.
+"""The ``bbb`` command line: ``bbb run``, ``bbb reduce``, ``bbb status``, ``bbb verify``.
 
 Usage errors (bad arguments, a malformed workflow, a store of another workflow) print one line
 ``bbb: error: ...`` to stderr and exit with status 2, without a traceback.  A failed task exits
@@ -45,6 +45,11 @@ def _build_parser() -> argparse.ArgumentParser:
                    help="existing Dask scheduler, e.g. tcp://host:8786 (default: a LocalCluster)")
     r.add_argument("--workers", metavar="N", type=_positive_int,
                    help="LocalCluster worker processes (default: number of cores)")
+    r.add_argument("--cluster", choices=("slurm",),
+                   help="submit Dask workers as batch jobs (dask-jobqueue, configured in dask's "
+                        "config files; docs/cluster.md)")
+    r.add_argument("--jobs", metavar="N", type=_positive_int,
+                   help="with --cluster: at most N jobs at once (default: 1)")
     r.add_argument("--no-progress", action="store_true", help="no progress bar")
 
     d = sub.add_parser("reduce", help="D(f) with bootstrap CIs and ergodicity verdicts")
@@ -55,6 +60,10 @@ def _build_parser() -> argparse.ArgumentParser:
 
     s = sub.add_parser("status", help="done/total chunks per frequency and family")
     s.add_argument("store", metavar="STORE")
+
+    v = sub.add_parser("verify", help="re-check every done chunk and the attributes of a store; "
+                                      "exit 1 listing each inconsistency")
+    v.add_argument("store", metavar="STORE")
     return p
 
 
@@ -92,6 +101,8 @@ def _main(argv: list[str] | None) -> int:
             return _cmd_run(args)
         if args.command == "reduce":
             return _cmd_reduce(args)
+        if args.command == "verify":
+            return _cmd_verify(args)
         return _cmd_status(args)
     except (WorkflowError, StoreError) as e:
         raise UsageError(str(e)) from None
@@ -104,6 +115,12 @@ def _cmd_run(args) -> int:
     if args.scheduler and args.workers:
         raise UsageError("--workers sizes a LocalCluster; with --scheduler the cluster's own "
                          "workers run the tasks (allowed: one of the two)")
+    if args.cluster and (args.scheduler or args.workers):
+        raise UsageError(f"--cluster {args.cluster} starts its own scheduler and workers "
+                         "(allowed: one of --cluster, --scheduler, --workers)")
+    if args.jobs and not args.cluster:
+        raise UsageError("--jobs counts batch jobs of a --cluster (allowed: --cluster slurm "
+                         "--jobs N)")
     study = load_workflow(args.workflow)
     store = args.store or default_store_path(study.name)
     if "://" not in store:
@@ -111,22 +128,42 @@ def _cmd_run(args) -> int:
         try:
             parent.mkdir(parents=True, exist_ok=True)
         except OSError as e:
-            raise UsageError(f"--store {store}: cannot create {parent} ({e.strerror})") from None
+            raise UsageError(f"--store {store}: cannot create {parent} ({e.strerror}); "
+                             "allowed: a path whose parent is or can be made a directory") from None
     try:
-        run_study(study, store, scheduler=args.scheduler, workers=args.workers,
-                  progress=not args.no_progress)
+        with _cluster(args, study) as scheduler:
+            run_study(study, store, scheduler=scheduler, workers=args.workers,
+                      progress=not args.no_progress)
     except RunFailed as e:
         _error(str(e))
         _error("finished chunks stay done; re-run the same command to resume")
         return EXIT_FAILED
-    except ValueError as e:  # e.g. a malformed BBB_FAIL_CHUNKS
+    except ValueError as e:  # e.g. a malformed BBB_FAIL_CHUNKS, a --cluster misconfigured
         raise UsageError(str(e)) from None
     return 0
+
+
+def _cluster(args, study):
+    """The scheduler address to use: --scheduler, a --cluster started here, or None."""
+    from contextlib import nullcontext
+
+    if not args.cluster:
+        return nullcontext(args.scheduler)
+    from .cluster import check_slurm, slurm_cluster
+
+    check_slurm()  # before anything starts: a bad configuration is a usage error
+    return slurm_cluster(args.jobs or 1, study)
 
 
 def _cmd_reduce(args) -> int:
     from .reduce import reduce_store
 
+    if args.out is not None:
+        try:
+            Path(args.out).mkdir(parents=True, exist_ok=True)
+        except OSError as e:
+            raise UsageError(f"--out {args.out}: cannot create the directory ({e.strerror}); "
+                             "allowed: a directory path") from None
     reduce_store(args.store, args.out)
     return 0
 
@@ -136,6 +173,19 @@ def _cmd_status(args) -> int:
 
     store = StudyStore.open(args.store)
     print(_status_text(store))
+    return 0
+
+
+def _cmd_verify(args) -> int:
+    from .verify import verify_store
+
+    report = verify_store(args.store)
+    for problem in report.problems:
+        print(problem)
+    print(report.summary())
+    if not report.ok:
+        _error(f"{report.path}: {len(report.problems)} inconsistencies (listed above)")
+        return EXIT_FAILED
     return 0
 
 

@@ -7,6 +7,7 @@ import os
 import subprocess
 import sys
 import time
+from contextlib import contextmanager
 from pathlib import Path
 
 import pytest
@@ -42,6 +43,20 @@ def dask_cluster(tmp_path):
 
     Yields the scheduler address; every process started here is stopped by its pid.
     """
+    with dask_processes(tmp_path) as (address, _):
+        yield address
+
+
+@pytest.fixture
+def dask_cluster_workers(tmp_path):
+    """As dask_cluster, but yields (address, [worker Popen, ...]) so a test can kill a worker."""
+    with dask_processes(tmp_path) as (address, workers):
+        yield address, workers
+
+
+@contextmanager
+def dask_processes(tmp_path, n_workers: int = 2):
+    """Start `dask scheduler` + n_workers `dask worker` (1 thread, no nanny) on 127.0.0.1."""
     sched_file = tmp_path / "scheduler.json"
     env = dict(os.environ, NUMBA_NUM_THREADS="1")
     procs = []
@@ -62,14 +77,14 @@ def dask_cluster(tmp_path):
             time.sleep(0.1)
         time.sleep(0.1)  # let the scheduler finish writing the file
         address = json.loads(sched_file.read_text())["address"]
-        for i in range(2):
-            start(["distributed.cli.dask_worker", address, "--nthreads", "1", "--no-nanny",
-                   "--no-dashboard", "--host", "127.0.0.1", "--name", f"w{i}"])
+        workers = [start(["distributed.cli.dask_worker", address, "--nthreads", "1", "--no-nanny",
+                          "--no-dashboard", "--host", "127.0.0.1", "--name", f"w{i}"])
+                   for i in range(n_workers)]
         from distributed import Client
 
         with Client(address, timeout="30s") as c:
-            c.wait_for_workers(2, timeout=60)
-        yield address
+            c.wait_for_workers(n_workers, timeout=60)
+        yield address, workers
     finally:
         # Workers first (they say goodbye to the scheduler), then the scheduler.
         for p in reversed(procs):
