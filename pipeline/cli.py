@@ -58,6 +58,19 @@ def _build_parser() -> argparse.ArgumentParser:
                    help="where diffusion.parquet/.csv go (default: beside the store, "
                         "in a folder named like it without .zarr)")
 
+    a = sub.add_parser("accuracy", help="the measured speed/accuracy trade: every preset and "
+                                        "knob against a reference run (docs/accuracy.md)")
+    a.add_argument("workflow", metavar="WORKFLOW", nargs="?", default="workflows/accuracy.toml",
+                   help="the reference scene (default: workflows/accuracy.toml)")
+    a.add_argument("--out", metavar="DIR", default="runs/accuracy",
+                   help="tables and one store per variant (default: runs/accuracy)")
+    a.add_argument("--figure", metavar="PNG", default="figures/accuracy.png",
+                   help="error-versus-cost plot (default: figures/accuracy.png)")
+    a.add_argument("--scheduler", metavar="ADDR", help="existing Dask scheduler")
+    a.add_argument("--workers", metavar="N", type=_positive_int,
+                   help="LocalCluster worker processes (default: number of cores)")
+    a.add_argument("--quick", action="store_true", help="draft and two knobs only")
+
     s = sub.add_parser("status", help="done/total chunks per frequency and family")
     s.add_argument("store", metavar="STORE")
 
@@ -101,6 +114,8 @@ def _main(argv: list[str] | None) -> int:
             return _cmd_run(args)
         if args.command == "reduce":
             return _cmd_reduce(args)
+        if args.command == "accuracy":
+            return _cmd_accuracy(args)
         if args.command == "verify":
             return _cmd_verify(args)
         return _cmd_status(args)
@@ -165,6 +180,19 @@ def _cmd_reduce(args) -> int:
             raise UsageError(f"--out {args.out}: cannot create the directory ({e.strerror}); "
                              "allowed: a directory path") from None
     reduce_store(args.store, args.out)
+    return 0
+
+
+def _cmd_accuracy(args) -> int:
+    from .accuracy_study import run_accuracy_study
+
+    if args.scheduler and args.workers:
+        raise UsageError("--workers sizes a LocalCluster; with --scheduler the cluster's own "
+                         "workers run the tasks (allowed: one of the two)")
+    if not Path(args.workflow).exists():
+        raise UsageError(f"{args.workflow}: no such workflow file")
+    run_accuracy_study(args.workflow, args.out, quick=args.quick, workers=args.workers,
+                       scheduler=args.scheduler, figure=args.figure)
     return 0
 
 
