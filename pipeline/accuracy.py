@@ -43,8 +43,8 @@ __all__ = ["ACCURACY_PRESETS", "ACCURACY_KNOBS", "NUMERICS_KNOBS", "DEFAULT_ACCU
 #   that the sweep's tail (one task) is short.
 ACCURACY_PRESETS: dict[str, dict[str, float | int]] = {
     "draft": dict(
-        n_particles=128, chunk_size=128, t_max=25.0, sample_dt=0.25,
-        tol_t=1e-10, v_stick=1e-2, max_step=0.25, n_resamples=200,
+        n_particles=64, chunk_size=64, t_max=50.0, sample_dt=0.5,
+        tol_t=1e-12, v_stick=1e-2, max_step=0.25, n_resamples=200,
     ),
     "standard": dict(
         n_particles=1024, chunk_size=512, t_max=50.0, sample_dt=0.5,
