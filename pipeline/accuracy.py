@@ -30,14 +30,17 @@ __all__ = ["ACCURACY_PRESETS", "ACCURACY_KNOBS", "NUMERICS_KNOBS", "DEFAULT_ACCU
 # * Finite-time bias: with fractional fit lags a short run fits lags inside the spiral modes'
 #   velocity correlations: D is low by 23 % at t_max = 12.5 s, 6 % at 25 s, <= 1 % from 50 s
 #   on (paired per-particle comparison against 400 s over 84 frequencies of Fig. 2).  So
-#   t_max = 50 s for standard and paper: longer runs buy nothing but bias below 1 %.
+#   t_max = 50 s in every preset but the reference: longer runs buy nothing, shorter ones a
+#   bias that the CI does not show (draft is 64 x 50 s rather than 128 x 25 s: same cost).
 # * v_stick only sets how many tiny collisions a creeping cascade costs (collisions ~ log
 #   (1/v_stick)); 1e-2 agrees with 1e-5 within the statistics everywhere measured, 1e-1
 #   doubles the sticking episodes at 58 Hz (docs/physics.md), so 1e-2 for draft..paper.
 # * tol_t and max_step change no D beyond the statistics (the search is certified, so
-#   max_step is a pure speed knob); they are kept tight because they cost almost nothing.
-# * Cost: Fig. 2 from rest costs ~0.02 CPU-s per particle-second summed over its 124
-#   frequencies, 85 % of it in the 20 creeping frequencies 50-57.6 Hz where D = 0 from rest.
+#   max_step is a pure speed knob, and 1 period is no faster than 0.25).  A loose tol_t is
+#   not cheaper: at 1e-9 single particles fell into spurious cascades of ~1e6 collisions
+#   (72, 80 Hz), so 1e-12 everywhere; the kernel rate is the same at 1e-10 and 1e-12.
+# * Cost: Fig. 2 from rest costs ~0.016 CPU-s per particle-second summed over its 124
+#   frequencies, 79 % of it in the 20 creeping frequencies 50-57.6 Hz where D = 0 from rest.
 # * chunk_size: tasks of >= ~0.5 s at f >= 60 (cheap frequencies), so that the per-task
 #   Dask + Zarr overhead stays a few per cent; at most ~30 s at the creeping frequencies so
 #   that the sweep's tail (one task) is short.

@@ -18,8 +18,9 @@ exactly a prefix of the reference's trajectories, and fewer particles are a subs
 :func:`scaling_table` measures them on the reference store itself (the statistical error
 versus N, the half-width and the finite-time bias versus t_max).
 
-Outputs (``out_dir``): ``accuracy.parquet/.csv`` (one row per variant, frequency, family:
-columns in :data:`ROW_COLUMNS`), ``accuracy_summary.parquet/.csv`` (one row per variant:
+Outputs (``out_dir``; the tables also beside the figure, in ``figures/``):
+``accuracy.parquet/.csv`` (one row per variant, frequency, family: columns in
+:data:`ROW_COLUMNS`), ``accuracy_summary.parquet/.csv`` (one row per variant:
 :data:`SUMMARY_COLUMNS`), ``accuracy_scaling.parquet/.csv`` (:data:`SCALING_COLUMNS`), and
 the figure ``accuracy.png`` (error versus cost, Pareto front marked).  Units: D in mm²/s,
 times in s (CPU time = summed ``chunk_seconds`` of the tasks, the simulation only).
@@ -190,10 +191,14 @@ def run_accuracy_study(
     rows = compare(results)
     summary = summarize(rows, {k: r[5] for k, r in results.items()})
     scaling = scaling_table(results["reference"][2])
-    for name, df in (("accuracy", rows), ("accuracy_summary", summary),
-                     ("accuracy_scaling", scaling)):
-        df.to_parquet(out / f"{name}.parquet", index=False)
-        df.to_csv(out / f"{name}.csv", index=False)
+    # the tables go to out_dir and beside the figure (figures/ is committed, runs/ is not)
+    dirs = [out] + ([Path(figure).parent] if figure is not None else [])
+    for d in dirs:
+        d.mkdir(parents=True, exist_ok=True)
+        for name, df in (("accuracy", rows), ("accuracy_summary", summary),
+                         ("accuracy_scaling", scaling)):
+            df.to_parquet(d / f"{name}.parquet", index=False)
+            df.to_csv(d / f"{name}.csv", index=False)
     if figure is not None:
         plot_accuracy(summary, figure)
     echo(f"accuracy: wrote accuracy*.parquet/.csv to {out}"
