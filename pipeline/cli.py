@@ -146,7 +146,7 @@ def _cmd_run(args) -> int:
             raise UsageError(f"--store {store}: cannot create {parent} ({e.strerror}); "
                              "allowed: a path whose parent is or can be made a directory") from None
     try:
-        with _cluster(args, study) as scheduler:
+        with _cluster(args, study, store) as scheduler:
             run_study(study, store, scheduler=scheduler, workers=args.workers,
                       progress=not args.no_progress)
     except RunFailed as e:
@@ -158,15 +158,17 @@ def _cmd_run(args) -> int:
     return 0
 
 
-def _cluster(args, study):
+def _cluster(args, study, store: str):
     """The scheduler address to use: --scheduler, a --cluster started here, or None."""
     from contextlib import nullcontext
 
     if not args.cluster:
         return nullcontext(args.scheduler)
-    from .cluster import check_slurm, slurm_cluster
+    from .cluster import check_slurm, slurm_cluster, work_left
 
-    check_slurm()  # before anything starts: a bad configuration is a usage error
+    check_slurm()  # a bad configuration is a usage error, found before anything runs
+    if not work_left(study, store):  # nor is a job submitted for a refused or finished store
+        return nullcontext(None)
     return slurm_cluster(args.jobs or 1, study)
 
 

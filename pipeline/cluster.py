@@ -10,10 +10,12 @@ where that section leaves a value unset:
 - ``NUMBA_NUM_THREADS=1`` in every job (numba would start one thread per core per process);
 - the dashboard on a free port (``:0``), not 8787, which another user of the login node may hold.
 
-The cluster adapts between 0 and N jobs: nothing is submitted unless chunks wait to be
-computed (a finished store submits no job), and jobs are released when no chunk waits for
-them any more.  Every worker loads the numba kernel as it joins, before its first task, one
-process per host at a time (numba issue #4807), so that late jobs need no warm-up by the run.
+``--jobs N`` submits N jobs once the store is known to need work (a store held by another
+run, made by another workflow, or already complete submits nothing); the run starts when the
+first worker joins, later ones join as their jobs start; a job that ends early (walltime,
+node failure) is replaced, its unfinished chunks go to the other workers meanwhile; and every
+job is cancelled when the run ends, however it ends.  Every worker loads the numba kernel as
+it joins, before its first task, one process per host at a time (numba issue #4807).
 
 ``python -m pipeline.cluster`` prints the resolved settings and the job script, submitting
 nothing: the way to check a configuration on a login node.
@@ -25,17 +27,19 @@ import fcntl
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
+import threading
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
-from distributed.diagnostics.plugin import WorkerPlugin
+from distributed.diagnostics.plugin import SchedulerPlugin, WorkerPlugin
 
 __all__ = ["CLUSTERS", "ClusterConfigError", "slurm_settings", "check_slurm", "job_script",
-           "make_slurm_cluster", "slurm_cluster", "WarmNumba"]
+           "make_slurm_cluster", "work_left", "slurm_cluster", "JobKeeper", "WarmNumba"]
 
 CLUSTERS = ("slurm",)
 SECTION = "jobqueue.slurm"
@@ -55,11 +59,18 @@ def config_files() -> str:
 
 
 def _jobqueue():
+    first = "dask_jobqueue" not in sys.modules
+    before = signal.getsignal(signal.SIGINT)
     try:
         import dask_jobqueue
     except ImportError:
         raise ClusterConfigError("--cluster slurm needs dask-jobqueue; allowed: install it with "
                                  "pip install 'bbb[slurm]' (or pip install dask-jobqueue)") from None
+    if first and threading.current_thread() is threading.main_thread():
+        # dask-jobqueue 0.9.0 sets SIGINT's handler to sys.exit() when imported (its issue
+        # #696, fixed after 0.9.0): Ctrl-C would end `bbb run` with status 0 and no message,
+        # and leave its jobs running.  Put the handler back.
+        signal.signal(signal.SIGINT, before)
     return dask_jobqueue
 
 
@@ -161,29 +172,88 @@ def check_slurm(timeout: float = 120.0) -> None:
                                  "(queue, account, walltime, cores, memory, job-extra-directives)")
 
 
+def work_left(study, store_path) -> bool:
+    """Whether ``bbb run`` has chunks to compute in this store, found before any job is
+    submitted; refuses, as the run would, a store held by another run or made by another
+    workflow (StoreError).  Lays the store out if it is new, as the run would."""
+    from .store import StudyStore, normalize_path, run_lock
+
+    path = normalize_path(store_path)
+    with run_lock(path):
+        return not StudyStore.create_or_open(path, study).done().all()
+
+
 @contextmanager
 def slurm_cluster(jobs: int, study=None, echo: Callable[[str], None] = print) -> Iterator[str]:
-    """A SLURM-backed Dask cluster of up to ``jobs`` jobs; yields its scheduler address.
+    """A Dask cluster of ``jobs`` SLURM jobs; yields its scheduler address once the first
+    worker has joined (so the run sees a worker to check the store with), keeps ``jobs`` jobs
+    while it runs (a job that ends, e.g. at its walltime, is replaced: JobKeeper), and cancels
+    every job on exit, whatever happened.
 
     study -- if given, every worker loads its numba kernel as it joins (WarmNumba)
-    Jobs are submitted only while tasks wait (adaptive, 0..jobs) and cancelled on exit.
     """
     import dask.config
     from distributed import Client
 
     cluster = make_slurm_cluster()
     try:
-        if study is not None:
-            with Client(cluster) as client:
+        cluster.scheduler.add_plugin(JobKeeper(cluster, echo))
+        with Client(cluster) as client:
+            if study is not None:
                 client.register_plugin(WarmNumba(study), name=WarmNumba.name)
-        cluster.adapt(minimum_jobs=0, maximum_jobs=jobs)
-        cores = dask.config.get(f"{SECTION}.cores")
-        echo(f"SLURM: up to {jobs} jobs of {cores} cores ({cluster._job_kwargs['processes']} "
-             f"workers each), submitted while chunks wait; scheduler {cluster.scheduler_address}; "
-             f"dashboard {_dashboard(cluster)}")
+            cluster.scale(jobs=jobs)
+            echo(f"SLURM: {jobs} jobs of {dask.config.get(f'{SECTION}.cores')} cores "
+                 f"({cluster._job_kwargs['processes']} workers each) submitted; scheduler "
+                 f"{cluster.scheduler_address}, dashboard {_dashboard(cluster)}; waiting for the "
+                 "first to start (squeue --me)")
+            client.wait_for_workers(1)
         yield cluster.scheduler_address
     finally:
         cluster.close()  # cancels every job still queued or running (scancel)
+
+
+class JobKeeper(SchedulerPlugin):
+    """Scheduler plugin: when every worker of a job has left (walltime, node failure, scancel
+    by hand), submit the job anew.
+
+    dask-jobqueue does not do it by itself (dask-jobqueue issues #122, #611): a job whose
+    workers left stays in the cluster's plan, so neither scale() nor adapt() submits another,
+    and a run whose every job ended would wait forever.  Runs in the scheduler, which
+    dask-jobqueue starts in this process, on the cluster's event loop.  (Uses SpecCluster
+    internals: ``worker_spec``, ``workers``, ``_correct_state``, as of distributed 2026.8 and
+    dask-jobqueue 0.9.)
+    """
+
+    name = "bbb-job-keeper"
+
+    def __init__(self, cluster, echo: Callable[[str], None] = print):
+        self.cluster, self.echo = cluster, echo
+        self.names: dict[str, str] = {}  # worker address -> worker name
+
+    def _job_of(self, worker_name: str) -> str | None:
+        # a job's workers are named JOB (1 process) or JOB-0, JOB-1, ... (several)
+        return next((job for job in self.cluster.worker_spec
+                     if worker_name == job or worker_name.startswith(f"{job}-")), None)
+
+    def add_worker(self, scheduler=None, worker=None, **kwargs) -> None:
+        self.names[worker] = str(scheduler.workers[worker].name)
+
+    def remove_worker(self, scheduler=None, worker=None, **kwargs) -> None:
+        import asyncio
+
+        from distributed.core import Status
+
+        name = self.names.pop(worker, None)
+        job = self._job_of(name) if name is not None else None
+        if job is None or any(self._job_of(n) == job for n in self.names.values()):
+            return  # not a job of ours, or some of its workers are still there
+        if self.cluster.status in (Status.closing, Status.closed) or job not in self.cluster.workers:
+            return
+        self.echo(f"SLURM: job {job} ended (all its workers left); submitting it anew")
+        # forget its Job (closing it runs scancel, harmless for an ended job): the cluster
+        # then starts the job of that spec anew, a new submission under the same name
+        asyncio.ensure_future(self.cluster.workers.pop(job).close())
+        self.cluster._correct_state()
 
 
 def _dashboard(cluster) -> str:

@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from .helpers import QUIET, TINY
+from .helpers import FAULT, QUIET, TINY
 
 
 @pytest.fixture(scope="session")
@@ -35,6 +35,26 @@ def reference(tiny_workflow, tmp_path_factory):
     path = tmp_path_factory.mktemp("ref") / "tiny.zarr"
     report = run_study(load_workflow(tiny_workflow), path, workers=2, **QUIET)
     return path, report
+
+
+@pytest.fixture(scope="session")
+def fault_workflow(tmp_path_factory) -> Path:
+    """helpers.FAULT as a file: a sweep of seconds, for killing things mid-sweep."""
+    path = tmp_path_factory.mktemp("fault") / "fault.toml"
+    path.write_text(FAULT)
+    return path
+
+
+@pytest.fixture(scope="session")
+def fault_reference(fault_workflow, tmp_path_factory) -> Path:
+    """The FAULT workflow run undisturbed on a 2-worker LocalCluster: the store every
+    disturbed run must equal bit for bit."""
+    from pipeline.run import run_study
+    from pipeline.workflow import load_workflow
+
+    path = tmp_path_factory.mktemp("fault_ref") / "fault.zarr"
+    run_study(load_workflow(fault_workflow), path, workers=2, **QUIET)
+    return path
 
 
 @pytest.fixture

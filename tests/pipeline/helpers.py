@@ -40,6 +40,13 @@ record = 40
 record_from = 2.0
 """
 
+# TINY made to last seconds, so that a kill lands mid-sweep whatever the machine's load:
+# 2 frequencies x 2 families x 4 chunks = 16 tasks of ~0.1-0.2 s each (t_max = 30 s).
+FAULT = (TINY.replace('name = "tiny"', 'name = "fault"')
+         .replace("[54.0, 60.0]", "[54.0, 56.0]")
+         .replace("n_particles = 8", "n_particles = 16")
+         .replace("t_max = 10.0", "t_max = 30.0"))
+
 # run_study keyword arguments for tests: no progress bar, no dashboard, no printing.
 QUIET = dict(progress=False, dashboard=False, echo=lambda s: None)
 

@@ -28,34 +28,13 @@ from pipeline.run import RunFailed, run_study
 from pipeline.store import COUNTERS, StudyStore
 from pipeline.workflow import load_workflow
 
-from .helpers import QUIET, TINY, assert_same_store
+from .helpers import QUIET, assert_same_store
 
 BBB = Path(sys.executable).with_name("bbb")
 
-# Long enough that a sweep lasts seconds, so a kill lands mid-sweep whatever the machine's
-# load: 2 frequencies x 2 families x 4 chunks = 16 tasks of ~0.1-0.2 s each (t_max = 30 s).
-FAULT = (TINY.replace('name = "tiny"', 'name = "fault"')
-         .replace("[54.0, 60.0]", "[54.0, 56.0]")
-         .replace("n_particles = 8", "n_particles = 16")
-         .replace("t_max = 10.0", "t_max = 30.0"))
 # Arrays with one chunk per (frequency, family, ensemble chunk) whose bytes are reproducible.
 CHUNK_ARRAYS = ("positions", "collisions", "n_recorded", *(f"n_{c}" for c in COUNTERS))
 TIMEOUT = 300  # s, only ever reached when something hangs
-
-
-@pytest.fixture(scope="module")
-def fault_workflow(tmp_path_factory) -> Path:
-    path = tmp_path_factory.mktemp("fault") / "fault.toml"
-    path.write_text(FAULT)
-    return path
-
-
-@pytest.fixture(scope="module")
-def fault_reference(fault_workflow, tmp_path_factory) -> Path:
-    """The FAULT workflow run undisturbed on a 2-worker LocalCluster."""
-    path = tmp_path_factory.mktemp("fault_ref") / "fault.zarr"
-    run_study(load_workflow(fault_workflow), path, workers=2, **QUIET)
-    return path
 
 
 # -- helpers ------------------------------------------------------------------------------------
