@@ -35,5 +35,7 @@ figures: $(STAMP)
 clean:
 	rm -rf $(VENV) runs .pytest_cache
 
+# benchmarks print tables (not tests); committed outputs live in benchmarks/results/
 bench: $(STAMP)
 	$(PY) benchmarks/kernel.py
+	$(PY) benchmarks/pipeline.py
