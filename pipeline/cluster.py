@@ -71,6 +71,12 @@ def _jobqueue():
         # #696, fixed after 0.9.0): Ctrl-C would end `bbb run` with status 0 and no message,
         # and leave its jobs running.  Put the handler back.
         signal.signal(signal.SIGINT, before)
+    import dask.config
+
+    if dask.config.get(f"{SECTION}.python", "missing") == "missing":
+        # its defaults are registered once, on import; a dask.config.set() block around that
+        # first import takes them away again when it ends
+        dask_jobqueue.config.reconfigure()
     return dask_jobqueue
 
 

@@ -3,6 +3,8 @@ and a whole run through dask-jobqueue with stand-ins for `sbatch` and `scancel`.
 
 from __future__ import annotations
 
+import importlib.util
+import json
 import os
 import shutil
 import signal
@@ -16,11 +18,13 @@ import dask
 import pytest
 import zarr
 
-pytest.importorskip("dask_jobqueue", reason="the slurm extra: pip install 'bbb[slurm]'")
+from pipeline.cluster import ClusterConfigError, check_slurm, job_script, slurm_settings
 
-from pipeline.cluster import ClusterConfigError, check_slurm, job_script, slurm_settings  # noqa: E402
+from .helpers import TINY, assert_same_store
 
-from .helpers import TINY, assert_same_store  # noqa: E402
+# the slurm extra; without it only the tests that need no dask-jobqueue run
+jobqueue = pytest.mark.skipif(importlib.util.find_spec("dask_jobqueue") is None,
+                              reason="the slurm extra: pip install -e '.[slurm]'")
 
 BBB = Path(sys.executable).with_name("bbb")
 SLURM = {"jobqueue.slurm.cores": 2, "jobqueue.slurm.memory": "2GB"}
@@ -68,6 +72,7 @@ def fake_slurm(tmp_path, monkeypatch):
             pass
 
 
+@jobqueue
 def test_settings_default_to_one_single_threaded_worker_per_core():
     """processes = cores when the config leaves it unset; numba limited to 1 thread per job."""
     with dask.config.set(SLURM):
@@ -78,6 +83,7 @@ def test_settings_default_to_one_single_threaded_worker_per_core():
     assert "--nthreads 1" in script and "--nworkers 2" in script and sys.executable in script
 
 
+@jobqueue
 def test_queue_account_and_walltime_come_from_the_dask_config():
     with dask.config.set({**SLURM, "jobqueue.slurm.queue": "short",
                           "jobqueue.slurm.account": "physics",
@@ -89,6 +95,7 @@ def test_queue_account_and_walltime_come_from_the_dask_config():
         assert line in script
 
 
+@jobqueue
 @pytest.mark.parametrize("setting, needle", [
     ({"jobqueue.slurm.cores": None}, "jobqueue.slurm.cores: not set; allowed: the cores of one job"),
     ({"jobqueue.slurm.cores": 0}, "jobqueue.slurm.cores: 0; allowed: an integer >= 1"),
@@ -113,6 +120,7 @@ def test_without_dask_jobqueue_the_extra_to_install_is_named(monkeypatch):
         slurm_settings()
 
 
+@jobqueue
 def test_importing_dask_jobqueue_leaves_ctrl_c_alone():
     """dask-jobqueue 0.9.0 sets SIGINT's handler to sys.exit() on import (its issue #696):
     Ctrl-C would end `bbb run` with status 0, no message, jobs left running.  Checked in a
@@ -123,12 +131,14 @@ def test_importing_dask_jobqueue_leaves_ctrl_c_alone():
     assert res.stdout.strip() == "True", res.stderr
 
 
+@jobqueue
 def test_without_sbatch_the_check_says_so(monkeypatch, tmp_path):
     monkeypatch.setenv("PATH", str(tmp_path))  # no sbatch anywhere
     with dask.config.set(SLURM), pytest.raises(ClusterConfigError, match="sbatch not found"):
         check_slurm()
 
 
+@jobqueue
 def test_a_job_slurm_rejects_is_refused_before_anything_runs(fake_slurm, monkeypatch):
     monkeypatch.setenv("FAKE_SLURM_REJECT", "nope")
     with dask.config.set(SLURM), pytest.raises(ClusterConfigError) as e:
@@ -137,6 +147,7 @@ def test_a_job_slurm_rejects_is_refused_before_anything_runs(fake_slurm, monkeyp
     assert not (fake_slurm / "jobs").exists()  # nothing submitted
 
 
+@jobqueue
 def test_a_run_on_slurm_jobs_survives_a_job_ending_mid_sweep(fake_slurm, fault_workflow,
                                                              fault_reference, tmp_path):
     """`bbb run --cluster slurm --jobs 1`, configured by a file in $DASK_CONFIG: the job is
@@ -193,6 +204,7 @@ def _done(store):
         return None
 
 
+@jobqueue
 def test_a_finished_store_submits_no_job(fake_slurm, reference, tiny_workflow, tmp_path, capsys):
     from pipeline.cli import main
 
@@ -204,6 +216,7 @@ def test_a_finished_store_submits_no_job(fake_slurm, reference, tiny_workflow, t
     assert not (fake_slurm / "jobs").exists()
 
 
+@jobqueue
 def test_a_store_of_another_workflow_is_refused_before_any_job_is_submitted(
         fake_slurm, reference, tmp_path, capsys):
     from pipeline.cli import main
@@ -214,6 +227,63 @@ def test_a_store_of_another_workflow_is_refused_before_any_job_is_submitted(
         assert main(["run", str(other), "--store", str(reference[0]), "--cluster", "slurm"]) == 2
     assert "different workflow (seed: store 7, workflow 8)" in capsys.readouterr().err
     assert not (fake_slurm / "jobs").exists()
+
+
+def _can_hide_directories() -> bool:
+    try:
+        res = subprocess.run(["unshare", "--mount", "--propagation", "private", "sh", "-c",
+                              "mount -t tmpfs none /mnt"], capture_output=True, timeout=30)
+    except (OSError, subprocess.TimeoutExpired):
+        return False
+    return res.returncode == 0
+
+
+@pytest.mark.skipif(not _can_hide_directories(), reason="needs unshare and mount (root)")
+def test_a_store_path_a_worker_cannot_see_is_refused_before_any_task(tiny_workflow, tmp_path):
+    """A `dask worker` whose view of the store's directory is an empty tmpfs (a node without
+    the shared filesystem): `bbb run --scheduler` exits 1 naming the worker and the rule, and
+    no chunk is done."""
+    shared = tmp_path / "shared"
+    shared.mkdir()
+    sched_file = tmp_path / "scheduler.json"
+    env = dict(os.environ, NUMBA_NUM_THREADS="1")
+    procs = [subprocess.Popen([sys.executable, "-m", "distributed.cli.dask_scheduler", "--host",
+                               "127.0.0.1", "--port", "0", "--no-dashboard", "--scheduler-file",
+                               str(sched_file)], env=env, stdout=subprocess.DEVNULL,
+                              stderr=subprocess.DEVNULL)]
+    try:
+        deadline = time.monotonic() + 60
+        while not (sched_file.exists() and sched_file.read_text().strip()):
+            assert time.monotonic() < deadline and procs[0].poll() is None
+            time.sleep(0.1)
+        time.sleep(0.1)
+        address = json.loads(sched_file.read_text())["address"]
+        worker = (f"mount -t tmpfs none {shared} && exec {sys.executable} -m "
+                  f"distributed.cli.dask_worker {address} --nthreads 1 --no-nanny --no-dashboard "
+                  "--host 127.0.0.1 --name blind")
+        procs.append(subprocess.Popen(["unshare", "--mount", "--propagation", "private", "sh",
+                                       "-c", worker], env=env, stdout=subprocess.DEVNULL,
+                                      stderr=subprocess.DEVNULL))
+        from distributed import Client
+
+        with Client(address, timeout="30s") as c:
+            c.wait_for_workers(1, timeout=60)
+        store = shared / "s.zarr"
+        res = subprocess.run([str(BBB), "run", str(tiny_workflow), "--store", str(store),
+                              "--scheduler", address, "--no-progress"], capture_output=True,
+                             text=True, timeout=300)
+    finally:
+        for proc in reversed(procs):
+            proc.terminate()
+            try:
+                proc.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                proc.wait()
+    assert res.returncode == 1 and "Traceback" not in res.stderr
+    assert f"--store {store}: not visible to 1 of 1 workers" in res.stderr
+    assert "must be on a shared filesystem or an fsspec URL" in res.stderr
+    assert not _done(store).any()
 
 
 def copy_store(src, dst) -> Path:
