@@ -34,6 +34,7 @@ workflow of another fingerprint is refused.
 from __future__ import annotations
 
 import datetime as _dt
+import fcntl
 import json
 import os
 import socket
@@ -219,7 +220,7 @@ def run_lock(path: str) -> Iterator[None]:
         except FileExistsError:
             holder = _read_lock(lock)
             if holder.get("host") == me["host"] and not _pid_alive(holder.get("pid")):
-                _remove(lock)  # stale: its run was killed on this machine
+                _remove_stale(lock, holder)  # its run was killed on this machine
                 continue
             raise StoreError(
                 f"{path}: in use by another bbb run (host {holder.get('host', '?')}, pid "
@@ -237,6 +238,28 @@ def run_lock(path: str) -> Iterator[None]:
     finally:
         if _read_lock(lock).get("pid") == me["pid"]:
             _remove(lock)
+
+
+def _remove_stale(lock: str, stale: dict) -> None:
+    """Remove ``lock`` if it still holds ``stale``.  Two runs that find the same stale lock must
+    not both take it over: the later one would remove the lock the first has just written.  So
+    the check and the removal happen under an exclusive flock of the lock's directory (no extra
+    file; where directories cannot be locked, e.g. on some NFS mounts, the check runs unlocked)."""
+    try:
+        dfd = os.open(os.path.dirname(lock) or ".", os.O_RDONLY)
+    except OSError:
+        dfd = None
+    try:
+        if dfd is not None:
+            try:
+                fcntl.flock(dfd, fcntl.LOCK_EX)
+            except OSError:
+                pass
+        if _read_lock(lock) == stale:
+            _remove(lock)
+    finally:
+        if dfd is not None:
+            os.close(dfd)  # releases the flock
 
 
 def _read_lock(lock: str) -> dict:

@@ -25,7 +25,7 @@ import zarr
 
 from pipeline.cli import main
 from pipeline.run import RunFailed, run_study
-from pipeline.store import COUNTERS, StudyStore
+from pipeline.store import COUNTERS, StoreError, StudyStore
 from pipeline.workflow import load_workflow
 
 from .helpers import QUIET, assert_same_store
@@ -205,6 +205,40 @@ def test_a_second_bbb_run_on_a_held_store_exits_2_naming_the_holder(
     assert f"if no run is active, delete {lock}" in refusal
     assert first.returncode == 0, err
     assert_same_store(reference[0], store)
+
+
+def test_two_runs_taking_over_one_stale_lock_do_not_both_get_it(tmp_path, monkeypatch):
+    """The interleaving that let two runs in: run B reads a stale lock (dead pid, this host);
+    before B removes it, run A removes it too and writes its own; B must now see A's lock and
+    be refused, not remove A's lock believing it the stale one."""
+    from pipeline import store as store_module
+
+    path = str(tmp_path / "s.zarr")
+    lock = Path(f"{path}.lock")
+    dead = subprocess.Popen(["true"])
+    dead.wait()
+    lock.write_text(json.dumps({"host": socket.gethostname(), "pid": dead.pid}))
+    run_a = subprocess.Popen(["sleep", "60"])  # stands in for run A: a live process
+    real_read = store_module._read_lock
+    reads = []
+
+    def b_reads_then_a_takes_over(p):
+        holder = real_read(p)
+        if not reads:  # B's first look: the stale holder; then A takes over
+            lock.unlink()
+            lock.write_text(json.dumps({"host": socket.gethostname(), "pid": run_a.pid}))
+        reads.append(holder)
+        return holder
+
+    monkeypatch.setattr(store_module, "_read_lock", b_reads_then_a_takes_over)
+    try:
+        with pytest.raises(StoreError, match=rf"in use by another bbb run .*pid {run_a.pid}"):
+            with store_module.run_lock(path):
+                pass
+        assert json.loads(lock.read_text())["pid"] == run_a.pid  # A's lock untouched
+    finally:
+        run_a.kill()
+        run_a.wait()
 
 
 # -- a task that raises ---------------------------------------------------------------------------
