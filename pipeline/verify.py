@@ -3,9 +3,12 @@
 What is checked (each failure is one :class:`Problem`, naming the array and, for data, the
 frequency, family and chunk):
 
-- root attributes: every attribute `bbb run` writes is there; the stored workflow gives the
-  stored ``fingerprint``, and so does the stored TOML source; ``params``, ``numerics``,
-  ``accuracy`` and ``seeding`` are what that workflow resolves to; the layout version is known;
+- root attributes: every attribute `bbb run` writes is there; the stored workflow, as this
+  version of bbb reads it, gives the stored ``fingerprint`` (else `bbb run` would refuse to
+  resume the store); ``params`` are the workflow's stored resolved parameters, ``numerics``,
+  ``accuracy`` and ``seeding`` what its stored accuracy and the seeding rule give; the layout
+  version is known.  (The TOML source is not re-parsed: what a preset name means may change
+  between versions, the stored resolved workflow is what the data were made with);
 - layout: every array of the workflow's layout exists with its shape, chunks, dtype and
   dimension names, coordinates hold the workflow's values, and there is no other array;
 - every chunk marked done (chunks not done are not data yet: a re-run recomputes them):
@@ -26,17 +29,19 @@ from __future__ import annotations
 import json
 import math
 import os
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
 import numpy as np
 import zarr
 
+from bbb.params import Params
 from bbb.surface import cell_of, depth
 
 from .store import COUNTERS, LAYOUT_VERSION, SEEDING, StoreError, _create_layout, normalize_path
-from .workflow import Study, WorkflowError, parse_workflow
+from .store import package_version as _version
+from .workflow import Study
 
 __all__ = ["Problem", "VerifyReport", "verify_store", "ON_SURFACE_MM", "REQUIRED_ATTRS"]
 
@@ -69,6 +74,7 @@ class VerifyReport:
     name: str = "?"
     n_chunks: int = 0
     n_done: int = 0
+    chunks_checked: bool = False
     problems: list[Problem] = field(default_factory=list)
 
     @property
@@ -77,6 +83,8 @@ class VerifyReport:
 
     def summary(self) -> str:
         verdict = "OK" if self.ok else f"{len(self.problems)} inconsistencies"
+        if not self.chunks_checked:
+            return f"{self.name}: chunks not checked (workflow or layout unusable) in {self.path}: {verdict}"
         return (f"{self.name}: verified {self.n_done} done of {self.n_chunks} chunks in "
                 f"{self.path}: {verdict}")
 
@@ -105,7 +113,7 @@ def verify_store(path: str | os.PathLike) -> VerifyReport:
         return report
     report.name = study.name
     if _check_layout(g, study, report.problems):
-        _check_chunks(g, study, report)
+        _check_chunks(g, study, report, _stored_params(attrs, study))
     _check_consolidated(path, g, report.problems)
     return report
 
@@ -121,22 +129,20 @@ def _check_attrs(attrs: dict[str, Any], problems: list[Problem]) -> Study | None
         problems.append(Problem("attribute workflow",
                                 f"not a readable workflow ({type(e).__name__}: {e})"))
         return None
-    fp = study.fingerprint()
+    try:
+        fp = study.fingerprint()
+    except Exception as e:  # e.g. a parameter preset this version no longer has
+        problems.append(Problem("attribute workflow", f"not usable by bbb {_version()} "
+                                f"({type(e).__name__}: {e})"))
+        return None
     if "fingerprint" in attrs and attrs["fingerprint"] != fp:
         problems.append(Problem("attribute fingerprint", f"{_short(attrs['fingerprint'])} does "
-                                f"not match the stored workflow ({_short(fp)})"))
-    toml = attrs.get("workflow_toml")
-    if isinstance(toml, str) and toml:
-        try:
-            toml_fp = parse_workflow(toml, source="workflow_toml").fingerprint()
-        except WorkflowError as e:
-            problems.append(Problem("attribute workflow_toml", f"does not parse ({e})"))
-        else:
-            if toml_fp != fp:
-                problems.append(Problem("attribute workflow_toml", "describes other data than "
-                                        f"the stored workflow ({_short(toml_fp)} != {_short(fp)})"))
+                                f"not match the stored workflow ({_short(fp)}): the attributes "
+                                "were altered, or the parameter presets changed since bbb "
+                                f"{attrs.get('bbb_version', '?')} made the store"))
+    resolved = attrs["workflow"].get("resolved_params", study.base_params)
     expected = {
-        "params": study.base_params,
+        "params": resolved,
         "numerics": study.accuracy.numerics().as_dict(),
         "accuracy": asdict(study.accuracy),
         "seeding": SEEDING,
@@ -151,8 +157,8 @@ def _check_attrs(attrs: dict[str, Any], problems: list[Problem]) -> Study | None
             got = {k: v for k, v in got.items() if k not in ("preset", "n_resamples")}
             want = {k: v for k, v in want.items() if k not in ("preset", "n_resamples")}
         if got != want:
-            problems.append(Problem(f"attribute {key}", f"{_diff(got, want)} (stored vs. what "
-                                    "the stored workflow resolves to)"))
+            problems.append(Problem(f"attribute {key}", f"{_diff(got, want)} (stored vs. the "
+                                    "stored workflow's)"))
     layout = attrs.get("bbb_store_layout")
     if "bbb_store_layout" in attrs and layout != LAYOUT_VERSION:
         problems.append(Problem("attribute bbb_store_layout",
@@ -220,7 +226,19 @@ _DATA = ("positions", "collisions", "n_recorded", "done", "chunk_seconds",
 
 
 # -- chunks --------------------------------------------------------------------------------------
-def _check_chunks(g: zarr.Group, study: Study, report: VerifyReport) -> None:
+def _stored_params(attrs: dict[str, Any], study: Study) -> Callable[[float], Params]:
+    """Params at f from the stored ``params`` attribute (what the data were made with), or
+    from the workflow if that attribute is unusable (reported by the attribute checks)."""
+    try:
+        base = {k: float(v) for k, v in dict(attrs["params"]).items()}
+        Params(f=1.0, **base)
+    except Exception:
+        return study.params
+    return lambda f: Params(f=float(f), **base)
+
+
+def _check_chunks(g: zarr.Group, study: Study, report: VerifyReport,
+                  params_at: Callable[[float], Params]) -> None:
     problems = report.problems
     try:
         done = np.asarray(g["done"][...], dtype=bool)
@@ -228,19 +246,20 @@ def _check_chunks(g: zarr.Group, study: Study, report: VerifyReport) -> None:
         problems.append(Problem("done", f"unreadable ({type(e).__name__}: {e})"))
         return
     report.n_chunks, report.n_done = done.size, int(done.sum())
+    report.chunks_checked = True
     for fi, mi, ci in zip(*np.nonzero(done), strict=True):
         f, fam = study.frequencies[fi], study.families[mi]
         label = f"[f = {f:g} Hz, family {fam.name}, chunk {ci}]"
-        for array, what in _chunk_problems(g, study, int(fi), int(mi), int(ci)):
+        for array, what in _chunk_problems(g, study, int(fi), int(mi), int(ci), params_at):
             problems.append(Problem(array + label, what))
 
 
-def _chunk_problems(g: zarr.Group, study: Study, fi: int, mi: int, ci: int
-                    ) -> Iterator[tuple[str, str]]:
+def _chunk_problems(g: zarr.Group, study: Study, fi: int, mi: int, ci: int,
+                    params_at: Callable[[float], Params]) -> Iterator[tuple[str, str]]:
     acc, obs = study.accuracy, study.observables
     cs = acc.chunk_size
     sl = slice(ci * cs, (ci + 1) * cs)
-    p = study.params(study.frequencies[fi])
+    p = params_at(study.frequencies[fi])
     data: dict[str, np.ndarray] = {}
     names = ["chunk_seconds", *(f"n_{c}" for c in COUNTERS)]
     names += ["positions"] if obs.positions else []
