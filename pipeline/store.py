@@ -55,7 +55,8 @@ from .workflow import Study
 __all__ = ["StoreError", "StudyStore", "run_lock", "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
            "package_version"]
 
-LAYOUT_VERSION = 1
+# 2: collisions carry bbb.record.COLLISION_FIELDS (t, x, y, vx, vy, phase); 1 had no phase
+LAYOUT_VERSION = 2
 # Per-particle counters kept from bbb's SimRun.counters ('recorded' is stored as n_recorded).
 COUNTERS = tuple(c for c in COUNTER_NAMES if c != "recorded")
 SEEDING = ("SeedSequence(workflow seed, spawn_key=(round(f * 1000), "
@@ -106,6 +107,9 @@ class StudyStore:
                     return cls._create(path, study, overwrite=True)
                 raise StoreError(f"{path}: exists and is not a bbb study store; "
                                  "allowed: a new path or a store made by the same workflow")
+            if attrs.get("bbb_store_layout") != LAYOUT_VERSION:
+                raise StoreError(f"{path}: store layout {attrs.get('bbb_store_layout')!r} of an older bbb; "
+                                 f"allowed: layout {LAYOUT_VERSION} (delete it or use another --store)")
             if attrs["fingerprint"] != study.fingerprint():
                 old = Study.from_dict(attrs["workflow"])
                 raise StoreError(f"{path}: made by a different workflow "

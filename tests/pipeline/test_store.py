@@ -109,6 +109,13 @@ def test_a_different_workflow_is_refused_naming_the_difference(store):
         StudyStore.create_or_open(store.path, other)
 
 
+def test_a_store_of_an_older_layout_is_refused(store, study):
+    # layout 1 stored collisions without the floor phase: resuming it would fail in every task
+    zarr.open_group(str(store.path), mode="r+").attrs["bbb_store_layout"] = 1
+    with pytest.raises(StoreError, match=r"store layout 1 of an older bbb; allowed: layout 2"):
+        StudyStore.create_or_open(store.path, study)
+
+
 def test_different_params_are_refused(store):
     other = parse_workflow(TINY.replace('preset = "klages2004"', 'preset = "matyas2004"'),
                            source="tiny.toml")
