@@ -244,10 +244,10 @@ def next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, tau_li
 
 
 @njit(cache=True)
-def collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick):
+def collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, allow_kick):
     """Eqs. (5)-(6): restitution in the arc's normal/tangential frame, relative to the
-    floor velocity.  Returns (vx⁺, vy⁺, outgoing relative normal speed); a speed below
-    ``v_stick`` means the particle sticks."""
+    floor velocity.  Returns (vx⁺, vy⁺, outgoing relative normal speed, kicked); a speed
+    below ``v_stick`` means the particle sticks."""
     nx, ny = arc_normal(d, R)
     vf = floor_v(s, A, w)
     ux = vx
@@ -262,10 +262,12 @@ def collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick):
         # press on the particle: G'' ≤ 0 at G = G' = 0.  Where the arc falls away faster
         # than gravity and floor pull the particle down (vx² c'' > g + a_f, a fast
         # tangential touch), the particle flies off instead: leave with v_stick.
+        # Never twice in a row: in a cusp (R = S/2) the neighbouring wall sends the particle
+        # straight back, and repeated kicks would be an endless Zeno sequence.
         g2 = -g - floor_a(s, A, w) + (ut_out * ny) ** 2 * arc_curvature(d, R)
-        if g2 > 0.0 and abs(ut_out) >= v_stick:
-            un_out = v_stick
-    return un_out * nx + ut_out * ny, vf + un_out * ny - ut_out * nx, un_out
+        if allow_kick and g2 > 0.0 and abs(ut_out) >= v_stick:
+            return v_stick * nx + ut_out * ny, vf + v_stick * ny - ut_out * nx, v_stick, True
+    return un_out * nx + ut_out * ny, vf + un_out * ny - ut_out * nx, un_out, False
 
 
 @njit(cache=True)
@@ -323,6 +325,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
     n_anom = 0
     lifting = False
     retry = False
+    kicked = False
     flat = math.isinf(R)
     while True:
         t_now = tp * T + (s - s0)
@@ -379,7 +382,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
         s, tp = wrap_period(s + tau, tp, T)
         # on the surface exactly: the root is known to tol_t, the height to rounding
         y = floor_y(s, A, w) - arc_depth(d, R)
-        vx, vy, un_out = collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick)
+        vx, vy, un_out, kicked = collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, not kicked)
         n_coll += 1
         if not (math.isfinite(vx) and math.isfinite(vy)):
             n_anom += 1

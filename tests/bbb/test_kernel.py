@@ -160,3 +160,13 @@ def test_sticking_threshold_ends_creeping_cascades():
     run = simulate(p, 20, 1.0, seed=4, initial="rest", numerics=Numerics(v_stick=1e-2))
     assert run.counters["sticks"].sum() > 0
     assert np.all(run.counters["liftoffs"] >= run.counters["sticks"] - 1)
+
+
+def test_soft_impacts_in_a_vertical_cusp_end_in_sticking_not_an_endless_zeno_sequence():
+    # found by hypothesis: R = S/2, alpha = 0.05, beta = 1, Γ ≈ 10.  A soft impact on a wall
+    # whose arc falls away may fly off with v_stick, but the facing wall of the cusp sends the
+    # particle straight back; kicking again every time never ended.
+    p = Params(g=9800.0, A=1.0, f=50.09734740894464, R=1.0, S=2.0, alpha=0.05, beta=1.0)
+    run = simulate(p, 3, 1.2, seed=0, initial="dropped", drop_height=(0.0, 1.0), record_collisions=300)
+    assert np.all(run.counters["collisions"] < 1000)
+    assert np.all(run.counters["sticks"] >= 1)
