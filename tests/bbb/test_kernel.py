@@ -95,7 +95,9 @@ def test_no_collision_is_missed_and_no_particle_goes_below_the_surface(f, A, rad
         assert np.allclose(rows[:, 2], surface, atol=1e-9)
         # brute force: between two recorded collisions the particle stays above the surface
         worst, _ = gap_along_flights(p, rows, n_grid=200)
-        assert worst > -1e-9
+        # At the vertical cusps of R = S/2 the surface height is only defined to
+        # sqrt(2 R δx) for a rounding δx ~ 1e-15 mm of x: ~5e-8 mm there, 1e-9 elsewhere
+        assert worst > (-1e-7 if p.R == p.S / 2 else -1e-9)
     assert run.counters["anomalies"].sum() == 0
 
 
