@@ -77,12 +77,13 @@ def _color(family: str, i: int = 0) -> str:
     return FAMILY_COLORS.get(family, _OTHER_COLORS[i % len(_OTHER_COLORS)])
 
 
-def _save(fig, out_dir: str | os.PathLike, name: str) -> list[Path]:
+def _save(fig, out_dir: str | os.PathLike, name: str, dpi: int | None = None) -> list[Path]:
+    """Write <name>.png and <name>.pdf (``dpi``: of the PNG and of rasterized PDF layers)."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / f"{name}.png", out / f"{name}.pdf"]
     for p in paths:
-        fig.savefig(p)
+        fig.savefig(p, **({"dpi": dpi} if dpi else {}))
     plt.close(fig)
     return paths
 
@@ -168,13 +169,13 @@ def figure1(store: str | os.PathLike | StudyStore, tables: Mapping[str, pd.DataF
         phase = c["phase"][jm]
         y_floor = -p.A * math.sin(2 * math.pi * phase)
         ax.plot(xf, y_floor - depth(xf - cells * p.S, p.R), color="0.2", lw=0.9,
-                label=f"floor at phase {phase:.2f} of its period (at collision $\\star$)")
+                label=f"floor at phase {phase:.2f} (collision $\\star$)")
         ax.plot(xf, -depth(xf - cells * p.S, p.R), color="0.6", lw=0.6, ls="--",
-                label="floor at its rest height")
+                label="floor at rest height")
         for k in np.unique(cells):
             if x_lo < k * p.S < x_hi:
                 ax.plot([k * p.S], [y_floor], marker="+", color="0.5", ms=3, mew=0.5)
-        ax.plot(x_all, y_all, color="tab:red", lw=0.8, label="computed trajectory (bbb)")
+        ax.plot(x_all, y_all, color="tab:red", lw=0.8, label="computed trajectory")
         ax.plot(c["x"][j0:j1 + 1], c["y"][j0:j1 + 1], "o", color="tab:red", ms=2.2)
         ax.plot([c["x"][jm]], [c["y"][jm]], marker="*", color="k", ms=7, ls="none")
         y_lo = min(y_floor, 0.0) - p.A - 0.05 * (y_all.max() - y_all.min())
@@ -194,7 +195,7 @@ def figure1(store: str | os.PathLike | StudyStore, tables: Mapping[str, pd.DataF
                 ha="left", va="bottom", fontsize=6, color="0.3")
         ax.set_xlabel("x (mm)")
         ax.set_ylabel("y (mm)")
-        ax.legend(loc="upper left", fontsize=5.5, ncol=3, handlelength=1.5, columnspacing=1.0)
+        ax.legend(loc="upper left", fontsize=5.5, ncol=2, handlelength=1.5, columnspacing=1.0)
         ax.set_title(f"(a)  R = {p.R:g} mm, S = {p.S:g} mm, A = {p.A:g} mm, f = {p.f:g} Hz",
                      loc="left")
         # (b) the frame at collision jm, true scale
@@ -401,7 +402,7 @@ def _k_panel(ax, lock: pd.DataFrame, *, half: bool = True, paper: bool = True) -
 def figure3(store: str | os.PathLike | StudyStore | Sequence[str | os.PathLike | StudyStore],
             tables: Mapping[str, pd.DataFrame] | None, out_dir: str | os.PathLike, *,
             name: str = "fig3_phase_space", panels: Mapping[str, float] = PANELS,
-            spiral_panels: Sequence[str] = SPIRAL_PANELS, max_points: int = 60_000) -> list[Path]:
+            spiral_panels: Sequence[str] = SPIRAL_PANELS, max_points: int = 25_000) -> list[Path]:
     """Fig. 3: post-collision (y, v_y⁺) at each panel's frequency, every family of every given
     store that holds that frequency (within 1 mHz), coloured by family; the flat-floor spiral
     of Eqs. (8)-(9) on ``spiral_panels``: t_0 = 1/(2f), t_1 = t_0 + t_c with
@@ -455,7 +456,7 @@ def figure3(store: str | os.PathLike | StudyStore | Sequence[str | os.PathLike |
             ax.set_ylabel(r"$v_y^+$ (mm/s)")
         if seen:
             axes[0, 0].legend(loc="upper left", fontsize=5.5, markerscale=1.0, handlelength=0.8)
-        return _save(fig, out_dir, name)
+        return _save(fig, out_dir, name, dpi=200)  # dense scatter: keep the file small
 
 
 # -------------------------------------------------------------------------------------------

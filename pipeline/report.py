@@ -48,7 +48,7 @@ from bbb.locking import (
 from .collisions import as_store, states
 
 __all__ = ["Row", "CLAIMS", "curve_extrema", "onset", "evaluate", "write_report",
-           "spiral_closeness"]
+           "spiral_closeness", "period1_limit"]
 
 MAIN = "rest"  # the main initial-condition family (Fig. 2's curve)
 ONSET_FRACTION = 0.01  # onset: D_lo above this fraction of the curve's largest D
@@ -190,6 +190,12 @@ def _extremum_claim(kind: str, f0: float, window: float, text: str,
                "disagrees", "What the curves do there: " + _trend(f0, window, ctx))
 
 
+def period1_limit(alpha: float) -> float:
+    """Γ above which the flat-floor period-1 (1/1 locked) orbit is unstable (Luck & Mehta 1993):
+    Γ₂ = sqrt((π(1-α)/(1+α))² + (2(1+α²)/(1+α)²)²); 1.1707 for α = 0.7."""
+    return math.hypot(math.pi * (1 - alpha) / (1 + alpha), 2 * (1 + alpha**2) / (1 + alpha) ** 2)
+
+
 def _trend(f0: float, window: float, ctx) -> str:
     """D of every curve at the grid points nearest f0 - window, f0, f0 + window."""
     out = []
@@ -226,7 +232,7 @@ def _claim_onset(ctx) -> Row:
         return Row(text, "; ".join(meas), "agrees", note)
     if others and min(others) <= 52.5:
         return Row(text, "; ".join(meas), "partly", note + (
-            f"Particles started at rest creep (D ≈ 0) up to {main_on:g} Hz; diffusion near 50 Hz "
+            f"Particles started at rest creep (D ≈ 0) below {main_on:g} Hz; diffusion near 50 Hz "
             "needs particles that are already bouncing (launched, dropped): the paper's ensemble "
             "of 'moving particles' was probably of that kind."))
     return Row(text, "; ".join(meas), "disagrees", note)
@@ -469,10 +475,31 @@ def _locking_kind(k: float) -> str:
     return "no simple locking"
 
 
+def _with_note(row: Row, extra: str) -> Row:
+    if row.verdict in ("agrees", "not measured") or not extra:
+        return row
+    return Row(row.claim, row.measured, row.verdict, (row.note + " " + extra).strip())
+
+
+def _note_54(ctx) -> str:
+    """Likely reason for a missing maximum near 54: where the 1/1 orbit stops being stable."""
+    p = ctx.get("params")
+    if p is None:
+        return ""
+    g2 = period1_limit(p["alpha"])
+    f2 = math.sqrt(g2 * p["g"] / p["A"]) / (2 * math.pi)
+    return (f"Likely reason: on a flat floor the 1/1 orbit is stable only up to Γ = {g2:.4f}, "
+            f"f = {f2:.1f} Hz (Luck & Mehta); above it bouncing particles decay into creeping "
+            "within our run, so the bouncing families' D falls from the lowest f studied (50 Hz) "
+            "on. A maximum near 54 needs an ensemble that still bounces there, e.g. shorter runs "
+            "or particles counted only while moving.")
+
+
 #: the paper's claims in its order: (text or kind, evaluator)
 CLAIMS: Sequence[Callable[[Mapping], Row]] = (
     _claim_onset,
-    lambda c: _extremum_claim("max", 54.0, WINDOW, "Local maximum of D(f) around f = 54", c),
+    lambda c: _with_note(_extremum_claim("max", 54.0, WINDOW,
+                                         "Local maximum of D(f) around f = 54", c), _note_54(c)),
     _claim_spot,
     lambda c: _extremum_claim("min", 58.0, WINDOW, "Local minimum around f = 58 (1/1 resonance "
                               "destroyed, creeping dominates)", c),
@@ -495,12 +522,16 @@ CLAIMS: Sequence[Callable[[Mapping], Row]] = (
 
 
 def evaluate(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str] | None = None,
-             f_gamma1: float | None = None) -> tuple[list[Row], dict[str, list[Extremum]]]:
-    """All claim rows, and the significant extrema of every D(f) curve."""
+             f_gamma1: float | None = None, params: Mapping[str, float] | None = None
+             ) -> tuple[list[Row], dict[str, list[Extremum]]]:
+    """All claim rows, and the significant extrema of every D(f) curve.
+
+    params -- the Fig. 2 scene's parameters (g, A, alpha, ...), for explanatory notes
+    """
     cv = curves(tables)
     ctx = {"tables": tables, "stores": dict(stores or {}), "curves": cv,
            "extrema": {label: curve_extrema(t, cols) for label, (t, cols) in cv.items()},
-           "f_gamma1": f_gamma1}
+           "f_gamma1": f_gamma1, "params": params}
     return [claim(ctx) for claim in CLAIMS], ctx["extrema"]
 
 
@@ -614,11 +645,12 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    f_gamma1 = None
+    f_gamma1 = params = None
     if stores.get("figure2"):
         p = as_store(stores["figure2"]).study.params(60.0)
         f_gamma1 = math.sqrt(p.g / p.A) / (2 * math.pi) if p.A > 0 else None
-    rows, extrema = evaluate(tables, stores, f_gamma1)
+        params = p.as_dict() if p.A > 0 else None
+    rows, extrema = evaluate(tables, stores, f_gamma1, params)
     fast = bool((run_log or {}).get("fast"))
     L = ["# Klages, Barna & Mátyás (2004): the claims beside our measurements", ""]
     L.append(f"Written {_dt.datetime.now(_dt.UTC).isoformat(timespec='seconds')} by "

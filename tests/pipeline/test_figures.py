@@ -45,12 +45,12 @@ def test_fig2_with_a_locking_table_adds_the_k_panel(made, tmp_path):
 
 def test_fig3_draws_the_phase_space_panels_with_the_spiral(made, tmp_path):
     store, _ = made
-    _check(fg.figure3(store, None, tmp_path), min_size=(900, 1200))
+    _check(fg.figure3(store, None, tmp_path), min_size=(600, 800))
 
 
 def test_fig3_accepts_several_stores(made, tmp_path):
     store, _ = made
-    _check(fg.figure3([store, store], None, tmp_path, name="fig3_two"), min_size=(900, 1200))
+    _check(fg.figure3([store, store], None, tmp_path, name="fig3_two"), min_size=(600, 800))
 
 
 def test_locking_plot_draws_k_against_f(made, tmp_path):
