@@ -54,13 +54,6 @@ def field_names(store: StudyStore) -> tuple[str, ...]:
     return tuple(str(v) for v in np.asarray(g["field"][...]))
 
 
-def _done_particles(store: StudyStore, fi: int, mi: int) -> np.ndarray:
-    done = store.done()[fi, mi]
-    c = store.study.accuracy.chunk_size
-    idx = [np.arange(ci * c, (ci + 1) * c) for ci in np.flatnonzero(done)]
-    return np.concatenate(idx) if idx else np.zeros(0, dtype=np.int64)
-
-
 def states(store: str | os.PathLike | StudyStore, f: float, family: str,
            names: Iterable[str] = ("t", "y", "vy")) -> dict[str, np.ndarray]:
     """Post-collision fields at frequency ``f`` (Hz, nearest stored) of one family.
@@ -79,9 +72,7 @@ def states(store: str | os.PathLike | StudyStore, f: float, family: str,
     if family not in fams:
         raise KeyError(f"{st.path}: no family {family!r}; has {', '.join(fams)}")
     mi = fams.index(family)
-    idx = _done_particles(st, fi, mi)
-    arr = st.group()["collisions"]
-    block = np.asarray(arr[fi, mi, :, :, :])[idx] if idx.size else np.zeros((0, 0, len(fields)))
+    block = st.read_done("collisions", fi, mi)
     out = {}
     for name in names:
         if name not in fields:

@@ -69,13 +69,6 @@ def reduce_store(store_path: str | os.PathLike, out_dir: str | os.PathLike | Non
     return tables
 
 
-def _done_particles(store: StudyStore, done_fm: np.ndarray) -> np.ndarray:
-    """Particle indices of the done chunks of one (frequency, family)."""
-    c = store.study.accuracy.chunk_size
-    return np.concatenate([np.arange(ci * c, (ci + 1) * c) for ci in np.flatnonzero(done_fm)]
-                          or [np.zeros(0, dtype=np.int64)])
-
-
 def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
     """One row per frequency (columns in the module docstring)."""
     from bbb import stats
@@ -86,15 +79,13 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
     T = an.duration(acc.t_max)
     fit_from, fit_to, eb_lag = an.fit_from * T, an.fit_to * T, an.eb_lag * T
     fit = dict(fit_from=fit_from, fit_to=fit_to, discard=an.discard)
-    g = store.group()
     rows = []
     for fi, f in enumerate(study.frequencies):
-        pos = np.asarray(g["positions"][fi])  # (family, particle, time)
         fams = {}
         for mi, fam in enumerate(study.families):
-            idx = _done_particles(store, done[fi, mi])
-            if idx.size >= 2:
-                fams[fam.name] = pos[mi, idx]
+            pos = store.read_done("positions", fi, mi, done[fi, mi])  # (particle, time)
+            if pos.shape[0] >= 2:
+                fams[fam.name] = pos
         row: dict = {"f": f, "Gamma": study.params(f).gamma}
         if not fams:
             rows.append(row)
@@ -131,17 +122,18 @@ def counters_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
     """One row per (frequency, family): counters per particle per second, task wall time."""
     study = store.study
     g = store.group()
-    counts = {name: np.asarray(g[f"n_{name}"][...]) for name in COUNTERS}
     seconds = np.asarray(g["chunk_seconds"][...])
     rows = []
     for fi, f in enumerate(study.frequencies):
         for mi, fam in enumerate(study.families):
-            idx = _done_particles(store, done[fi, mi])
-            row = {"f": f, "family": fam.name, "initial": fam.initial, "n_particles": idx.size,
+            counts = {name: store.read_done(f"n_{name}", fi, mi, done[fi, mi])
+                      for name in COUNTERS}
+            n = int(done[fi, mi].sum()) * study.accuracy.chunk_size
+            row = {"f": f, "family": fam.name, "initial": fam.initial, "n_particles": n,
                    "t_max": study.accuracy.t_max}
             for name, arr in counts.items():
-                per = arr[fi, mi, idx] / study.accuracy.t_max
-                row[f"{name}_per_s"] = float(per.mean()) if idx.size else math.nan
+                per = arr / study.accuracy.t_max
+                row[f"{name}_per_s"] = float(per.mean()) if n else math.nan
             row["task_seconds"] = float(np.nansum(seconds[fi, mi][done[fi, mi]]))
             rows.append(row)
     return pd.DataFrame(rows)

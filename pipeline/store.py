@@ -168,6 +168,33 @@ class StudyStore:
         c = self.study.accuracy.chunk_size
         return slice(chunk * c, (chunk + 1) * c)
 
+    def read_done(self, name: str, fi: int, mi: int, done_fm: np.ndarray | None = None
+                  ) -> np.ndarray:
+        """Array ``name`` at (frequency index fi, family index mi) for the particles of the
+        done chunks only, in particle order: shape (particles of done chunks, ...).
+
+        Chunks not marked done are never read, so a half-written or damaged chunk of an
+        interrupted run cannot break a reduction.  A done chunk that cannot be decoded raises
+        StoreError naming it (``bbb verify`` checks every done chunk).
+        """
+        arr = self.group()[name]
+        if done_fm is None:
+            done_fm = self.done()[fi, mi]
+        parts = []
+        for ci in np.flatnonzero(done_fm):
+            try:
+                parts.append(np.asarray(arr[fi, mi, self.chunk_particles(int(ci))]))
+            except Exception as e:  # zarr/codec errors differ by cause; all mean the same here
+                f = self.study.frequencies[fi]
+                fam = self.study.families[mi].name
+                raise StoreError(
+                    f"{self.path}: {name}[f = {f:g} Hz, family {fam}, chunk {ci}] is marked done "
+                    f"but cannot be read ({type(e).__name__}: {e}); run `bbb verify` on the "
+                    "store") from None
+        if parts:
+            return np.concatenate(parts)
+        return np.zeros((0, *arr.shape[3:]), dtype=arr.dtype)
+
     # -- writing ---------------------------------------------------------------------------
     def write_chunk(self, fi: int, mi: int, ci: int, run: Any, seconds: float,
                     mark_done: bool = True) -> None:

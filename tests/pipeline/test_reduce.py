@@ -82,3 +82,38 @@ def test_collisions_only_store_gets_counters_but_no_diffusion_table(tmp_path):
     tables = reduce_store(store.path, tmp_path / "out", echo=lambda s: None)
     assert set(tables) == {"counters"} and not (tmp_path / "out" / "diffusion.csv").exists()
     assert (tmp_path / "out" / "counters.parquet").exists()
+
+
+def _damaged_copy(reference_store, tmp_path, *, done: bool):
+    """A copy of the reference store whose positions chunk (60 Hz, launched, chunk 0) holds
+    bytes no codec can decode, marked done or not."""
+    import shutil
+
+    import zarr
+
+    store = tmp_path / "damaged.zarr"
+    shutil.copytree(reference_store, store)
+    chunk = store / "positions" / "c" / "1" / "1" / "0" / "0"
+    assert chunk.is_file()
+    chunk.write_bytes(b"not a zstd frame")
+    zarr.open_group(str(store), mode="r+")["done"][1, 1, 0] = done
+    return store
+
+
+def test_a_damaged_chunk_not_marked_done_is_never_read(reference, tmp_path):
+    """An interrupted run may leave a torn chunk behind; reduce reads only done chunks."""
+    store = _damaged_copy(reference[0], tmp_path, done=False)
+    df = reduce_store(store, tmp_path / "out", echo=lambda s: None)["diffusion"]
+    ref = reduce_store(reference[0], tmp_path / "ref", echo=lambda s: None)["diffusion"]
+    assert list(df["n_particles"]) == [16, 12]  # 60 Hz lost the 4 particles of that chunk
+    assert df.loc[0, "D"] == ref.loc[0, "D"]     # 54 Hz untouched
+
+
+def test_a_damaged_done_chunk_is_named_in_one_line(reference, tmp_path, capsys):
+    from pipeline.cli import main
+
+    store = _damaged_copy(reference[0], tmp_path, done=True)
+    assert main(["reduce", str(store), "--out", str(tmp_path / "out")]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "positions[f = 60 Hz, family launched, chunk 0] is marked done but cannot be read" in err
+    assert "bbb verify" in err and "Traceback" not in err
