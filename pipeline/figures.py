@@ -267,7 +267,7 @@ def _draw_D(ax, main: pd.DataFrame, cols: tuple[str, str, str], ergo: pd.DataFra
         if tbl is None:
             continue
         several = len(_families_in(tbl)) > 1
-        kind = "not ergodic (families / EB)" if several else "EB above threshold (1 family)"
+        kind = "not ergodic (families / EB)" if several else "EB not converging (1 family)"
         for a, b in _spans(tbl["f"].to_numpy(float), _not_ergodic(tbl)):
             ax.axvspan(a, b, color="0.8" if several else "0.92", lw=0, zorder=0,
                        label=None if (kind in labelled or not legend) else kind)

@@ -12,10 +12,13 @@ t_max        simulated time, s
 fit_from, fit_to  lag range of the fit, s;  eb_lag: lag of EB, s
 EB           ergodicity-breaking parameter Var(δ²)/<δ²>² at eb_lag, all families pooled
 EB_threshold eb_tolerance x its value for Brownian motion at that lag and run length
-ergodic      bbb.stats.ergodic_verdict: (a) the families' D agree within their CIs and (b) EB
-             of every family and of the pool is below EB_threshold
+EB_decay     EB over the first half of the analysed run / EB over all of it (same lag, pooled):
+             ~2 for ergodic motion (EB ~ 1/T), ~1 for a population mixing different D
+EB_decay_threshold  the smallest passing EB_decay, halfway between 1 and the Brownian ratio
+ergodic      bbb.stats.ergodic_verdict: (a) the families' D agree within their CIs and (b) for
+             every family and the pool, EB <= EB_threshold or EB_decay >= EB_decay_threshold
 families_agree, eb_ok  the outcomes of (a) and (b) ((a) is true with a single family)
-D_<fam>, D_<fam>_lo, D_<fam>_hi, EB_<fam>  the same per initial-condition family
+D_<fam>, D_<fam>_lo, D_<fam>_hi, EB_<fam>, EB_decay_<fam>  the same per initial-condition family
 verdict      the verdict's reasons, '; '-joined
 
 ``counters.parquet`` / ``counters.csv`` (every store), one row per (frequency, family):
@@ -99,16 +102,21 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
             fams, times, lag=eb_lag, tolerance=an.eb_tolerance, ci=an.ci,
             n_resamples=acc.n_resamples, seed=int(seed.generate_state(1)[0]), **fit)
         eb_pooled = verdict.eb.get("(pooled)", next(iter(verdict.eb.values())))
+        key = "(pooled)" if "(pooled)" in verdict.eb else next(iter(verdict.eb))
+        decay = _ratio(verdict.eb_half.get(key, math.nan), verdict.eb[key])
         row.update(
             D=ci.D, D_lo=ci.lo, D_hi=ci.hi, D_last=est.D_last, n_particles=x.shape[0],
             n_moving=int(np.count_nonzero(np.ptp(x, axis=1) > 0)), t_max=acc.t_max,
             fit_from=est.fit_from, fit_to=est.fit_to, eb_lag=verdict.lag, EB=eb_pooled,
-            EB_threshold=verdict.eb_threshold, ergodic=bool(verdict.ergodic),
+            EB_threshold=verdict.eb_threshold, EB_decay=decay,
+            EB_decay_threshold=verdict.eb_decay_threshold, ergodic=bool(verdict.ergodic),
             families_agree=bool(verdict.agreement_ok), eb_ok=bool(verdict.eb_ok),
         )
         for name, d in verdict.D.items():
             row.update({f"D_{name}": d.D, f"D_{name}_lo": d.lo, f"D_{name}_hi": d.hi,
-                        f"EB_{name}": verdict.eb.get(name, math.nan)})
+                        f"EB_{name}": verdict.eb.get(name, math.nan),
+                        f"EB_decay_{name}": _ratio(verdict.eb_half.get(name, math.nan),
+                                                   verdict.eb.get(name, math.nan))})
         row["verdict"] = "; ".join(verdict.reasons)
         rows.append(row)
     df = pd.DataFrame(rows)
@@ -137,6 +145,10 @@ def counters_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
             row["task_seconds"] = float(np.nansum(seconds[fi, mi][done[fi, mi]]))
             rows.append(row)
     return pd.DataFrame(rows)
+
+
+def _ratio(a: float, b: float) -> float:
+    return a / b if b > 0 else math.nan  # EB = 0 (identical trajectories) or NaN (none move)
 
 
 def _reduce_seed(study: Study, f: float) -> np.random.SeedSequence:

@@ -248,3 +248,22 @@ def test_verdict_on_families_with_clearly_different_D_fails_agreement():
     verdict = ergodic_verdict(families, times(400), seed=1)
     assert not verdict.ergodic
     assert not verdict.agreement_ok, verdict.reasons
+
+
+def jumps(rng: np.random.Generator, n_particles: int, n_samples: int, rate: float,
+          dt: float = DT) -> np.ndarray:
+    """Compound Poisson walks: N(0, 1) mm jumps at `rate` per second.  Ergodic (every
+    particle has the same D = rate/2), but its increments are far from Gaussian at lags
+    ~ 1/rate, so EB sits above the Brownian level and still falls like 1/T."""
+    steps = rng.standard_normal((n_particles, n_samples - 1))
+    steps *= rng.random((n_particles, n_samples - 1)) < rate * dt
+    return np.concatenate([np.zeros((n_particles, 1)), np.cumsum(steps, axis=1)], axis=1)
+
+
+def test_ergodic_motion_with_eb_above_the_brownian_level_passes_by_its_decay():
+    rng = np.random.default_rng(14)
+    n, rate = 4000, 0.3  # 40 s runs, 12 jumps per particle: EB ~ 3/(rate T) > 2 x Brownian
+    families = {"a": jumps(rng, 1000, n, rate), "b": jumps(rng, 1000, n, rate)}
+    verdict = ergodic_verdict(families, times(n), seed=1)
+    assert verdict.eb["(pooled)"] > verdict.eb_threshold  # the level rule alone would fail
+    assert verdict.ergodic, verdict.reasons
