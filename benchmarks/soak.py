@@ -11,7 +11,8 @@ measures each case's collisions per particle; the target is shared out evenly, a
 whose particles come to rest (A = 0, f = 0.5 Hz, ...) take what they can give with at most
 ``--max-particles`` particles.  Checks stay cheap: every particle records a window of
 ``--sample`` consecutive collisions near the end of its run (from the start if it has fewer),
-and every recorded collision is checked to be finite and on the surface; the first
+and every recorded collision is checked to be finite and on the surface (to 1e-9 mm; 1e-7 mm at
+the vertical cusps of R = S/2, where rounding of x leaves the height that uncertain); the first
 ``--brute-force`` particles of each task also have every recorded flight searched on a fine
 time grid (tests/bbb/flight_check.py) for a point below the surface.  'below' counts
 particles with a collision off the surface, a flight below it, or a repaired velocity
@@ -180,7 +181,8 @@ def main() -> None:
           f"{tot['anomalies']:6d} {tot['nonfinite']:6d} {tot['sticks']:7d} {tot['arrested']:8d} {rate:11.3e}")
     print()
     print(f"total collisions        {tot['collisions']:.4e}  (target {args.target:.3g})")
-    print(f"particles below surface {tot['below']}  (recorded collisions off the surface by > 1e-9 mm: "
+    print(f"particles below surface {tot['below']}  (recorded collisions off the surface by > 1e-9 mm, "
+          "1e-7 mm at the vertical cusps of R = S/2: "
           f"{tot['off_surface']}; brute-forced flights: {tot['flights']}, "
           f"lowest gap {tot['worst_gap']:.2e} mm; anomalies: {tot['anomalies']})")
     print(f"non-finite values       {tot['nonfinite']}  (recorded collisions and sampled positions)")

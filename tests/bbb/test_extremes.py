@@ -30,6 +30,15 @@ from tests.bbb.flight_check import gap_along_flights
 G = 9800.0
 BASE = dict(g=G, A=0.1, f=60.0, R=15.0, S=2.0, alpha=0.7, beta=0.99)
 ON_SURFACE_MM = 1e-9
+#: At the vertical cusps of R = S/2 the height is only defined to sqrt(2 R δx) for a rounding
+#: δx ~ 1e-14 mm of x (the cusp sits at x = cell·S + S/2): ~1.5e-7 mm.  The 1e9-collision soak
+#: found collisions recorded there up to ~4e-9 mm off, at (within 1.1e-14 mm of) a cusp.
+ON_CUSP_MM = 1e-7
+
+
+def on_surface_tolerance(p: Params) -> float:
+    """How far off the surface a collision may be recorded, mm (rounding of x, not physics)."""
+    return ON_CUSP_MM if p.R == p.S / 2 else ON_SURFACE_MM
 #: brute force checks at most this many flights per particle (the 10⁶-period run has ~10⁶)
 MAX_FLIGHTS_CHECKED = 3000
 #: Γ = 3 at 1000 Hz: A = 3 g / (2π f)²
@@ -132,6 +141,7 @@ def invariant_violations(p: Params, run: SimRun, per_period: int = 200, flights:
     of the first ``brute_force_particles`` particles (all by default; negative: a point of a
     flight below the surface).  ``below`` counts particles with any of these faults."""
     nonfinite = int(np.count_nonzero(~np.isfinite(run.positions)))
+    tol = on_surface_tolerance(p)
     off_surface = rows_checked = n_flights = below = 0
     worst_gap = math.inf
     for i in range(run.n_particles):
@@ -139,7 +149,7 @@ def invariant_violations(p: Params, run: SimRun, per_period: int = 200, flights:
         bad = int(np.count_nonzero(~np.isfinite(rows)))
         good = rows[np.all(np.isfinite(rows), axis=1)]
         height = good[:, 2] - surface_at(p, good[:, 1], good[:, 5])
-        off = int(np.count_nonzero(np.abs(height) > ON_SURFACE_MM))
+        off = int(np.count_nonzero(np.abs(height) > tol))
         gap = math.inf
         if brute_force_particles is None or i < brute_force_particles:
             gap, checked = gap_along_flights(p, good[-flights - 1:], per_period=per_period)
@@ -148,7 +158,7 @@ def invariant_violations(p: Params, run: SimRun, per_period: int = 200, flights:
         off_surface += off
         rows_checked += rows.shape[0]
         worst_gap = min(worst_gap, gap)
-        below += bool(off or gap <= -ON_SURFACE_MM or run.counters["anomalies"][i])
+        below += bool(off or gap <= -tol or run.counters["anomalies"][i])
     return dict(nonfinite=nonfinite, rows=rows_checked, off_surface=off_surface,
                 anomalies=int(run.counters["anomalies"].sum()), flights=n_flights, worst_gap=worst_gap,
                 below=below)
@@ -504,7 +514,7 @@ def test_every_recorded_collision_lies_on_the_surface(case):
 @pytest.mark.parametrize("case", CASES, ids=IDS)
 def test_brute_force_finds_no_flight_below_the_surface(case):
     v = violations(case.name)
-    assert v["worst_gap"] > -ON_SURFACE_MM
+    assert v["worst_gap"] > -on_surface_tolerance(case.params)
 
 
 @pytest.mark.parametrize("case", [
