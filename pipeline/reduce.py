@@ -136,7 +136,7 @@ def counters_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
         for mi, fam in enumerate(study.families):
             counts = {name: store.read_done(f"n_{name}", fi, mi, done[fi, mi])
                       for name in COUNTERS}
-            n = int(done[fi, mi].sum()) * study.accuracy.chunk_size
+            n = len(counts[COUNTERS[0]])
             row = {"f": f, "family": fam.name, "initial": fam.initial, "n_particles": n,
                    "t_max": study.accuracy.t_max}
             for name, arr in counts.items():

@@ -25,20 +25,10 @@ from bbb.kernel import evolve_ensemble
 from bbb.numerics import Numerics
 from bbb.record import COLLISION_FIELDS, COUNTER_NAMES
 from bbb.surface import cell_of, depth, surface_normal
-from tests.bbb.flight_check import gap_along_flights
+from tests.bbb.flight_check import gap_along_flights, on_surface_tolerance
 
 G = 9800.0
 BASE = dict(g=G, A=0.1, f=60.0, R=15.0, S=2.0, alpha=0.7, beta=0.99)
-ON_SURFACE_MM = 1e-9
-#: At the vertical cusps of R = S/2 the height is only defined to sqrt(2 R δx) for a rounding
-#: δx ~ 1e-14 mm of x (the cusp sits at x = cell·S + S/2): ~1.5e-7 mm.  The 1e9-collision soak
-#: found collisions recorded there up to ~4e-9 mm off, at (within 1.1e-14 mm of) a cusp.
-ON_CUSP_MM = 1e-7
-
-
-def on_surface_tolerance(p: Params) -> float:
-    """How far off the surface a collision may be recorded, mm (rounding of x, not physics)."""
-    return ON_CUSP_MM if p.R == p.S / 2 else ON_SURFACE_MM
 #: brute force checks at most this many flights per particle (the 10⁶-period run has ~10⁶)
 MAX_FLIGHTS_CHECKED = 3000
 #: Γ = 3 at 1000 Hz: A = 3 g / (2π f)²
