@@ -2,13 +2,22 @@
 
 from __future__ import annotations
 
+from dataclasses import asdict, dataclass, replace
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from pipeline.accuracy import ACCURACY_PRESETS
+from pipeline.schema import InputError, Reader, declared, key
 from pipeline.workflow import WorkflowError, load_workflow, parse_workflow
+from pipeline.workflow_keys import (
+    README,
+    SECTIONS,
+    Accuracy,
+    readme_with_reference,
+    reference_markdown,
+)
 
 from .helpers import TINY
 
@@ -200,3 +209,55 @@ def test_unknown_accuracy_preset():
 def test_missing_file():
     with pytest.raises(WorkflowError, match="no such workflow file"):
         load_workflow("/nonexistent/wf.toml")
+
+
+def test_family_description_is_kept_but_not_part_of_the_fingerprint():
+    s = parse(TINY)
+    d = parse(TINY.replace('initial = "rest"', 'initial = "rest"\ndescription = "from rest"'))
+    assert d.families[0].description == "from rest" and s.fingerprint() == d.fingerprint()
+
+
+# -- the declared schema --------------------------------------------------------------------
+def test_readme_workflow_reference_is_the_one_generated_from_the_declarations():
+    """pipeline/README.md holds the table that `python -m pipeline.workflow --reference --write`
+    generates: a key's doc, range or default changed without regenerating it fails here."""
+    readme = README.read_text(encoding="utf-8")
+    assert readme == readme_with_reference(readme), (
+        "pipeline/README.md's workflow reference is stale: run "
+        "`python -m pipeline.workflow --reference --write`")
+
+
+def test_the_reference_names_every_declared_key_with_its_default():
+    ref = reference_markdown()
+    for _, cls, _ in SECTIONS:
+        for k in declared(cls):
+            assert f"| `{k.name}` |" in ref and k.default_text() in ref
+
+
+def test_a_key_added_later_with_omit_default_keeps_the_fingerprint_of_older_stores():
+    """The way issues 12-15 add keys: declared once, omit_default=True, so a store made before
+    the key existed still matches a workflow that leaves it at its default."""
+
+    @dataclass(frozen=True)
+    class AccuracyWithTarget(Accuracy):
+        target_ci: float | None = key(None, "relative CI half-width of D to reach",
+                                      units="fraction of D", gt=0, lt=1, omit_default=True)
+
+    s = parse(TINY)
+    at_default = replace(s, accuracy=AccuracyWithTarget(**asdict(s.accuracy)))
+    given = replace(s, accuracy=AccuracyWithTarget(**asdict(s.accuracy), target_ci=0.03))
+    assert at_default.fingerprint() == s.fingerprint() != given.fingerprint()
+
+
+def test_a_declared_key_is_validated_with_its_range_in_one_line():
+    @dataclass(frozen=True)
+    class Target:
+        target_ci: float = key(0.03, "relative CI half-width of D", units="fraction of D",
+                               gt=0, lt=1)
+
+    text = "[accuracy]\ntarget_ci = 1.5\n"
+    with pytest.raises(InputError) as e:
+        Reader(text, "wf.toml").table(Reader(text, "wf.toml").doc["accuracy"], ("accuracy",),
+                                      Target)
+    assert str(e.value) == ("wf.toml:2: accuracy.target_ci: 1.5 is out of range; allowed: "
+                            "fraction of D, 0 < target_ci < 1")
