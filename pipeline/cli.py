@@ -1,4 +1,11 @@
-"""The ``bbb`` command line: ``bbb run``, ``bbb reduce``, ``bbb status``, ``bbb verify``.
+"""The ``bbb`` command line: ``bbb run``, ``bbb reduce``, ``bbb status``, ``bbb verify``,
+``bbb accuracy``, ``bbb --version``.
+
+``bbb run WORKFLOW --frequencies 60,72`` runs only those frequencies of the workflow, into a
+store of their own (default ``runs/<name>-60Hz-72Hz.zarr``); chunk seeds are keyed by the
+frequency's value (pipeline/run.py), so its chunks are those of the whole sweep, bit for bit.
+``bbb reduce STORE --workflow W`` reduces with W's analysis settings ([analysis] and
+``accuracy.n_resamples``) without re-running; W must otherwise describe the stored data.
 
 Usage errors (bad arguments, a malformed workflow, a store of another workflow) print one line
 ``bbb: error: ...`` to stderr and exit with status 2, without a traceback.  A failed task exits
@@ -8,8 +15,11 @@ with status 1 and names the frequency, family and chunk.
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import sys
+from dataclasses import replace
+from importlib import metadata
 from pathlib import Path
 
 __all__ = ["main", "default_store_path"]
@@ -34,6 +44,7 @@ def default_store_path(name: str) -> str:
 
 def _build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="bbb", description="Bouncing ball billiard study pipeline.")
+    p.add_argument("--version", action="version", version=f"bbb {version()}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
 
@@ -50,6 +61,10 @@ def _build_parser() -> argparse.ArgumentParser:
                         "config files; docs/cluster.md)")
     r.add_argument("--jobs", metavar="N", type=_positive_int,
                    help="with --cluster: at most N jobs at once (default: 1)")
+    r.add_argument("--frequencies", metavar="F1,F2,...", type=_frequency_list,
+                   help="only these frequencies of the workflow (Hz), into their own store "
+                        "(default: runs/<name>-F1Hz-F2Hz.zarr); same seeds, so the same chunks "
+                        "as the whole sweep")
     r.add_argument("--no-progress", action="store_true", help="no progress bar")
 
     d = sub.add_parser("reduce", help="D(f) with bootstrap CIs and ergodicity verdicts")
@@ -57,6 +72,9 @@ def _build_parser() -> argparse.ArgumentParser:
     d.add_argument("--out", metavar="DIR",
                    help="where diffusion.parquet/.csv go (default: beside the store, "
                         "in a folder named like it without .zarr)")
+    d.add_argument("--workflow", metavar="WORKFLOW",
+                   help="reduce with this workflow's [analysis] and accuracy.n_resamples "
+                        "(its simulation settings must be the store's)")
 
     a = sub.add_parser("accuracy", help="the measured speed/accuracy trade: every preset and "
                                         "knob against a reference run (docs/accuracy.md)")
@@ -78,6 +96,32 @@ def _build_parser() -> argparse.ArgumentParser:
                                       "exit 1 listing each inconsistency")
     v.add_argument("store", metavar="STORE")
     return p
+
+
+def version() -> str:
+    """The installed package's version (importlib.metadata), as pip reports it."""
+    try:
+        return metadata.version("bbb")
+    except metadata.PackageNotFoundError:  # a source tree on sys.path, never installed
+        return "unknown (not installed)"
+
+
+def _frequency_list(text: str) -> tuple[float, ...]:
+    """'60,72.5' -> (60.0, 72.5): distinct finite frequencies > 0 Hz, multiples of 1 mHz."""
+    allowed = "allowed: comma-separated frequencies in Hz, e.g. 60,72"
+    out = []
+    for item in text.split(","):
+        try:
+            f = float(item)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{item.strip()!r} is not a number; {allowed}") from None
+        if not math.isfinite(f) or f <= 0 or abs(f * 1000 - round(f * 1000)) > 1e-6 * f:
+            raise argparse.ArgumentTypeError(f"{item.strip()} is out of range; allowed: "
+                                             "finite frequencies > 0 Hz, multiples of 0.001 Hz")
+        if round(f * 1000) in {round(g * 1000) for g in out}:
+            raise argparse.ArgumentTypeError(f"{item.strip()} is repeated; {allowed}")
+        out.append(f)
+    return tuple(out)
 
 
 def _positive_int(text: str) -> int:
@@ -137,7 +181,11 @@ def _cmd_run(args) -> int:
         raise UsageError("--jobs counts batch jobs of a --cluster (allowed: --cluster slurm "
                          "--jobs N)")
     study = load_workflow(args.workflow)
-    store = args.store or default_store_path(study.name)
+    name = study.name
+    if args.frequencies:
+        study = _frequency_subset(study, args.frequencies, args.workflow)
+        name += "".join(f"-{f:g}Hz" for f in study.frequencies)
+    store = args.store or default_store_path(name)
     if "://" not in store:
         parent = Path(store).resolve().parent
         try:
@@ -156,6 +204,19 @@ def _cmd_run(args) -> int:
     except ValueError as e:  # e.g. a malformed BBB_FAIL_CHUNKS, a --cluster misconfigured
         raise UsageError(str(e)) from None
     return 0
+
+
+def _frequency_subset(study, wanted: tuple[float, ...], workflow: str):
+    """The study at the frequencies asked for, each of which must be one of the workflow's."""
+    have = set(study.f_mhz)
+    missing = [f for f in wanted if round(f * 1000) not in have]
+    if missing:
+        fs = study.frequencies
+        listing = (", ".join(f"{f:g}" for f in fs) if len(fs) <= 8
+                   else f"{len(fs)} from {fs[0]:g} to {fs[-1]:g}")
+        raise UsageError(f"--frequencies: {', '.join(f'{f:g}' for f in missing)} Hz not in "
+                         f"{workflow}; allowed: its frequencies ({listing} Hz)")
+    return study.with_frequencies(wanted)
 
 
 def _cluster(args, study, store: str):
@@ -181,8 +242,34 @@ def _cmd_reduce(args) -> int:
         except OSError as e:
             raise UsageError(f"--out {args.out}: cannot create the directory ({e.strerror}); "
                              "allowed: a directory path") from None
-    reduce_store(args.store, args.out)
+    store = args.store
+    if args.workflow is not None:
+        store = _store_with_analysis_of(args.store, args.workflow)
+    reduce_store(store, args.out)
     return 0
+
+
+def _store_with_analysis_of(path: str, workflow: str):
+    """The store at ``path`` carrying the reduce settings of ``workflow``; refused (one line)
+    if the workflow would have simulated other data."""
+    from .store import StudyStore, _difference
+    from .workflow import load_workflow
+
+    new = load_workflow(workflow)
+    store = StudyStore.open(path)
+    old = store.study
+    refuse = (f"{workflow}: simulation settings differ from the store {store.path} "
+              "({}); allowed: a workflow that differs from the store's only in [analysis] "
+              "and accuracy.n_resamples")
+    extra = sorted(set(old.f_mhz) - set(new.f_mhz))
+    if extra:
+        raise UsageError(refuse.format(f"frequencies: store has {extra[0] / 1000:g} Hz, "
+                                       "the workflow does not"))
+    new_here = new.with_frequencies(old.frequencies)  # a store of a --frequencies subset
+    if new_here.fingerprint() != old.fingerprint():
+        raise UsageError(refuse.format(_difference(old, new_here)))
+    acc = replace(old.accuracy, n_resamples=new.accuracy.n_resamples)
+    return replace(store, study=replace(old, analysis=new.analysis, accuracy=acc))
 
 
 def _cmd_accuracy(args) -> int:

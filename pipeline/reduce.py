@@ -51,10 +51,12 @@ def default_out_dir(store_path: str, study: Study) -> str:
     return str(p.with_suffix("") if p.suffix == ".zarr" else p.parent / f"{p.name}.tables")
 
 
-def reduce_store(store_path: str | os.PathLike, out_dir: str | os.PathLike | None = None,
+def reduce_store(store_path: str | os.PathLike | StudyStore,
+                 out_dir: str | os.PathLike | None = None,
                  *, echo: Callable[[str], None] = print) -> dict[str, pd.DataFrame]:
-    """Write the tables of one store to ``out_dir`` (default: beside the store); returns them."""
-    store = StudyStore.open(store_path)
+    """Write the tables of one store to ``out_dir`` (default: beside the store); returns them.
+    A StudyStore may carry other reduce settings than the stored ones (`bbb reduce --workflow`)."""
+    store = store_path if isinstance(store_path, StudyStore) else StudyStore.open(store_path)
     study = store.study
     out = Path(out_dir if out_dir is not None else default_out_dir(store.path, study))
     out.mkdir(parents=True, exist_ok=True)

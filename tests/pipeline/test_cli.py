@@ -5,17 +5,20 @@ from __future__ import annotations
 import os
 import subprocess
 import sys
+import tomllib
+from importlib import metadata
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.cli import main
+from pipeline.cli import UsageError, main
 
 from .helpers import TINY, store_arrays
 
 BBB = Path(sys.executable).with_name("bbb")
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def run_cli(*args, cwd=None, module=False):
@@ -111,3 +114,113 @@ def _snapshot(path) -> dict[str, bytes]:
             p = os.path.join(root, f)
             out[p] = Path(p).read_bytes()
     return out
+
+
+# -- bbb --version ----------------------------------------------------------------------------
+def test_version_is_the_installed_package_version():
+    """`bbb --version` says the version pip installed, which is pyproject.toml's."""
+    res = run_cli("--version")
+    pyproject = tomllib.loads((ROOT / "pyproject.toml").read_text())["project"]["version"]
+    assert res.returncode == 0 and res.stdout == f"bbb {metadata.version('bbb')}\n"
+    assert metadata.version("bbb") == pyproject
+
+
+# -- bbb run --frequencies --------------------------------------------------------------------
+def test_frequency_subset_reproduces_the_chunks_of_the_whole_sweep(reference, tiny_workflow,
+                                                                   tmp_path, monkeypatch):
+    """`bbb run WF --frequencies 60` computes the same bytes as the 60 Hz chunks of the full
+    run of WF: every stored chunk file of every reproducible array, into its default store."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["run", str(tiny_workflow), "--frequencies", "60", "--workers", "1",
+                 "--no-progress"]) == 0
+    sub, full = tmp_path / "runs" / "tiny-60Hz.zarr", Path(reference[0])
+    assert store_arrays(sub)["frequency"].tolist() == [60.0]
+    fi = store_arrays(full)["frequency"].tolist().index(60.0)
+    compared = 0
+    for name in ("positions", "collisions", "n_recorded", "n_collisions", "n_sticks", "done"):
+        chunks = sorted(p.relative_to(sub / name / "c") for p in (sub / name / "c").rglob("*")
+                        if p.is_file())
+        assert chunks, name
+        for rel in chunks:
+            twin = full / name / "c" / str(fi) / Path(*rel.parts[1:])
+            assert (sub / name / "c" / rel).read_bytes() == twin.read_bytes(), (name, rel)
+            compared += 1
+    assert compared >= 6 * 4  # 2 families x 2 chunks of each array (done: one file per chunk)
+
+
+@pytest.mark.parametrize("value, needle", [
+    ("61", "--frequencies: 61 Hz not in {WF}; allowed: its frequencies (54, 60 Hz)"),
+    ("60,abc", "argument --frequencies: 'abc' is not a number; allowed: comma-separated"),
+    ("", "argument --frequencies: '' is not a number"),
+    ("60,60", "argument --frequencies: 60 is repeated"),
+    ("-60", "argument --frequencies: -60 is out of range; allowed: finite frequencies > 0 Hz"),
+    ("nan", "argument --frequencies: nan is out of range"),
+    ("60.0001", "argument --frequencies: 60.0001 is out of range; allowed: finite frequencies "
+                "> 0 Hz, multiples of 0.001 Hz"),
+])
+def test_bad_frequencies_exit_2_in_one_line(value, needle, tiny_workflow, tmp_path, capsys):
+    store = tmp_path / "s.zarr"
+    rc = main(["run", str(tiny_workflow), f"--frequencies={value}", "--store", str(store)])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.startswith("bbb: error: ") and err.count("\n") == 1, err
+    assert needle.format(WF=tiny_workflow) in err
+    assert not store.exists()
+
+
+# -- bbb reduce --workflow --------------------------------------------------------------------
+def test_reduce_with_a_workflow_uses_its_analysis_settings_without_touching_the_store(
+        reference, tmp_path, capsys):
+    """fit_to = 0.5 of T = 0.9 t_max = 9 s: the fit ends at the 4.5 s lag (the default 0.25 T =
+    2.25 s ends at the 2.0 s lag, the last sample lag below it on the 0.5 s grid), D changes,
+    and the store stays byte for byte as it was."""
+    wf = tmp_path / "wf.toml"
+    wf.write_text(TINY.replace("n_resamples = 100", "n_resamples = 50") +
+                  "[analysis]\nfit_to = 0.5\n")
+    before = _snapshot(reference[0])
+    assert main(["reduce", str(reference[0]), "--out", str(tmp_path / "new"),
+                 "--workflow", str(wf)]) == 0
+    assert main(["reduce", str(reference[0]), "--out", str(tmp_path / "old")]) == 0
+    new = pd.read_csv(tmp_path / "new" / "diffusion.csv")
+    old = pd.read_csv(tmp_path / "old" / "diffusion.csv")
+    assert new["fit_to"].tolist() == [4.5, 4.5] and old["fit_to"].tolist() == [2.0, 2.0]
+    moving = new["n_moving"] > 0
+    assert (new.loc[moving, "D"] != old.loc[moving, "D"]).all()
+    assert _snapshot(reference[0]) == before
+
+
+def test_reduce_of_a_frequency_subset_accepts_the_whole_workflow(reference, tiny_workflow,
+                                                                 tmp_path):
+    """A --frequencies store (here: made by copying the full one's workflow at 60 Hz only)
+    reduces with the workflow it was cut from."""
+    from pipeline.cli import _store_with_analysis_of
+
+    store = _store_with_analysis_of(str(reference[0]), str(tiny_workflow))
+    assert store.study.frequencies == (54.0, 60.0)
+    sub = tmp_path / "sub.toml"
+    sub.write_text(TINY.replace("[54.0, 60.0]", "[60.0]"))
+    with pytest.raises(UsageError, match=r"frequencies: store has 54 Hz, the workflow does not"):
+        _store_with_analysis_of(str(reference[0]), str(sub))
+
+
+@pytest.mark.parametrize("edit, needle", [
+    (lambda t: t.replace("t_max = 10.0", "t_max = 20.0"), "(accuracy.t_max: store 10.0, workflow 20.0)"),
+    (lambda t: t.replace("seed = 7", "seed = 8"), "(seed: store 7, workflow 8)"),
+    (lambda t: t.replace("[54.0, 60.0]", "[55.0, 60.0]"), "(frequencies: store has 54 Hz"),
+    (lambda t: t.replace("[0.0, 150.0]", "[0.0, 100.0]"), "(families: store"),
+    (lambda t: t.replace("chunk_size = 4", "chunk_size = 3"), "accuracy.chunk_size: 3 does not divide"),
+])
+def test_reduce_refuses_a_workflow_of_other_simulation_settings(edit, needle, reference, tmp_path,
+                                                                capsys):
+    wf = tmp_path / "wf.toml"
+    wf.write_text(edit(TINY))
+    before = _snapshot(reference[0])
+    rc = main(["reduce", str(reference[0]), "--out", str(tmp_path / "t"), "--workflow", str(wf)])
+    err = capsys.readouterr().err
+    assert rc == 2 and err.startswith("bbb: error: ") and err.count("\n") == 1, err
+    assert needle in err and str(wf) in err
+    assert not (tmp_path / "t" / "diffusion.csv").exists() and _snapshot(reference[0]) == before
+
+
+def test_reduce_with_a_missing_workflow_exits_2(reference, tmp_path, capsys):
+    assert main(["reduce", str(reference[0]), "--workflow", str(tmp_path / "no.toml")]) == 2
+    assert "no such workflow file" in capsys.readouterr().err
