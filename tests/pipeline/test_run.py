@@ -105,3 +105,44 @@ def test_a_stored_chunk_is_what_bbb_simulate_gives_for_its_seed(reference, tiny_
     sl = slice(4 * ci, 4 * ci + 4)
     assert np.array_equal(g["positions"][fi, mi, sl, :], run.positions)
     assert np.array_equal(g["collisions"][fi, mi, sl], run.collisions_dense, equal_nan=True)
+
+
+def test_bbb_run_with_an_edited_kernel_refuses_to_resume_the_store(reference, tiny_workflow, tmp_path):
+    """A copy of bbb whose kernel.py was edited runs `bbb run` on a partial store of this
+    kernel: exit 2, one line naming both kernel hashes, and the store is left as it was (the
+    chunk not done stays not done: no chunk of the other kernel is mixed in)."""
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    import zarr
+
+    import bbb
+    import pipeline
+    from bbb.provenance import kernel_hash
+
+    store = tmp_path / "tiny.zarr"
+    shutil.copytree(reference[0], store)
+    zarr.open_group(str(store), mode="r+")["done"][1, 1, 1] = False
+    before = store_arrays(store)
+    code = tmp_path / "code"
+    for pkg in (bbb, pipeline):
+        src = Path(pkg.__file__).parent
+        shutil.copytree(src, code / src.name, ignore=shutil.ignore_patterns("__pycache__"))
+    kernel = code / "bbb" / "kernel.py"
+    kernel.write_text(kernel.read_text() + "\n# an edit: another kernel\n")
+    new = subprocess.run([sys.executable, "-c", "from bbb.provenance import kernel_hash; "
+                          "print(kernel_hash())"], cwd=code, capture_output=True, text=True,
+                         check=True).stdout.strip()
+    assert new != kernel_hash()
+    out = subprocess.run([sys.executable, "-m", "pipeline", "run", str(tiny_workflow), "--store",
+                          str(store), "--workers", "1", "--no-progress"], cwd=code,
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 2, out.stderr
+    assert out.stderr.count("\n") == 1 and "Traceback" not in out.stderr
+    assert f"made by another kernel (kernel_hash: store {kernel_hash()}, this bbb {new})" in out.stderr
+    after = store_arrays(store)
+    assert sorted(after) == sorted(before)
+    for name in before:
+        assert np.array_equal(before[name], after[name], equal_nan=before[name].dtype.kind == "f")
