@@ -85,7 +85,7 @@ def test_adding_frequencies_and_families_leaves_old_results_unchanged(reference,
 
 
 def test_a_stored_chunk_is_what_bbb_simulate_gives_for_its_seed(reference, tiny_workflow):
-    # the seeding rule of DESIGN.md, checked from the outside: f in mHz, crc32 of the family
+    # the seeding rule of docs/design.md, checked from the outside: f in mHz, crc32 of the family
     # name, chunk index; every recorded collision field (bbb.record.COLLISION_FIELDS) stored
     import zlib
 
