@@ -65,6 +65,17 @@ def test_xarray_opens_the_store_with_named_dims_and_coords(store, study):
     assert ds["time"].values[-1] == study.accuracy.t_max
 
 
+def test_the_documented_xarray_mask_hides_chunks_not_marked_done(store, study):
+    store.write_chunk(1, 0, 1, FakeRun(study, 5.0), 0.1)                    # done
+    store.write_chunk(0, 1, 0, FakeRun(study, 6.0), 0.1, mark_done=False)  # written, not done
+    store.consolidate()
+    ds = xr.open_zarr(store.path)
+    done = ds.done.isel(chunk=ds.particle // (ds.sizes["particle"] // ds.sizes["chunk"]))
+    x = ds.positions.where(done).values
+    assert np.all(x[1, 0, 4:8] == 5.0)
+    assert np.isnan(x[0, 1]).all() and np.isfinite(x).sum() == 4 * x.shape[-1]
+
+
 def test_one_chunk_per_frequency_family_and_ensemble_chunk(store, study):
     g = store.group()
     cs, T = study.accuracy.chunk_size, len(study.sample_times())
