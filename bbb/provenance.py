@@ -21,6 +21,7 @@ a missed one).
 
 from __future__ import annotations
 
+import functools
 import hashlib
 from importlib import metadata, resources
 
@@ -31,6 +32,7 @@ KERNEL_SOURCES = ("ensemble.py", "kernel.py", "numerics.py", "params.py", "recor
                   "simulate.py", "surface.py")
 
 
+@functools.cache  # the sources as this process first saw them: close to what it has loaded
 def kernel_hash() -> str:
     """sha256 (hex) over the sorted :data:`KERNEL_SOURCES` of the imported bbb package."""
     root = resources.files(__package__)
@@ -40,11 +42,16 @@ def kernel_hash() -> str:
     return h.hexdigest()
 
 
+@functools.cache
+def _identity() -> tuple[tuple[str, str], ...]:
+    return (("kernel_hash", kernel_hash()), ("numba_version", _version("numba")),
+            ("numpy_version", _version("numpy")))
+
+
 def kernel_identity() -> dict[str, str]:
     """{"kernel_hash": ..., "numba_version": ..., "numpy_version": ...}: all that must be the
     same for a chunk computed now to be bit-identical to one computed earlier."""
-    return {"kernel_hash": kernel_hash(), "numba_version": _version("numba"),
-            "numpy_version": _version("numpy")}
+    return dict(_identity())
 
 
 def _version(dist: str) -> str:

@@ -146,3 +146,32 @@ def test_bbb_run_with_an_edited_kernel_refuses_to_resume_the_store(reference, ti
     assert sorted(after) == sorted(before)
     for name in before:
         assert np.array_equal(before[name], after[name], equal_nan=before[name].dtype.kind == "f")
+
+
+def test_a_worker_running_another_kernel_fails_its_task_before_writing(
+        tiny_workflow, tmp_path, monkeypatch):
+    """Workers of a remote cluster importing an edited copy of bbb: every task refuses to
+    compute into the store made by this kernel, naming both hashes, and nothing is written."""
+    import shutil
+    from pathlib import Path
+
+    import bbb
+    from bbb.provenance import kernel_hash
+
+    from .conftest import dask_processes
+
+    code = tmp_path / "code"
+    # with numba's cache (its index keys on the sources' mtimes, which copytree keeps): the
+    # edit goes to a hashed source that holds no jitted function, so no worker compiles
+    shutil.copytree(Path(bbb.__file__).parent, code / "bbb")
+    edited = code / "bbb" / "numerics.py"
+    edited.write_text(edited.read_text() + "\n# an edit: another kernel\n")
+    monkeypatch.setenv("PYTHONPATH", str(code))  # the workers' environment, not this process's
+    (tmp_path / "cluster").mkdir()
+    store = tmp_path / "s.zarr"
+    with dask_processes(tmp_path / "cluster") as (address, _):
+        with pytest.raises(RunFailed, match=r"failed: KernelMismatch: worker \S+ runs another "
+                           rf"kernel \(kernel_hash: worker [0-9a-f]{{64}}, store {kernel_hash()}\)"):
+            run_study(load_workflow(tiny_workflow), store, scheduler=address, **quiet)
+    x = store_arrays(store)
+    assert not x["done"].any() and np.isnan(x["positions"]).all()
