@@ -12,7 +12,7 @@ __all__ = ["Params", "PRESETS"]
 
 # The paper prints A = 0.01; with g = 9800 that gives Γ < 0.41 for f ≤ 100 Hz and
 # nothing ever lifts off.  A = 0.1 puts Γ = 1 at f ≈ 49.8 Hz, where the paper sees
-# the onset of diffusion (see DESIGN.md, "Units and the amplitude").
+# the onset of diffusion (see docs/design.md, "Units and the amplitude").
 PRESETS: dict[str, dict[str, float]] = {
     "klages2004": dict(g=9800.0, A=0.1, R=15.0, S=2.0, alpha=0.7, beta=0.99),
     "matyas2004": dict(g=9800.0, A=0.1, R=25.0, S=2.0, alpha=0.5, beta=0.99),

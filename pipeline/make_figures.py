@@ -113,6 +113,12 @@ def load_scene(name: str, fast: bool = False):
     return parse_workflow(draft_text(text) if fast else text, source=str(path))
 
 
+def run_log_entry(name: str, store: str) -> dict[str, str]:
+    """A scene's paths as run_log.json records them: relative to the repository (a committed
+    log holds no absolute path of the machine it ran on)."""
+    return {"workflow": os.path.relpath(scene_path(name), ROOT), "store": os.path.relpath(store, ROOT)}
+
+
 def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.PathLike = "runs",
                  *, fast: bool = False, workers: int | None = None, scheduler: str | None = None,
                  run: bool = True, progress: bool = True,
@@ -147,14 +153,14 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
         study = load_scene(name, fast)
         path = str((runs / f"{study.name}.zarr").resolve())
         stores[name] = path
-        entry = {"workflow": str(scene_path(name).relative_to(ROOT)), "store": path}
+        entry = run_log_entry(name, path)
         if run:
             rep = run_study(study, path, scheduler=scheduler, workers=workers, progress=progress,
                             dashboard=False, echo=echo)
             entry.update(wall_s=rep.wall, computed=len(rep.computed), skipped=rep.skipped,
                          chunks=rep.n_chunks, workers=rep.workers, task_s=rep.task_seconds)
         old = previous.get(name, {})
-        if (not entry.get("computed") and old.get("computed") and old.get("store") == path
+        if (not entry.get("computed") and old.get("computed") and old.get("store") == entry["store"]
                 and "wall_s" in old):
             entry.update({k: old[k] for k in ("wall_s", "computed", "skipped", "chunks", "workers",
                                               "task_s") if k in old}, earlier_invocation=True)

@@ -24,23 +24,39 @@ verdict      the verdict's reasons, '; '-joined
 ``counters.parquet`` / ``counters.csv`` (every store), one row per (frequency, family):
 collisions, sticks, liftoffs (and any other bbb counter) per particle per second, and the
 summed simulation time of its chunks (s, from chunk_seconds).
+
+Every Parquet table carries its provenance in the schema metadata under the key ``bbb``
+(a JSON object: ``units`` per column, ``store_fingerprint``, ``kernel_hash``,
+``bbb_version`` of the reducing package and of the store, ``study``, ``table``), and each
+column its unit as field metadata ``unit`` ("1": dimensionless, "": a label or flag).  Units
+follow the column names (:func:`column_unit`): f Hz; D and D_* mm²/s; t_max, fit_from,
+fit_to, eb_lag, task_seconds s; *_per_s 1/s.  :func:`table_metadata` reads them back.
 """
 
 from __future__ import annotations
 
+import json
 import math
 import os
+import re
 import zlib
 from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
 
-from .store import COUNTERS, StudyStore
+from .store import COUNTERS, StudyStore, package_version
 from .workflow import Study
 
-__all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir"]
+__all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir", "column_unit",
+           "table_metadata", "write_table"]
+
+# (pattern, unit) by column name, first match wins; see the module docstring
+_UNITS = ((r"f", "Hz"), (r"D(_.*)?", "mm^2/s"), (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),
+          (r".*_per_s", "1/s"), (r"(Gamma|EB.*)", "1"), (r"n_.*", "1"))
 
 
 def default_out_dir(store_path: str, study: Study) -> str:
@@ -67,11 +83,44 @@ def reduce_store(store_path: str | os.PathLike | StudyStore,
     tables = {"counters": counters_table(store, done)}
     if study.observables.positions:
         tables["diffusion"] = diffusion_table(store, done)
+    provenance = _provenance(store)
     for name, df in tables.items():
-        df.to_parquet(out / f"{name}.parquet", index=False)
+        write_table(df, out / f"{name}.parquet", {**provenance, "table": name})
         df.to_csv(out / f"{name}.csv", index=False)
     echo(f"{study.name}: wrote {', '.join(f'{n}.parquet/.csv' for n in tables)} to {out}")
     return tables
+
+
+def column_unit(column: str) -> str:
+    """The unit of a reduced table's column from its name ("" for labels and flags)."""
+    for pattern, unit in _UNITS:
+        if re.fullmatch(pattern, column):
+            return unit
+    return ""
+
+
+def write_table(df: pd.DataFrame, path: str | os.PathLike, provenance: dict) -> None:
+    """``df`` as Parquet with per-column units and ``provenance`` (plus the units) as the
+    schema metadata ``bbb`` (JSON)."""
+    table = pa.Table.from_pandas(df, preserve_index=False)
+    units = {c: column_unit(c) for c in df.columns}
+    schema = pa.schema([f.with_metadata({"unit": units[f.name]}) for f in table.schema],
+                       metadata={**(table.schema.metadata or {}),
+                                 b"bbb": json.dumps({**provenance, "units": units}).encode()})
+    pq.write_table(table.cast(schema), path)
+
+
+def table_metadata(path: str | os.PathLike) -> dict:
+    """The ``bbb`` metadata of a reduced Parquet table (units, fingerprint, versions)."""
+    meta = pq.read_schema(path).metadata or {}
+    return json.loads(meta[b"bbb"]) if b"bbb" in meta else {}
+
+
+def _provenance(store: StudyStore) -> dict:
+    attrs = store.attrs()
+    return {"study": store.study.name, "store_fingerprint": attrs.get("fingerprint"),
+            "kernel_hash": attrs.get("kernel_hash"), "store_bbb_version": attrs.get("bbb_version"),
+            "bbb_version": package_version()}
 
 
 def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:

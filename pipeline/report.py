@@ -611,7 +611,7 @@ def _params_lines(stores: Mapping[str, str]) -> list[str]:
     if path is None:
         return ["(no store)"]
     st = as_store(path)
-    attrs = dict(st.group().attrs)
+    attrs = st.attrs()  # JSON-string attributes decoded
     p = attrs.get("params", {})
     lines = ["| quantity | value |", "| --- | --- |"]
     for k, unit in (("g", "mm/s²"), ("A", "mm"), ("R", "mm"), ("S", "mm"), ("alpha", ""),

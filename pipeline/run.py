@@ -23,7 +23,7 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from .store import StudyStore, _is_local, normalize_path, run_lock
+from .store import KERNEL_ATTRS, StudyStore, _is_local, normalize_path, run_lock
 from .workflow import Study
 
 __all__ = [
@@ -35,6 +35,7 @@ __all__ = [
     "run_study",
     "parse_fail_chunks",
     "FAIL_ENV",
+    "KernelMismatch",
 ]
 
 FAIL_ENV = "BBB_FAIL_CHUNKS"
@@ -109,6 +110,7 @@ def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = Fal
     t0 = time.perf_counter()
     study = store.study
     f, fam = study.frequencies[fi], study.families[mi]
+    _check_kernel(store)
     acc, obs = study.accuracy, study.observables
     run = simulate(
         study.params(f), acc.chunk_size, acc.t_max, study.seed_sequence(f, fam, ci),
@@ -122,6 +124,23 @@ def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = Fal
         raise InjectedFailure(f"{FAIL_ENV} asked this chunk to fail after writing its data")
     return ChunkResult((f, fam.name, ci), int(run.counters["collisions"].sum()), seconds,
                        time.perf_counter() - t0 - seconds, socket.gethostname())
+
+
+class KernelMismatch(RuntimeError):
+    """This worker's kernel (bbb sources, numba, numpy) is not the one that made the store."""
+
+
+def _check_kernel(store: StudyStore) -> None:
+    # The client checked the store against its own kernel; a worker of a remote cluster may
+    # run another installation of bbb.  Checked before anything is written.
+    from bbb.provenance import kernel_identity
+
+    attrs, mine = store.attrs(), kernel_identity()
+    for key in KERNEL_ATTRS:
+        if attrs.get(key) != mine[key]:
+            raise KernelMismatch(f"worker {socket.gethostname()} runs another kernel ({key}: "
+                                 f"worker {mine[key]}, store {attrs.get(key)}); allowed: workers "
+                                 "with the same bbb, numba and numpy as the store's")
 
 
 def warm_numba(study: Study) -> float:

@@ -13,11 +13,11 @@ particle       (particle,)                  index          i8      whole
 chunk          (chunk,)                     index          i8      whole
 time           (time,)                      s              f8      whole    [positions]
 collision      (collision,)                 index          i8      whole    [collisions]
-field          (field,)                     t,x,y,vx,vy    str     whole    [collisions]
+field          (field,)          bbb.record.COLLISION_FIELDS  str  whole    [collisions]
 positions      (frequency, family, particle, time)  x, mm  f8      (1, 1, chunk_size, T)
-collisions     (frequency, family, particle, collision, field)  f8  (1, 1, chunk_size, K, 5)
+collisions     (frequency, family, particle, collision, field)  f8  (1, 1, chunk_size, K, n_fields)
 n_recorded     (frequency, family, particle)  valid rows   i8      (1, 1, chunk_size) [coll.]
-n_collisions, n_sticks, n_liftoffs  (frequency, family, particle)  i8  (1, 1, chunk_size)
+n_<counter>    (frequency, family, particle)  bbb counters  i8  (1, 1, chunk_size)
 done           (frequency, family, chunk)   bool           b1      (1, 1, 1)
 chunk_seconds  (frequency, family, chunk)   simulate, s    f8      (1, 1, 1)   not reproducible
 =============  ==========================================  ======  ===========================
@@ -26,15 +26,22 @@ One Dask task computes one (frequency, family, chunk) and writes exactly one chu
 data array, so concurrent writers never share a chunk.  ``done`` is set only after the data:
 with Zarr v3's ``write_empty_chunks=False`` a chunk's presence proves nothing (an all-NaN or
 all-zero chunk is never written).  Root attributes hold the resolved workflow, its TOML
-source, the parameters, numerics, accuracy, the seeding rule, the package version and a
-fingerprint of everything that determines the stored numbers; opening the store with a
-workflow of another fingerprint is refused.
+source, the parameters, numerics, accuracy, the seeding rule, the package version, the kernel
+that computed the chunks (:func:`bbb.provenance.kernel_identity`: a hash of the kernel's
+sources, the numba and numpy versions) and a fingerprint of everything that determines the
+stored numbers (the workflow's data identity and the kernel); opening the store with a
+workflow of another fingerprint, or with another kernel, is refused.
+
+Root attributes are netCDF-safe (``xr.open_zarr(store).to_netcdf(...)`` works): flat strings
+and numbers; the nested ones (:data:`JSON_ATTRS`) are JSON strings, decoded by
+:func:`read_attrs`.
 """
 
 from __future__ import annotations
 
 import datetime as _dt
 import fcntl
+import hashlib
 import json
 import os
 import socket
@@ -48,15 +55,25 @@ from typing import Any
 import numpy as np
 import zarr
 
+from bbb.provenance import kernel_identity
 from bbb.record import COLLISION_FIELDS, COUNTER_NAMES
 
 from .workflow import Study
 
 __all__ = ["StoreError", "StudyStore", "run_lock", "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
-           "package_version"]
+           "package_version", "read_attrs", "store_fingerprint", "JSON_ATTRS", "KERNEL_ATTRS"]
 
-# 2: collisions carry bbb.record.COLLISION_FIELDS (t, x, y, vx, vy, phase); 1 had no phase
-LAYOUT_VERSION = 2
+# 3: root attributes record the kernel (KERNEL_ATTRS) and are netCDF-safe (JSON_ATTRS are JSON
+#    strings); 2: collisions carry bbb.record.COLLISION_FIELDS (t, x, y, vx, vy, phase);
+#    1 had no phase
+LAYOUT_VERSION = 3
+_OLDER_LAYOUTS = {2: "it records no kernel hash, so whether its chunks were computed by this "
+                     "kernel cannot be known",
+                  1: "its collisions have no floor phase"}
+#: root attributes held as JSON strings (nested dicts, which netCDF attributes cannot hold)
+JSON_ATTRS = ("workflow", "params", "numerics", "accuracy")
+#: root attributes naming the kernel that computed the chunks (bbb.provenance.kernel_identity)
+KERNEL_ATTRS = ("kernel_hash", "numba_version", "numpy_version")
 # Per-particle counters kept from bbb's SimRun.counters ('recorded' is stored as n_recorded).
 COUNTERS = tuple(c for c in COUNTER_NAMES if c != "recorded")
 SEEDING = ("SeedSequence(workflow seed, spawn_key=(round(f * 1000), "
@@ -101,20 +118,32 @@ class StudyStore:
         path = normalize_path(path)
         existing = _open_group(path)
         if existing is not None:
-            attrs = dict(existing.attrs)
+            attrs = read_attrs(existing)
             if "fingerprint" not in attrs:
                 if attrs.get("bbb_creating"):  # layout creation was interrupted: no data yet
                     return cls._create(path, study, overwrite=True)
                 raise StoreError(f"{path}: exists and is not a bbb study store; "
                                  "allowed: a new path or a store made by the same workflow")
-            if attrs.get("bbb_store_layout") != LAYOUT_VERSION:
-                raise StoreError(f"{path}: store layout {attrs.get('bbb_store_layout')!r} of an older bbb; "
+            layout = attrs.get("bbb_store_layout")
+            if layout != LAYOUT_VERSION:
+                why = f" ({_OLDER_LAYOUTS[layout]})" if layout in _OLDER_LAYOUTS else ""
+                raise StoreError(f"{path}: store layout {layout!r} of an older bbb{why}; "
                                  f"allowed: layout {LAYOUT_VERSION} (delete it or use another --store)")
-            if attrs["fingerprint"] != study.fingerprint():
+            kernel = kernel_identity()
+            for key in KERNEL_ATTRS:
+                if attrs.get(key) != kernel[key]:
+                    raise StoreError(f"{path}: made by another kernel ({key}: store "
+                                     f"{attrs.get(key)}, this bbb {kernel[key]}); resuming would "
+                                     "mix chunks of two kernels; allowed: a store made by this "
+                                     "kernel, or another --store (the store is left unchanged)")
+            if attrs.get("workflow_fingerprint") != study.fingerprint():
                 old = Study.from_dict(attrs["workflow"])
                 raise StoreError(f"{path}: made by a different workflow "
                                  f"({_difference(old, study)}); "
                                  "allowed: the same workflow, or another --store")
+            if attrs["fingerprint"] != store_fingerprint(study.fingerprint(), kernel):
+                raise StoreError(f"{path}: its fingerprint does not match its own workflow and "
+                                 "kernel attributes (altered?); run `bbb verify` on it")
             store = cls(path, study)
             store._update_reduce_settings(existing, study)
             return store
@@ -130,7 +159,7 @@ class StudyStore:
         g = _open_group(path)
         if g is None:
             raise StoreError(f"{path}: no such store")
-        attrs = dict(g.attrs)
+        attrs = read_attrs(g)
         if "fingerprint" not in attrs:
             raise StoreError(f"{path}: not a (complete) bbb study store")
         return cls(path, Study.from_dict(attrs["workflow"], text=attrs.get("workflow_toml", "")))
@@ -152,13 +181,17 @@ class StudyStore:
     def _update_reduce_settings(self, g: zarr.Group, study: Study) -> None:
         # Same data, possibly new reduce settings (analysis, bootstrap resamples, name): the
         # stored numbers stay valid, so the workflow recorded for `bbb reduce` is updated.
-        if g.attrs.get("workflow") != _jsonable(study.to_dict()):
+        if read_attrs(g).get("workflow") != _jsonable(study.to_dict()):
             g = zarr.open_group(self.path, mode="r+")
-            g.attrs.update({"workflow": _jsonable(study.to_dict()), "workflow_toml": study.text})
+            g.attrs.update({"workflow": _json_attr(study.to_dict()), "workflow_toml": study.text})
 
     # -- reading ---------------------------------------------------------------------------
     def group(self, mode: str = "r") -> zarr.Group:
         return zarr.open_group(self.path, mode=mode)
+
+    def attrs(self) -> dict[str, Any]:
+        """The root attributes, JSON strings (:data:`JSON_ATTRS`) decoded."""
+        return read_attrs(self.group())
 
     def done(self) -> np.ndarray:
         """bool (frequency, family, chunk): chunks whose data are completely written."""
@@ -361,11 +394,11 @@ def _create_layout(g: zarr.Group, study: Study) -> None:
         K = obs.collisions_record
         coord("collision", np.arange(K), "int64", "", f"collision index from t = "
               f"{obs.collisions_from:g} s")
-        coord("field", list(COLLISION_FIELDS), str, "s, mm, mm, mm/s, mm/s, floor phase (1)",
-              "post-collision state component")
+        units = ", ".join(collision_field_units())
+        coord("field", list(COLLISION_FIELDS), str, units, "post-collision state component")
         data("collisions", ("frequency", "family", "particle", "collision", "field"),
              (F, M, N, K, len(COLLISION_FIELDS)), (1, 1, cs, K, len(COLLISION_FIELDS)), "float64",
-             np.nan, "s, mm, mm, mm/s, mm/s", "post-collision (t, x, y, vx, vy), NaN-padded")
+             np.nan, units, f"post-collision ({', '.join(COLLISION_FIELDS)}), NaN-padded")
         data("n_recorded", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs), "int64",
              0, "", "valid rows of collisions")
     for name in COUNTERS:
@@ -377,19 +410,57 @@ def _create_layout(g: zarr.Group, study: Study) -> None:
          np.nan, "s", "wall time of the chunk's simulation (not reproducible)")
 
 
+#: units of the recorded collision fields (bbb.record.COLLISION_FIELDS), "1": dimensionless
+FIELD_UNITS = {"t": "s", "x": "mm", "y": "mm", "vx": "mm/s", "vy": "mm/s", "phase": "1"}
+
+
+def collision_field_units() -> tuple[str, ...]:
+    """Units of bbb.record.COLLISION_FIELDS in storage order ('?' for a field this module does
+    not know yet: tests/pipeline/test_store.py fails on it, so it is named here)."""
+    return tuple(FIELD_UNITS.get(name, "?") for name in COLLISION_FIELDS)
+
+
 def _root_attrs(study: Study) -> dict[str, Any]:
-    return _jsonable({
+    kernel = kernel_identity()
+    return {
         "bbb_store_layout": LAYOUT_VERSION,
         "bbb_version": package_version(),
         "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
-        "workflow": study.to_dict(),
+        "workflow": _json_attr(study.to_dict()),
         "workflow_toml": study.text,
-        "params": study.base_params,
-        "numerics": study.accuracy.numerics().as_dict(),
-        "accuracy": asdict(study.accuracy),
+        "params": _json_attr(study.base_params),
+        "numerics": _json_attr(study.accuracy.numerics().as_dict()),
+        "accuracy": _json_attr(asdict(study.accuracy)),
         "seeding": SEEDING,
-        "fingerprint": study.fingerprint(),
-    })
+        **kernel,
+        "workflow_fingerprint": study.fingerprint(),
+        "fingerprint": store_fingerprint(study.fingerprint(), kernel),
+    }
+
+
+def store_fingerprint(workflow_fingerprint: str, kernel: dict[str, str]) -> str:
+    """sha256 over the workflow's data fingerprint and the kernel identity (KERNEL_ATTRS):
+    two stores with the same fingerprint hold the same numbers, chunk for chunk."""
+    blob = json.dumps({"workflow": workflow_fingerprint, **{k: kernel[k] for k in KERNEL_ATTRS}},
+                      sort_keys=True)
+    return hashlib.sha256(blob.encode()).hexdigest()
+
+
+def read_attrs(group: zarr.Group) -> dict[str, Any]:
+    """A store's root attributes with the JSON strings of :data:`JSON_ATTRS` decoded (a store
+    of layout <= 2 holds them as nested dicts already: returned as they are)."""
+    attrs = dict(group.attrs)
+    for key in JSON_ATTRS:
+        if isinstance(attrs.get(key), str):
+            try:
+                attrs[key] = json.loads(attrs[key])
+            except ValueError:
+                pass  # left as it is: bbb verify reports an unreadable attribute
+    return attrs
+
+
+def _json_attr(o: Any) -> str:
+    return json.dumps(_jsonable(o), sort_keys=True)
 
 
 def _jsonable(o: Any) -> Any:

@@ -4,11 +4,15 @@ What is checked (each failure is one :class:`Problem`, naming the array and, for
 frequency, family and chunk):
 
 - root attributes: every attribute `bbb run` writes is there; the stored workflow, as this
-  version of bbb reads it, gives the stored ``fingerprint`` (else `bbb run` would refuse to
-  resume the store); ``params`` are the workflow's stored resolved parameters, ``numerics``,
-  ``accuracy`` and ``seeding`` what its stored accuracy and the seeding rule give; the layout
-  version is known.  (The TOML source is not re-parsed: what a preset name means may change
-  between versions, the stored resolved workflow is what the data were made with);
+  version of bbb reads it, gives the stored ``workflow_fingerprint``, and with the stored
+  kernel attributes the stored ``fingerprint``; the kernel that made the store
+  (``kernel_hash``, ``numba_version``, ``numpy_version``) is this bbb's
+  (:func:`bbb.provenance.kernel_identity`), else `bbb run` would refuse to resume the store
+  and its chunks cannot be reproduced here; ``params`` are the workflow's stored resolved
+  parameters, ``numerics``, ``accuracy`` and ``seeding`` what its stored accuracy and the
+  seeding rule give; the layout version is known.  (The TOML source is not re-parsed: what
+  a preset name means may change between versions, the stored resolved workflow is what the
+  data were made with);
 - layout: every array of the workflow's layout exists with its shape, chunks, dtype and
   dimension names, coordinates hold the workflow's values, and there is no other array;
 - every chunk marked done (chunks not done are not data yet: a re-run recomputes them):
@@ -37,9 +41,21 @@ import numpy as np
 import zarr
 
 from bbb.params import Params
+from bbb.provenance import kernel_identity
 from bbb.surface import cell_of, depth
 
-from .store import COUNTERS, LAYOUT_VERSION, SEEDING, StoreError, _create_layout, normalize_path
+from .store import (
+    COUNTERS,
+    JSON_ATTRS,
+    KERNEL_ATTRS,
+    LAYOUT_VERSION,
+    SEEDING,
+    StoreError,
+    _create_layout,
+    normalize_path,
+    read_attrs,
+    store_fingerprint,
+)
 from .store import package_version as _version
 from .workflow import Study
 
@@ -51,7 +67,8 @@ __all__ = ["Problem", "VerifyReport", "verify_store", "ON_SURFACE_MM", "REQUIRED
 #: a chunk of another run or of garbage) are orders of magnitude larger.
 ON_SURFACE_MM = 1e-6
 REQUIRED_ATTRS = ("workflow", "workflow_toml", "params", "numerics", "accuracy", "seeding",
-                  "bbb_version", "bbb_store_layout", "created", "fingerprint")
+                  "bbb_version", "bbb_store_layout", "created", *KERNEL_ATTRS,
+                  "workflow_fingerprint", "fingerprint")
 _REPRODUCED = ("params", "numerics", "accuracy", "seeding")  # attrs re-derived from the workflow
 
 
@@ -104,10 +121,14 @@ def verify_store(path: str | os.PathLike) -> VerifyReport:
     except Exception as e:  # e.g. a file, or an unreadable zarr.json, where the store should be
         raise StoreError(f"{path}: cannot open ({type(e).__name__}: {e}); "
                          "allowed: a store made by `bbb run`") from None
-    attrs = dict(g.attrs)
+    raw = dict(g.attrs)
+    attrs = read_attrs(g)
     if "fingerprint" not in attrs and "workflow" not in attrs:
         raise StoreError(f"{path}: not a (complete) bbb study store; "
                          "allowed: a store made by `bbb run`")
+    for key in JSON_ATTRS:  # netCDF-safe: nested attributes are JSON strings
+        if key in raw and not isinstance(attrs[key], dict):
+            report.problems.append(Problem(f"attribute {key}", "not a JSON object string"))
     study = _check_attrs(attrs, report.problems)
     if study is None:  # without its workflow nothing else can be checked
         return report
@@ -135,11 +156,25 @@ def _check_attrs(attrs: dict[str, Any], problems: list[Problem]) -> Study | None
         problems.append(Problem("attribute workflow", f"not usable by bbb {_version()} "
                                 f"({type(e).__name__}: {e})"))
         return None
-    if "fingerprint" in attrs and attrs["fingerprint"] != fp:
-        problems.append(Problem("attribute fingerprint", f"{_short(attrs['fingerprint'])} does "
-                                f"not match the stored workflow ({_short(fp)}): the attributes "
-                                "were altered, or the parameter presets changed since bbb "
+    stored_kernel = {k: attrs.get(k) for k in KERNEL_ATTRS}
+    if "workflow_fingerprint" in attrs and attrs["workflow_fingerprint"] != fp:
+        problems.append(Problem("attribute workflow_fingerprint",
+                                f"{_short(attrs['workflow_fingerprint'])} does not match the "
+                                f"stored workflow ({_short(fp)}): the attributes were altered, or "
+                                "the parameter presets changed since bbb "
                                 f"{attrs.get('bbb_version', '?')} made the store"))
+    if "fingerprint" in attrs and all(isinstance(v, str) for v in stored_kernel.values()):
+        want = store_fingerprint(fp, stored_kernel)
+        if attrs["fingerprint"] != want:
+            problems.append(Problem("attribute fingerprint", f"{_short(attrs['fingerprint'])} does "
+                                    f"not match the stored workflow and kernel ({_short(want)}): "
+                                    "the attributes were altered"))
+    kernel = kernel_identity()
+    for key in KERNEL_ATTRS:
+        if key in attrs and attrs[key] != kernel[key]:
+            problems.append(Problem(f"attribute {key}", f"store {attrs[key]}, this bbb "
+                                    f"{kernel[key]}: made by another kernel; its chunks cannot be "
+                                    "reproduced here and `bbb run` refuses to resume it"))
     resolved = attrs["workflow"].get("resolved_params", study.base_params)
     expected = {
         "params": resolved,

@@ -63,6 +63,11 @@ def test_spiral_of_reads_A_f_g_alpha_from_params():
     p = Params.preset("klages2004", f=60.0)
     _, v = spiral_of(p, 0.0)
     assert v == pytest.approx(20.4 * math.pi, rel=1e-12)
+    # g enters only after a flight: at t_c = 1/240 s, v = alpha g / 2 · t_c (hand value above);
+    # with g halved and A doubled, v = 0.7 · 4900 / 2 / 240 and y = 0.2 mm
+    y, v = spiral_of(Params.preset("klages2004", f=60.0, g=4900.0, A=0.2), 1.0 / 240.0)
+    assert v == pytest.approx(0.7 * 4900.0 / 2 / 240.0, rel=1e-12)
+    assert y == pytest.approx(0.2, rel=1e-12)
 
 
 def test_spiral_refuses_negative_flight_times():

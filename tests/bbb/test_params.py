@@ -16,7 +16,7 @@ def test_matyas2004_preset_has_the_earlier_parameters():
 
 
 def test_gamma_is_one_near_the_papers_onset_of_diffusion():
-    # DESIGN.md: with A = 0.1 mm, Γ = A(2πf)²/g = 1 at f ≈ 49.8 Hz
+    # docs/design.md, "Units and the amplitude": with A = 0.1 mm, Γ = A(2πf)²/g = 1 at f ≈ 49.8 Hz
     assert Params.preset("klages2004", f=49.82).gamma == pytest.approx(1.0, abs=2e-3)
 
 

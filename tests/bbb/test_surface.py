@@ -45,12 +45,17 @@ def test_arc_tops_follow_the_floor_and_cusps_are_the_lowest_points():
     assert np.all(surface_height(p, np.linspace(-1, 1, 101), t) >= cusp - 1e-15)
 
 
-def test_normal_is_unit_and_points_away_from_the_arc_centre():
+def test_normal_is_unit_perpendicular_to_the_surface_and_points_away_from_the_arc_centre():
     p = Params.preset("klages2004", f=60.0)
-    x = np.array([-0.9, -0.3, 0.0, 0.4, 0.99])
+    x = np.array([-0.9, -0.3, 0.0, 0.4, 0.99, 2.4, -5.7])  # the last two in other cells
     nx, ny = surface_normal(p, x)
-    assert np.allclose(nx**2 + ny**2, 1.0)
-    assert np.all(np.sign(nx) == np.sign(x)) or nx[2] == 0.0
+    assert np.allclose(nx**2 + ny**2, 1.0, rtol=0.0, atol=1e-14)
+    # perpendicular to the tangent (1, dh/dx), the slope by central differences of the height
+    h, t = 1e-6, 0.003
+    slope = (surface_height(p, x + h, t) - surface_height(p, x - h, t)) / (2 * h)
+    assert np.allclose(nx + ny * slope, 0.0, atol=1e-8)
+    _, d = cell_of(x, p.S)
+    assert np.array_equal(np.sign(nx), np.sign(d))  # away from the centre; 0 at the arc top
     assert np.all(ny > 0)
 
 

@@ -23,9 +23,10 @@ import numpy as np
 import pytest
 import zarr
 
+from bbb.provenance import kernel_hash
 from pipeline.cli import main
 from pipeline.run import RunFailed, run_study
-from pipeline.store import COUNTERS, StoreError, StudyStore
+from pipeline.store import COUNTERS, KERNEL_ATTRS, StoreError, StudyStore, store_fingerprint
 from pipeline.workflow import load_workflow
 
 from .helpers import QUIET, assert_same_store
@@ -311,6 +312,17 @@ def _attr(key, value):
     return corrupt
 
 
+def _other_kernel(kernel_hash: str):
+    """The attributes a store made by another kernel has: its kernel hash, and a fingerprint
+    consistent with it (bbb run wrote both)."""
+    def corrupt(store: Path):
+        g = zarr.open_group(str(store), mode="r+")
+        kernel = {**{k: g.attrs[k] for k in KERNEL_ATTRS}, "kernel_hash": kernel_hash}
+        g.attrs.update({"kernel_hash": kernel_hash, "fingerprint": store_fingerprint(
+            g.attrs["workflow_fingerprint"], kernel)})
+    return corrupt
+
+
 def _drop_array(name):
     def corrupt(store: Path):
         shutil.rmtree(store / name)
@@ -353,10 +365,21 @@ CORRUPTIONS = {
         "n_anomalies[f = 54 Hz, family rest, chunk 0]: 1 particles with repaired velocities"),
     "fingerprint of another workflow": (
         _attr("fingerprint", "0" * 64),
-        "attribute fingerprint: 000000000000 does not match the stored workflow"),
+        "attribute fingerprint: 000000000000 does not match the stored workflow and kernel"),
+    "workflow fingerprint of another workflow": (
+        _attr("workflow_fingerprint", "0" * 64),
+        "attribute workflow_fingerprint: 000000000000 does not match the stored workflow"),
+    "made by another kernel": (
+        _other_kernel("ab" * 32),
+        f"attribute kernel_hash: store {'ab' * 32}, this bbb {kernel_hash()}: made by another "
+        "kernel"),
     "params attribute edited": (
-        _attr("params", lambda p: dict(p, alpha=0.5)),
+        _attr("params", lambda p: json.dumps(dict(json.loads(p), alpha=0.5))),
         "attribute params: alpha: 0.5, expected 0.7"),
+    "params attribute not JSON": (
+        _attr("params", "{alpha: 0.5"),
+        "attribute params: not a JSON object string",
+        "attribute params: '{alpha: 0.5', expected {"),
     "array removed": (
         _drop_array("chunk_seconds"),
         "chunk_seconds: missing",

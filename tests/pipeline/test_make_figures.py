@@ -33,3 +33,28 @@ def test_toml_dump_round_trips_a_workflow_document():
     doc = tomllib.loads(text)
     assert tomllib.loads(_toml_dump(doc)) == doc
     assert tomllib.loads(draft_text(text))["accuracy"] == {"preset": "draft"}
+
+
+def test_the_run_log_records_paths_relative_to_the_repository(tmp_path):
+    import os
+
+    from pipeline.make_figures import ROOT, run_log_entry
+
+    for store in (ROOT / "runs" / "figure2.zarr", tmp_path / "runs" / "figure2.zarr"):
+        entry = run_log_entry("figure2", str(store))
+        assert not any(os.path.isabs(v) for v in entry.values()), entry
+        assert (ROOT / entry["store"]).resolve() == store.resolve()
+        assert (ROOT / entry["workflow"]).resolve() == scene_path("figure2").resolve()
+    assert run_log_entry("locking", str(ROOT / "runs" / "locking.zarr")) == {
+        "workflow": "pipeline/scenes/locking.toml", "store": "runs/locking.zarr"}
+
+
+def test_the_committed_run_log_holds_no_absolute_path():
+    import json
+
+    from pipeline.make_figures import ROOT
+
+    log = json.loads((ROOT / "figures" / "run_log.json").read_text())
+    for name, entry in log["scenes"].items():
+        for key in ("workflow", "store"):
+            assert not entry[key].startswith("/"), (name, key, entry[key])

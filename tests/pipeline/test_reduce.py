@@ -40,6 +40,54 @@ def test_d_is_finite_and_positive_where_particles_move(tables):
     assert (df["D_lo"] <= df["D"]).all() and (df["D"] <= df["D_hi"]).all()
 
 
+def _plain_msd_D(x: np.ndarray, dt: float, discard: float, fit_from: float, fit_to: float
+                 ) -> float:
+    """D, mm²/s, written out here without bbb.stats: drop the first ``discard`` of the run,
+    average (x(t + Δ) - x(t))² over particles and time origins, fit a line to it over the
+    lags fit_from <= Δ <= fit_to (fractions of the analysed duration) and halve the slope."""
+    x = x[:, int(round(discard * (x.shape[1] - 1))):]
+    T = (x.shape[1] - 1) * dt
+    lags = [k for k in range(1, x.shape[1]) if fit_from * T - 1e-9 <= k * dt <= fit_to * T + 1e-9]
+    msd = [np.mean((x[:, k:] - x[:, :-k]) ** 2) for k in lags]
+    return np.polyfit(np.asarray(lags) * dt, msd, 1)[0] / 2
+
+
+def test_d_agrees_with_a_plain_msd_slope_of_the_raw_store_positions(reference, tables):
+    import zarr
+
+    g = zarr.open_group(str(reference[0]), mode="r")
+    x = np.asarray(g["positions"][...])  # (frequency, family, particle, time), all done
+    an = parse_workflow(TINY, source="tiny.toml").analysis
+    df = pd.read_parquet(tables / "diffusion.parquet")
+    for fi in range(x.shape[0]):
+        pooled = x[fi].reshape(-1, x.shape[-1])  # both families
+        d = _plain_msd_D(pooled, 0.5, an.discard, an.fit_from, an.fit_to)
+        row = df.iloc[fi]
+        assert row["D_lo"] <= d <= row["D_hi"]
+        assert d == pytest.approx(row["D"], rel=1e-9)  # the same estimator, to rounding
+
+
+def test_parquet_tables_carry_units_and_the_store_provenance(reference, tables):
+    import pyarrow.parquet as pq
+
+    from bbb.provenance import kernel_hash
+    from pipeline.reduce import table_metadata
+    from pipeline.store import StudyStore, package_version
+
+    attrs = StudyStore.open(reference[0]).attrs()
+    for name in ("diffusion", "counters"):
+        meta = table_metadata(tables / f"{name}.parquet")
+        assert meta["store_fingerprint"] == attrs["fingerprint"] and meta["table"] == name
+        assert meta["kernel_hash"] == kernel_hash() and meta["bbb_version"] == package_version()
+        schema = pq.read_schema(tables / f"{name}.parquet")
+        assert set(meta["units"]) == set(schema.names)
+        assert all(schema.field(c).metadata[b"unit"].decode() == u for c, u in meta["units"].items())
+    units = table_metadata(tables / "diffusion.parquet")["units"]
+    assert (units["f"], units["D"], units["D_rest_lo"], units["fit_to"], units["EB"]) == (
+        "Hz", "mm^2/s", "mm^2/s", "s", "1")
+    assert table_metadata(tables / "counters.parquet")["units"]["collisions_per_s"] == "1/s"
+
+
 def test_csv_holds_the_same_table_as_parquet(tables):
     pq = pd.read_parquet(tables / "diffusion.parquet")
     csv = pd.read_csv(tables / "diffusion.csv")

@@ -85,7 +85,7 @@ def test_adding_frequencies_and_families_leaves_old_results_unchanged(reference,
 
 
 def test_a_stored_chunk_is_what_bbb_simulate_gives_for_its_seed(reference, tiny_workflow):
-    # the seeding rule of DESIGN.md, checked from the outside: f in mHz, crc32 of the family
+    # the seeding rule of docs/design.md, checked from the outside: f in mHz, crc32 of the family
     # name, chunk index; every recorded collision field (bbb.record.COLLISION_FIELDS) stored
     import zlib
 
@@ -105,3 +105,73 @@ def test_a_stored_chunk_is_what_bbb_simulate_gives_for_its_seed(reference, tiny_
     sl = slice(4 * ci, 4 * ci + 4)
     assert np.array_equal(g["positions"][fi, mi, sl, :], run.positions)
     assert np.array_equal(g["collisions"][fi, mi, sl], run.collisions_dense, equal_nan=True)
+
+
+def test_bbb_run_with_an_edited_kernel_refuses_to_resume_the_store(reference, tiny_workflow, tmp_path):
+    """A copy of bbb whose kernel.py was edited runs `bbb run` on a partial store of this
+    kernel: exit 2, one line naming both kernel hashes, and the store is left as it was (the
+    chunk not done stays not done: no chunk of the other kernel is mixed in)."""
+    import shutil
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    import zarr
+
+    import bbb
+    import pipeline
+    from bbb.provenance import kernel_hash
+
+    store = tmp_path / "tiny.zarr"
+    shutil.copytree(reference[0], store)
+    zarr.open_group(str(store), mode="r+")["done"][1, 1, 1] = False
+    before = store_arrays(store)
+    code = tmp_path / "code"
+    for pkg in (bbb, pipeline):
+        src = Path(pkg.__file__).parent
+        shutil.copytree(src, code / src.name, ignore=shutil.ignore_patterns("__pycache__"))
+    kernel = code / "bbb" / "kernel.py"
+    kernel.write_text(kernel.read_text() + "\n# an edit: another kernel\n")
+    new = subprocess.run([sys.executable, "-c", "from bbb.provenance import kernel_hash; "
+                          "print(kernel_hash())"], cwd=code, capture_output=True, text=True,
+                         check=True).stdout.strip()
+    assert new != kernel_hash()
+    out = subprocess.run([sys.executable, "-m", "pipeline", "run", str(tiny_workflow), "--store",
+                          str(store), "--workers", "1", "--no-progress"], cwd=code,
+                         capture_output=True, text=True, timeout=300)
+    assert out.returncode == 2, out.stderr
+    assert out.stderr.count("\n") == 1 and "Traceback" not in out.stderr
+    assert f"made by another kernel (kernel_hash: store {kernel_hash()}, this bbb {new})" in out.stderr
+    after = store_arrays(store)
+    assert sorted(after) == sorted(before)
+    for name in before:
+        assert np.array_equal(before[name], after[name], equal_nan=before[name].dtype.kind == "f")
+
+
+def test_a_worker_running_another_kernel_fails_its_task_before_writing(
+        tiny_workflow, tmp_path, monkeypatch):
+    """Workers of a remote cluster importing an edited copy of bbb: every task refuses to
+    compute into the store made by this kernel, naming both hashes, and nothing is written."""
+    import shutil
+    from pathlib import Path
+
+    import bbb
+    from bbb.provenance import kernel_hash
+
+    from .conftest import dask_processes
+
+    code = tmp_path / "code"
+    # with numba's cache (its index keys on the sources' mtimes, which copytree keeps): the
+    # edit goes to a hashed source that holds no jitted function, so no worker compiles
+    shutil.copytree(Path(bbb.__file__).parent, code / "bbb")
+    edited = code / "bbb" / "numerics.py"
+    edited.write_text(edited.read_text() + "\n# an edit: another kernel\n")
+    monkeypatch.setenv("PYTHONPATH", str(code))  # the workers' environment, not this process's
+    (tmp_path / "cluster").mkdir()
+    store = tmp_path / "s.zarr"
+    with dask_processes(tmp_path / "cluster") as (address, _):
+        with pytest.raises(RunFailed, match=r"failed: KernelMismatch: worker \S+ runs another "
+                           rf"kernel \(kernel_hash: worker [0-9a-f]{{64}}, store {kernel_hash()}\)"):
+            run_study(load_workflow(tiny_workflow), store, scheduler=address, **quiet)
+    x = store_arrays(store)
+    assert not x["done"].any() and np.isnan(x["positions"]).all()

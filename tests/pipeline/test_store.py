@@ -13,8 +13,18 @@ import pytest
 import xarray as xr
 import zarr
 
+from bbb.provenance import kernel_hash, kernel_identity
 from bbb.record import COLLISION_FIELDS
-from pipeline.store import StoreError, StudyStore, run_lock
+from pipeline.store import (
+    JSON_ATTRS,
+    KERNEL_ATTRS,
+    StoreError,
+    StudyStore,
+    collision_field_units,
+    read_attrs,
+    run_lock,
+    store_fingerprint,
+)
 from pipeline.workflow import parse_workflow
 
 from .helpers import TINY
@@ -55,6 +65,17 @@ def test_xarray_opens_the_store_with_named_dims_and_coords(store, study):
     assert ds["time"].values[-1] == study.accuracy.t_max
 
 
+def test_the_documented_xarray_mask_hides_chunks_not_marked_done(store, study):
+    store.write_chunk(1, 0, 1, FakeRun(study, 5.0), 0.1)                    # done
+    store.write_chunk(0, 1, 0, FakeRun(study, 6.0), 0.1, mark_done=False)  # written, not done
+    store.consolidate()
+    ds = xr.open_zarr(store.path)
+    done = ds.done.isel(chunk=ds.particle // (ds.sizes["particle"] // ds.sizes["chunk"]))
+    x = ds.positions.where(done).values
+    assert np.all(x[1, 0, 4:8] == 5.0)
+    assert np.isnan(x[0, 1]).all() and np.isfinite(x).sum() == 4 * x.shape[-1]
+
+
 def test_one_chunk_per_frequency_family_and_ensemble_chunk(store, study):
     g = store.group()
     cs, T = study.accuracy.chunk_size, len(study.sample_times())
@@ -64,13 +85,43 @@ def test_one_chunk_per_frequency_family_and_ensemble_chunk(store, study):
     assert g["done"].shape == (2, 2, study.accuracy.n_chunks) and g["done"].chunks == (1, 1, 1)
 
 
-def test_root_attrs_hold_workflow_params_numerics_version(store, study):
-    attrs = store.group().attrs
+def test_root_attrs_hold_workflow_params_numerics_version_and_kernel(store, study):
+    attrs = store.attrs()
     assert attrs["workflow_toml"] == TINY
     assert attrs["params"]["alpha"] == 0.7 and "f" not in attrs["params"]
     assert attrs["numerics"] == study.accuracy.numerics().as_dict()
     assert attrs["accuracy"]["n_particles"] == 8
-    assert attrs["bbb_version"] and attrs["fingerprint"] == study.fingerprint()
+    assert attrs["bbb_version"] and attrs["workflow_fingerprint"] == study.fingerprint()
+    assert {k: attrs[k] for k in KERNEL_ATTRS} == kernel_identity()
+    assert len(attrs["kernel_hash"]) == 64 and attrs["fingerprint"] != study.fingerprint()
+
+
+def test_the_store_fingerprint_changes_with_the_kernel(study):
+    kernel = kernel_identity()
+    fp = store_fingerprint(study.fingerprint(), kernel)
+    for key in KERNEL_ATTRS:
+        assert store_fingerprint(study.fingerprint(), dict(kernel, **{key: "other"})) != fp, key
+
+
+def test_root_attributes_survive_to_netcdf(store, study, tmp_path):
+    # netCDF attributes hold strings and numbers only: nested dicts are kept as JSON strings
+    store.consolidate()
+    xr.open_zarr(store.path).to_netcdf(tmp_path / "s.nc")
+    back = xr.open_dataset(tmp_path / "s.nc")
+    assert json.loads(back.attrs["workflow"]) == store.attrs()["workflow"]
+    assert StudyStore.open(store.path).study == study
+    assert back.attrs["kernel_hash"] == kernel_identity()["kernel_hash"]
+
+
+def test_every_collision_field_has_a_unit_in_the_store(store):
+    # bbb.record.COLLISION_FIELDS is the record's dtype; a new field needs its unit in
+    # pipeline.store.FIELD_UNITS, else the store's metadata would describe it as '?'
+    units = collision_field_units()
+    assert "?" not in units, dict(zip(COLLISION_FIELDS, units, strict=True))
+    g = store.group()
+    for name in ("field", "collisions"):
+        assert g[name].attrs["units"].split(", ") == list(units), name
+    assert all(f in g["collisions"].attrs["long_name"] for f in COLLISION_FIELDS)
 
 
 def test_a_task_writes_only_its_own_chunk_files(store, study):
@@ -112,8 +163,58 @@ def test_a_different_workflow_is_refused_naming_the_difference(store):
 def test_a_store_of_an_older_layout_is_refused(store, study):
     # layout 1 stored collisions without the floor phase: resuming it would fail in every task
     zarr.open_group(str(store.path), mode="r+").attrs["bbb_store_layout"] = 1
-    with pytest.raises(StoreError, match=r"store layout 1 of an older bbb; allowed: layout 2"):
+    with pytest.raises(StoreError, match=r"store layout 1 of an older bbb \(its collisions have "
+                                         r"no floor phase\); allowed: layout 3"):
         StudyStore.create_or_open(store.path, study)
+
+
+def _as_older_bbb_wrote_it(path, **kernel):
+    """Rewrite a store's root attributes as an older bbb would have: layout 2 (nested dicts,
+    no kernel attributes, fingerprint = the workflow's) or, with ``kernel``, layout 3 written
+    by another kernel (its hash, and the fingerprint consistent with it)."""
+    g = zarr.open_group(str(path), mode="r+")
+    attrs = read_attrs(g)
+    if kernel:
+        new = {**{k: attrs[k] for k in KERNEL_ATTRS}, **kernel}
+        g.attrs.update({**new, "fingerprint": store_fingerprint(attrs["workflow_fingerprint"], new)})
+        return
+    for key in (*KERNEL_ATTRS, "workflow_fingerprint"):
+        del g.attrs[key]
+    g.attrs.update({**{k: attrs[k] for k in JSON_ATTRS}, "bbb_store_layout": 2,
+                    "fingerprint": attrs["workflow_fingerprint"]})
+
+
+def test_a_layout_2_store_without_a_kernel_hash_is_refused(store, study):
+    _as_older_bbb_wrote_it(store.path)
+    with pytest.raises(StoreError, match=r"store layout 2 of an older bbb \(it records no kernel "
+                                         r"hash.*allowed: layout 3"):
+        StudyStore.create_or_open(store.path, study)
+
+
+def test_a_store_of_another_kernel_is_refused_naming_both_hashes(store, study):
+    store.write_chunk(0, 0, 0, FakeRun(study, 2.0), 0.1)
+    old = "0123456789abcdef" * 4
+    _as_older_bbb_wrote_it(store.path, kernel_hash=old)
+    before = store.group()["positions"][...]
+    with pytest.raises(StoreError) as e:
+        StudyStore.create_or_open(store.path, study)
+    msg = str(e.value)
+    assert f"made by another kernel (kernel_hash: store {old}, this bbb {kernel_hash()})" in msg
+    assert "\n" not in msg
+    assert store.done()[0, 0, 0] and np.array_equal(store.group()["positions"][...], before,
+                                                     equal_nan=True)
+
+
+def test_a_store_of_another_numba_is_refused(store, study):
+    _as_older_bbb_wrote_it(store.path, numba_version="0.1")
+    with pytest.raises(StoreError, match=r"another kernel \(numba_version: store 0\.1, this bbb "):
+        StudyStore.create_or_open(store.path, study)
+
+
+def test_a_store_of_layout_2_still_opens_for_reading(store, study):
+    # bbb reduce / status of a store made before the kernel was recorded
+    _as_older_bbb_wrote_it(store.path)
+    assert StudyStore.open(store.path).study == study
 
 
 def test_different_params_are_refused(store):
@@ -149,7 +250,7 @@ def test_another_zarr_group_is_refused(tmp_path, study):
 def test_interrupted_layout_creation_is_redone(tmp_path, study):
     zarr.open_group(str(tmp_path / "s.zarr"), mode="w", attributes={"bbb_creating": True})
     store = StudyStore.create_or_open(tmp_path / "s.zarr", study)
-    assert store.group().attrs["fingerprint"] == study.fingerprint()
+    assert store.attrs()["workflow_fingerprint"] == study.fingerprint()
 
 
 def test_unwritable_path_is_refused(tmp_path, study):
