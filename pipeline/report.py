@@ -194,7 +194,8 @@ CAPTIONS = {
         "Squares: D of other initial-condition families (ergodicity scene) where it lies "
         "outside the rest family's CI. Shading: darker where the reduce verdict (families' D "
         "agree, and EB at the Brownian level or falling like 1/T) is negative; lighter where it "
-        "rests on the EB of the one family only. Inset: 50–67 Hz magnified."),
+        "rests on the EB of the one family only. Hollow circles: D depends on the run length "
+        "(first vs second half of the run, `bbb.stationarity`). Inset: 50–67 Hz magnified."),
     "fig3_phase_space": (
         "Fig. 3 — Post-collision states (y, v_y⁺) at f = 54, 58, 60, 66, 72, 78 Hz; black: "
         "particles started at rest, blue: launched (Fig. 3 and locking scenes). Dotted: the "
