@@ -211,5 +211,7 @@ def stationarity_mark(table: pd.DataFrame, f: float) -> str:
     r = row_at(table, f, tol=1e-6)
     if r is None or "stationary" not in r or pd.isna(r["stationary"]) or bool(r["stationary"]):
         return ""
-    return (f" ⚠ D depends on the run length here: D of the 2nd half − 1st half = "
-            f"{r['dD']:.3g} [{r['dD_lo']:.3g}, {r['dD_hi']:.3g}]")
+    pooled = " (all families pooled)" if any(c.endswith("_lo") and c.startswith("D_") and
+                                             c not in ("D_lo", "dD_lo") for c in r.index) else ""
+    return (f" ⚠ D depends on the run length here{pooled}: D of the 2nd half − 1st half = "
+            f"{r['dD']:.3g} [{r['dD_lo']:.3g}, {r['dD_hi']:.3g}] mm²/s")

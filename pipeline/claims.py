@@ -73,6 +73,8 @@ class Band:
 
     def text(self) -> str:
         u = f" {self.unit}" if self.unit else ""
+        if math.isinf(self.hi) and math.isinf(self.lo):
+            return ""  # the parts carry their own bands; only the why is shown
         if math.isinf(self.hi):
             return f"≥ {self.lo:g}{u}"
         if math.isinf(self.lo):
@@ -212,7 +214,8 @@ def evaluate_claim(claim: Claim, ctx: Mapping) -> Row:
                        f"{', '.join(sorted(MEASURES))}")
     m = fn(claim, ctx)
     band = claim.band
-    judged_by = f"{band.text()}: {band.why}" if band is not None else ""
+    judged_by = ("" if band is None else f"{band.text()}: {band.why}" if band.text()
+                 else band.why)
     if m.missing:
         return Row(claim.text, m.missing, "not measured", claim.note, judged_by)
     texts, main_v, other_v, flips = [], [], [], []
