@@ -17,6 +17,11 @@ maximal v_y⁺ (:func:`spiral_vmax`)
 dominant peak (:func:`dominant_peak`)
     The mode of a Gaussian kernel density estimate of v_y⁺ above the creeping band
     (Silverman's bandwidth, evaluated on a fine binned grid).
+confidence intervals (:func:`bootstrap_locking`)
+    Percentile bootstrap over particles (they are independent; collisions of one particle
+    are not): a resample draws particles with replacement and recomputes the maximal v_y⁺
+    and the dominant peak from all their states.  The KDE bandwidth is held at the full
+    sample's value (the peak's position, not the bandwidth rule, is what is resampled).
 t_max(f) (:func:`flight_times`, :func:`flight_time_max`)
     Flight times are differences of consecutive collision times of one particle, kept only
     where the recorded landing height is the free-flight parabola from the previous
@@ -50,6 +55,8 @@ __all__ = [
     "flight_times",
     "flight_time_max",
     "locking_estimate",
+    "LockingCI",
+    "bootstrap_locking",
 ]
 
 #: relative margin of the creeping band above the floor's peak speed A 2π f
@@ -227,3 +234,96 @@ def locking_estimate(vy: ArrayLike, A: float, f: float, g: float, *,
         t_max=flight_time_max(fl, t_quantile, min_points) if fl.size else math.nan,
         n_flights=int(np.count_nonzero(np.isfinite(fl))),
     )
+
+
+@dataclass(frozen=True)
+class LockingCI:
+    """Bootstrap CIs (over particles) of the locking numbers at one frequency.
+
+    v_max_lo, v_max_hi, v_peak_lo, v_peak_hi -- mm/s;  k_*: the same as k = 2 v f / g.
+    NaN where more than half the tail a bound is read from has too few states above the band.
+    """
+
+    v_max_lo: float
+    v_max_hi: float
+    v_peak_lo: float
+    v_peak_hi: float
+    k_max_lo: float
+    k_max_hi: float
+    k_peak_lo: float
+    k_peak_hi: float
+
+
+def _kde_modes(counts: _F, step: float, h: float, lo: float) -> _F:
+    """Mode (grid centre refined by a parabola) of the Gaussian-smoothed rows of ``counts``."""
+    half = int(math.ceil(4.0 * h / step))
+    u = np.arange(-half, half + 1) * step
+    kernel = np.exp(-0.5 * (u / h) ** 2)
+    n = counts.shape[1] + kernel.size - 1
+    nfft = 1 << (n - 1).bit_length()
+    dens = np.fft.irfft(np.fft.rfft(counts, nfft, axis=1) * np.fft.rfft(kernel, nfft), nfft,
+                        axis=1)[:, half:half + counts.shape[1]]
+    i = np.argmax(dens, axis=1)
+    centre = lo + (i + 0.5) * step
+    inner = (i > 0) & (i < dens.shape[1] - 1)
+    r = np.arange(dens.shape[0])[inner]
+    ii = i[inner]
+    d0, d1, d2 = dens[r, ii - 1], dens[r, ii], dens[r, ii + 1]
+    curv = d0 - 2.0 * d1 + d2
+    shift = np.where(curv < 0, 0.5 * (d0 - d2) / np.where(curv < 0, curv, -1.0) * step, 0.0)
+    centre[inner] += shift
+    return centre
+
+
+def bootstrap_locking(vy: ArrayLike, A: float, f: float, g: float, *, n_resamples: int,
+                      seed: int | np.random.SeedSequence, ci: float = 0.95,
+                      margin: float = CREEP_MARGIN, quantile: float = MAX_QUANTILE,
+                      min_points: int = MIN_POINTS) -> LockingCI:
+    """Percentile bootstrap CIs over particles of v_max, v_peak (mm/s) and their k.
+
+    vy -- post-collision v_y⁺, mm/s, shape (particle, collision), NaN-padded
+    A (mm), f (Hz), g (mm/s²) set the creeping band and k; ``seed`` makes it deterministic.
+    """
+    if not 0.0 < ci < 1.0:
+        raise ValueError(f"ci = {ci!r} must be in (0, 1)")
+    if int(n_resamples) != n_resamples or n_resamples < 1:
+        raise ValueError(f"n_resamples = {n_resamples!r} must be a positive integer")
+    rows = _as_rows(vy)
+    vc = creep_speed(A, f, margin)
+    nan = LockingCI(*([math.nan] * 8))
+    n_p = rows.shape[0]
+    above = [_above(r, vc) for r in rows]
+    allx = np.concatenate(above) if n_p else np.zeros(0)
+    if n_p < 2 or allx.size < max(min_points, 2):
+        return nan
+    ss = seed if isinstance(seed, np.random.SeedSequence) else np.random.SeedSequence(seed)
+    idx = np.random.default_rng(ss).integers(0, n_p, size=(int(n_resamples), n_p))
+    w = np.stack([np.bincount(r, minlength=n_p) for r in idx])  # (resample, particle) weights
+    sizes = w @ np.array([a.size for a in above])
+    ok = sizes >= max(min_points, 2)
+    # v_max: the quantile of each resample's states (particles repeated by their weight)
+    vmax = np.full(w.shape[0], np.nan)
+    for j in np.flatnonzero(ok):
+        vmax[j] = np.quantile(np.concatenate([np.repeat(above[p], w[j, p])
+                                              for p in np.flatnonzero(w[j])]), quantile)
+    # v_peak: per-particle histograms on the full sample's grid, summed with the weights
+    h = _silverman(allx)
+    vpeak = np.full(w.shape[0], np.nan)
+    if math.isfinite(h) and h > 0:
+        step = h / 8.0
+        lo = allx.min() - 4.0 * h
+        n_bins = int(math.ceil((allx.max() + 4.0 * h - lo) / step))
+        hist = np.stack([np.histogram(a, bins=n_bins, range=(lo, lo + n_bins * step))[0]
+                         for a in above]).astype(np.float64)
+        vpeak[ok] = _kde_modes(w[ok] @ hist, step, h, lo)
+    a = 1.0 - ci
+
+    def bounds(b: _F) -> tuple[float, float]:
+        if np.count_nonzero(~np.isfinite(b)) > 0.5 * a / 2 * b.size:
+            return math.nan, math.nan
+        lo_, hi_ = np.nanquantile(b, [a / 2, 1 - a / 2])
+        return float(lo_), float(hi_)
+
+    (m_lo, m_hi), (p_lo, p_hi) = bounds(vmax), bounds(vpeak)
+    k = [float(locking_ratio(v, f, g)) for v in (m_lo, m_hi, p_lo, p_hi)]
+    return LockingCI(m_lo, m_hi, p_lo, p_hi, *k)

@@ -20,25 +20,33 @@ k_peak     2 v_peak f / g
 t_max      0.99 quantile of the free-flight times, s
 n_flights  free flights t_max was computed from
 loops      f t_max: turns of the spiral approximation over t_c ∈ [0, t_max]
+v_max_lo, v_max_hi, k_max_lo, k_max_hi, v_peak_lo, v_peak_hi, k_peak_lo, k_peak_hi
+           95 % percentile-bootstrap CIs over particles (:func:`bbb.locking.bootstrap_locking`,
+           LOCK_RESAMPLES resamples)
 =========  ====================================================================
 """
 
 from __future__ import annotations
 
 import os
+import zlib
 from collections.abc import Iterable
 
 import numpy as np
 import pandas as pd
 
-from bbb.locking import flight_times, locking_estimate
+from bbb.locking import bootstrap_locking, flight_times, locking_estimate
 
 from .store import StudyStore
 
 __all__ = ["as_store", "field_names", "states", "locking_table", "LOCKING_COLUMNS"]
 
 LOCKING_COLUMNS = ("f", "family", "initial", "n_states", "frac_creep", "v_creep", "v_max", "k_max",
-                   "v_peak", "k_peak", "t_max", "n_flights", "loops")
+                   "v_peak", "k_peak", "t_max", "n_flights", "loops", "v_max_lo", "v_max_hi",
+                   "k_max_lo", "k_max_hi", "v_peak_lo", "v_peak_hi", "k_peak_lo", "k_peak_hi")
+#: bootstrap resamples of the locking CIs: their ends differ by ≤ 0.013 in k from 2000 resamples
+#: (measured at 8 frequencies x 2 families, 32 particles), and cost ~0.1 s per (frequency, family)
+LOCK_RESAMPLES = 200
 
 
 def as_store(store: str | os.PathLike | StudyStore) -> StudyStore:
@@ -92,10 +100,13 @@ def locking_table(store: str | os.PathLike | StudyStore) -> pd.DataFrame:
             s = states(st, f, fam.name)
             fl = flight_times(s["t"], s["y"], s["vy"], p.g) if s["t"].size else np.zeros(0)
             est = locking_estimate(s["vy"], p.A, f, p.g, flights=fl)
+            seed = np.random.SeedSequence(study.seed, spawn_key=(
+                round(f * 1000), zlib.crc32(fam.name.encode()), zlib.crc32(b"locking")))
+            ci = bootstrap_locking(s["vy"], p.A, f, p.g, n_resamples=LOCK_RESAMPLES, seed=seed)
             rows.append({
                 "f": f, "family": fam.name, "initial": fam.initial, "n_states": est.n,
                 "frac_creep": est.frac_creep, "v_creep": est.v_creep, "v_max": est.v_max,
                 "k_max": est.k_max, "v_peak": est.v_peak, "k_peak": est.k_peak, "t_max": est.t_max,
-                "n_flights": est.n_flights, "loops": f * est.t_max,
+                "n_flights": est.n_flights, "loops": f * est.t_max, **vars(ci),
             })
     return pd.DataFrame(rows, columns=list(LOCKING_COLUMNS))

@@ -277,6 +277,11 @@ def _draw_D(ax, main: pd.DataFrame, cols: tuple[str, str, str], ergo: pd.DataFra
                 elinewidth=0.5, capsize=0.8, capthick=0.4, lw=0, zorder=3,
                 label=(f"{main_family} (95 % CI)" if main_family else "95 % CI") if legend else None)
     ax.plot(f, D, color="k", lw=0.4, zorder=2)
+    if "stationary" in main:  # D depends on the run length (bbb.stationarity): hollow marker
+        moves = main["stationary"].astype("boolean").eq(False).fillna(False).to_numpy(bool)
+        if moves.any():
+            ax.plot(f[moves], D[moves], "o", ms=ms + 0.4, mfc="w", mec="k", mew=0.5, zorder=5,
+                    label="D depends on run length" if legend else None)
     tops = list(zip(f, hi, strict=True))
     ref = (f"D_{main_family}", f"D_{main_family}_lo", f"D_{main_family}_hi")
     if ergo is not None and ref[0] in ergo:

@@ -19,6 +19,11 @@ ergodic      bbb.stats.ergodic_verdict: (a) the families' D agree within their C
              every family and the pool, EB <= EB_threshold or EB_decay >= EB_decay_threshold
 families_agree, eb_ok  the outcomes of (a) and (b) ((a) is true with a single family)
 D_<fam>, D_<fam>_lo, D_<fam>_hi, EB_<fam>, EB_decay_<fam>  the same per initial-condition family
+D_half1, D_half2  D of the first and the second half of the analysed run (pooled), mm^2/s,
+             fitted over the same fractions of a half (bbb.stationarity)
+dD, dD_lo, dD_hi  D_half2 - D_half1 with its paired bootstrap CI over particles, mm^2/s
+dD_tol       what that CI must clear to flag: 5 % of D plus 1e-6 mm^2/s
+stationary   False where D depends on the run length (the CI of dD lies beyond +-dD_tol)
 verdict      the verdict's reasons, '; '-joined
 
 ``counters.parquet`` / ``counters.csv`` (every store), one row per (frequency, family):
@@ -169,9 +174,10 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
                         f"EB_decay_{name}": _ratio(verdict.eb_half.get(name, math.nan),
                                                    verdict.eb.get(name, math.nan))})
         row["verdict"] = "; ".join(verdict.reasons)
+        row.update(_stationarity_columns(x, times, an, acc, seed))
         rows.append(row)
     df = pd.DataFrame(rows)
-    for col in ("ergodic", "families_agree", "eb_ok"):
+    for col in ("ergodic", "families_agree", "eb_ok", "stationary"):
         if col in df:
             df[col] = df[col].astype("boolean")
     return df
@@ -196,6 +202,21 @@ def counters_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
             row["task_seconds"] = float(np.nansum(seconds[fi, mi][done[fi, mi]]))
             rows.append(row)
     return pd.DataFrame(rows)
+
+
+def _stationarity_columns(x: np.ndarray, times: np.ndarray, an, acc,
+                          seed: np.random.SeedSequence) -> dict:
+    from bbb.stationarity import stationarity
+
+    try:
+        s = stationarity(x, times, n_resamples=acc.n_resamples, ci=an.ci,
+                         seed=np.random.SeedSequence(seed.entropy, spawn_key=(
+                             *seed.spawn_key, zlib.crc32(b"stationarity"))),
+                         discard=an.discard, fit_from=an.fit_from, fit_to=an.fit_to)
+    except ValueError:  # a half too short for two fit lags: no check, not a flag
+        return {}
+    return {"D_half1": s.D_half1, "D_half2": s.D_half2, "dD": s.dD, "dD_lo": s.dD_lo,
+            "dD_hi": s.dD_hi, "dD_tol": s.tolerance, "stationary": s.stationary}
 
 
 def _ratio(a: float, b: float) -> float:

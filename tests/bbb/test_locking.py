@@ -109,3 +109,37 @@ def test_t_max_is_the_99_percent_quantile_of_the_flight_times():
     T = np.linspace(0.0, 0.04, 10_001)
     assert flight_time_max(T) == pytest.approx(0.99 * 0.04, rel=1e-9)
     assert math.isnan(flight_time_max(T[:5]))
+
+
+def test_the_bootstrap_ci_of_the_peak_and_the_maximum_covers_the_truth():
+    # 40 particles, each 300 states above the band, v ~ N(120, 5) mm/s: the dominant peak is
+    # 120 and the 0.99 quantile 120 + 2.326 * 5; the CIs must hold them and be narrow
+    from bbb.locking import bootstrap_locking, locking_estimate
+
+    rng = np.random.default_rng(3)
+    v = rng.normal(120.0, 5.0, size=(40, 300))
+    ci = bootstrap_locking(v, 0.1, 60.0, 9800.0, n_resamples=300, seed=1)
+    est = locking_estimate(v, 0.1, 60.0, 9800.0)
+    assert ci.v_peak_lo <= est.v_peak <= ci.v_peak_hi
+    assert ci.v_peak_lo <= 120.0 <= ci.v_peak_hi and ci.v_peak_hi - ci.v_peak_lo < 3.0
+    assert ci.v_max_lo <= 120.0 + 2.326 * 5.0 <= ci.v_max_hi
+    assert ci.k_max_lo == pytest.approx(2 * ci.v_max_lo * 60.0 / 9800.0)
+
+
+def test_the_bootstrap_ci_resamples_particles_not_collisions():
+    # particles at two speeds (half at 100, half at 140 mm/s, 1 mm/s noise): the peak of a
+    # resample flips between them, so its CI must span both; a collision bootstrap would not
+    from bbb.locking import bootstrap_locking
+
+    rng = np.random.default_rng(4)
+    v = np.where(np.arange(20)[:, None] < 10, 100.0, 140.0) + rng.normal(0, 1.0, (20, 200))
+    ci = bootstrap_locking(v, 0.1, 60.0, 9800.0, n_resamples=400, seed=2)
+    assert ci.v_peak_lo < 105.0 and ci.v_peak_hi > 135.0
+
+
+def test_a_creeping_ensemble_has_no_locking_ci():
+    from bbb.locking import bootstrap_locking
+
+    v = np.full((8, 100), 10.0)  # all in the creeping band at 60 Hz (edge 41.5 mm/s)
+    ci = bootstrap_locking(v, 0.1, 60.0, 9800.0, n_resamples=50, seed=0)
+    assert math.isnan(ci.k_max_lo) and math.isnan(ci.v_peak_hi)

@@ -91,8 +91,30 @@ def test_parquet_tables_carry_units_and_the_store_provenance(reference, tables):
 def test_csv_holds_the_same_table_as_parquet(tables):
     pq = pd.read_parquet(tables / "diffusion.parquet")
     csv = pd.read_csv(tables / "diffusion.csv")
-    flags = {c: bool for c in ("ergodic", "families_agree", "eb_ok")}
+    flags = {c: bool for c in ("ergodic", "families_agree", "eb_ok", "stationary")}
     pd.testing.assert_frame_equal(pq.astype(flags), csv, check_exact=False, rtol=1e-12)
+
+
+def test_half_run_d_is_the_fit_of_each_half_of_the_analysed_run(reference, tables):
+    # independent of bbb.stationarity: bbb.stats' own fit on each half, cut here by hand
+    from bbb.stats import diffusion_coefficient
+
+    df = pd.read_parquet(tables / "diffusion.parquet")
+    store = StudyStore.open(reference[0])
+    study, done = store.study, store.done()
+    times = study.sample_times()
+    start = int(np.flatnonzero(times >= study.analysis.discard * times[-1] - 1e-9)[0])
+    half = (times.size - start) // 2
+    for fi in range(len(study.frequencies)):
+        x = np.concatenate([store.read_done("positions", fi, mi, done[fi, mi])
+                            for mi in range(len(study.families))])
+        for k, a in enumerate((start, start + half)):
+            sl = slice(a, a + half)
+            d = diffusion_coefficient(x[:, sl], times[sl], discard=0.0).D  # fit 5-25 % of T/2
+            assert df[f"D_half{k + 1}"].iloc[fi] == pytest.approx(d, rel=1e-9)
+    assert (df["dD_lo"] <= df["dD"]).all() and (df["dD"] <= df["dD_hi"]).all()
+    assert df["dD"].to_numpy() == pytest.approx((df["D_half2"] - df["D_half1"]).to_numpy())
+    assert df["stationary"].notna().all()
 
 
 def test_reduction_is_deterministic(reference, tables, tmp_path):

@@ -109,3 +109,81 @@ def test_the_report_states_parameters_amplitude_accuracy_and_run_time(tmp_path_f
     assert "| A | 0.1 mm |" in text and "prints A = 0.01" in text
     assert "| figure2 | " in text and "| draft |" in text
     assert "task time" in text and "runs and reductions behind it: 12 s" in text
+
+
+# --- the generic verdict rule (pipeline.claims) on synthetic numbers --------------------------
+from pipeline.claims import Band, Claim, Quantity, combine, judge  # noqa: E402
+
+BAND = Band.around(60.0, 2.0, "test")
+
+
+@pytest.mark.parametrize(("q", "verdict"), [
+    (Quantity(60.0, 59.0, 61.0), "agrees"),                 # whole CI inside
+    (Quantity(61.5, 61.0, 62.5), "agrees within the CI"),   # value inside, CI over the edge
+    (Quantity(62.3, 61.8, 63.0), "inconclusive"),           # value outside, CI reaches in
+    (Quantity(63.0, 62.5, 63.5), "disagrees"),              # whole CI outside
+    (Quantity(57.0, 56.0, 57.9), "disagrees"),
+    (Quantity(61.9), "agrees"),                             # no CI: the value alone
+    (Quantity(math.nan), "not measured"),
+])
+def test_each_verdict_class_is_reached_by_its_rule(q, verdict):
+    assert judge(q, BAND) == verdict
+
+
+def test_a_value_just_inside_the_band_but_within_its_ci_of_the_edge_is_not_a_plain_agree():
+    # 0.1 inside the edge, CI +-0.3: the margin is smaller than the CI
+    assert judge(Quantity(61.9, 61.6, 62.2), BAND) == "agrees within the CI"
+    assert judge(Quantity(61.9, 61.6, 61.95), BAND) == "agrees"  # perturbed CI: now it is
+
+
+def test_parts_combine_into_one_verdict():
+    assert combine(["agrees", "agrees"]) == "agrees"
+    assert combine(["agrees", "agrees within the CI"]) == "agrees within the CI"
+    assert combine(["agrees", "inconclusive"]) == "inconclusive"
+    assert combine(["agrees", "disagrees"]) == "partly"
+    assert combine(["disagrees", "disagrees"]) == "disagrees"
+
+
+def _k_table(k, half):
+    t = _locking(lambda f: k)
+    t["k_max_lo"], t["k_max_hi"] = k - half, k + half
+    return t
+
+
+def test_a_k_claim_inside_its_ci_of_the_band_edge_says_so():
+    # paper: k = 2.5 +- 0.15 at 72 Hz; measured 2.63 [2.60, 2.70] straddles 2.65
+    rows, _ = evaluate({"locking": _k_table(2.63, 0.03).assign(k_max_hi=2.70)})
+    row = _row(rows, "k ≈ 2.5")
+    assert row.verdict == "agrees within the CI" and "flips inside the CI" in row.note
+    assert "2.5 ± 0.15" in row.judged_by and "[2.6, 2.7]" in row.measured
+    rows, _ = evaluate({"locking": _k_table(2.60, 0.03)})  # whole CI inside
+    assert _row(rows, "k ≈ 2.5").verdict == "agrees"
+    rows, _ = evaluate({"locking": _k_table(2.68, 0.04)})  # CI reaches back into the band
+    assert _row(rows, "k ≈ 2.5").verdict == "inconclusive"
+    rows, _ = evaluate({"locking": _k_table(2.75, 0.03)})
+    assert _row(rows, "k ≈ 2.5").verdict == "disagrees"
+
+
+def test_an_extremum_location_carries_a_ci_of_half_the_grid_spacing():
+    rows, _ = evaluate({"figure2": _paper_like()})
+    row = _row(rows, "maximum at f = 60")
+    assert "± 0.2 Hz" in row.measured and "60 ± 2 Hz" in row.judged_by
+
+
+def test_adding_a_claim_is_one_record_and_it_appears_in_the_report(tmp_path):
+    from pipeline.klages2004_claims import CLAIMS as PAPER
+
+    extra = Claim("Local maximum near f = 80 (a claim added by a test)", "extremum", "figure2",
+                  Band.around(80.0, 1.0, "added for the test", "Hz"), f0=80.0, window=1.0,
+                  options={"kind": "max"})
+    rows, _ = evaluate({"figure2": _paper_like()}, claims=[*PAPER, extra])
+    assert rows[-1].claim == extra.text and rows[-1].verdict in ("agrees", "agrees within the CI")
+    import pipeline.klages2004_claims as k
+
+    k.CLAIMS.append(extra)
+    try:
+        text = write_report(tmp_path, stores={}, tables={"figure2": _paper_like()}).read_text()
+    finally:
+        k.CLAIMS.remove(extra)
+    line = next(ln for ln in text.splitlines() if extra.text in ln)
+    assert line.startswith(f"| {len(PAPER) + 1} |") and "80 ± 1 Hz: added for the test" in line
