@@ -47,6 +47,7 @@ from .fit import (
     _regime,  # noqa: F401  (used by pipeline.accuracy_study)
     diffusion_coefficient,
     fit_diffusion,
+    per_particle_D,
 )
 from .msd import msd_time_averaged, tamsd
 
@@ -62,6 +63,7 @@ __all__ = [
     "msd_time_averaged",
     "fit_diffusion",
     "diffusion_coefficient",
+    "per_particle_D",
     "bootstrap_D",
     "ergodicity_breaking",
     "eb_brownian",

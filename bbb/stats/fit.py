@@ -23,6 +23,7 @@ __all__ = [
     "DiffusionEstimate",
     "fit_diffusion",
     "diffusion_coefficient",
+    "per_particle_D",
 ]
 
 #: Fraction of the run (by duration) dropped at the start as a transient.
@@ -206,3 +207,19 @@ def diffusion_coefficient(
         n_particles=xs.shape[0],
         n_lags=reg.lag_hi - reg.lag_lo + 1,
     )
+
+
+def per_particle_D(
+    x: ArrayLike,
+    sample_times: ArrayLike,
+    *,
+    fit_from: float | None = None,
+    fit_to: float | None = None,
+    discard: float = DEFAULT_DISCARD,
+) -> _FLOAT:
+    """Each particle's own D_i, mm²/s, shape (n_particles,): half the OLS slope of its TAMSD
+    over the fit lags of :func:`diffusion_coefficient` (same arguments).  The ensemble D is
+    their mean; the bootstrap resamples them."""
+    xs = _as_positions(x)
+    times = _as_times(sample_times, xs.shape[1])
+    return _per_particle_fit(xs, _regime(xs.shape[1], times, fit_from, fit_to, discard))[0]
