@@ -32,7 +32,11 @@ from __future__ import annotations
 
 from .bootstrap import BootstrapCI, bootstrap_D
 from .ergodicity import (
+    DEFAULT_CV_MAX,
     DEFAULT_EB_TOLERANCE,
+    DEFAULT_RULE,
+    RULE_ERROR_RATES,
+    RULES,
     ErgodicVerdict,
     eb_brownian,
     ergodic_verdict,
@@ -56,6 +60,10 @@ __all__ = [
     "DEFAULT_FIT_FROM",
     "DEFAULT_FIT_TO",
     "DEFAULT_EB_TOLERANCE",
+    "DEFAULT_CV_MAX",
+    "DEFAULT_RULE",
+    "RULES",
+    "RULE_ERROR_RATES",
     "BootstrapCI",
     "DiffusionEstimate",
     "ErgodicVerdict",

@@ -17,6 +17,10 @@ from .msd import _tamsd
 
 __all__ = [
     "DEFAULT_EB_TOLERANCE",
+    "DEFAULT_CV_MAX",
+    "DEFAULT_RULE",
+    "RULES",
+    "RULE_ERROR_RATES",
     "ErgodicVerdict",
     "ergodicity_breaking",
     "eb_brownian",
@@ -25,6 +29,21 @@ __all__ = [
 
 #: Default tolerance factor on the Brownian EB expectation in :func:`ergodic_verdict`.
 DEFAULT_EB_TOLERANCE = 2.0
+#: Default threshold of the spread rule on the estimated CV of per-particle D.
+DEFAULT_CV_MAX = 0.25
+
+#: The verdict rules: name -> (decision from the components, description).  Every rule
+#: includes (a), the families' D agreement; they differ in the EB part (b).
+RULES = {
+    "level": (lambda p: p["agree"] and p["level"], "(a) and EB level"),
+    "level_or_decay": (lambda p: p["agree"] and (p["level"] or p["decay"]),
+                       "(a) and (EB level or EB decay)"),
+    "decay": (lambda p: p["agree"] and p["decay"], "(a) and EB decay"),
+    "spread": (lambda p: p["agree"] and p["spread"], "(a) and CV(D_i) ≤ cv_max"),
+}
+DEFAULT_RULE = "level_or_decay"
+#: Measured error rates of each rule (benchmarks/results/ergodicity-calibration-*.txt).
+RULE_ERROR_RATES: dict[str, dict[str, float]] = {}
 
 _FLOAT = NDArray[np.float64]
 
@@ -47,6 +66,20 @@ class ErgodicVerdict:
                     of different D, EB does not decay) and the Brownian ratio (≈ 2)
     lag          -- lag at which EB was measured, s
     duration     -- analysed duration T (after the transient), s
+    rule         -- name of the rule that decided ``ergodic`` (a key of :data:`RULES`)
+    level_ok, decay_ok, spread_ok -- each EB component on its own, over every family and
+                    the pool: level EB ≤ eb_threshold; decay EB½/EB ≥ eb_decay_threshold;
+                    spread cv_hat ≤ cv_max
+    cv_hat       -- family name (and "(pooled)") -> estimated coefficient of variation of the
+                    per-particle D: sqrt(max(0, 2 EB - EB½)) (the part of EB that does not
+                    fall like 1/T; dimensionless)
+    cv_upper     -- one-sided ``ci`` upper bootstrap bound (over particles) of the pooled
+                    cv_hat: a spread of per-particle D larger than this is excluded, smaller
+                    ones are not
+    cv_max       -- the spread rule's threshold on cv_hat
+    error_rates  -- the rule's measured rates on synthetic populations (docs/statistics.md):
+                    "fp" declared ergodic with CV 50 % or a 50/50 mixture, "fn" declared
+                    non-ergodic at CV 0, at the calibrated size nearest to this one
     """
 
     ergodic: bool
@@ -61,6 +94,14 @@ class ErgodicVerdict:
     eb_decay_threshold: float = math.nan
     lag: float = math.nan
     duration: float = math.nan
+    rule: str = ""
+    level_ok: bool = True
+    decay_ok: bool = True
+    spread_ok: bool = True
+    cv_hat: dict[str, float] = field(default_factory=dict)
+    cv_upper: float = math.nan
+    cv_max: float = math.nan
+    error_rates: dict[str, float] = field(default_factory=dict)
 
 
 def ergodicity_breaking(
@@ -136,6 +177,8 @@ def ergodic_verdict(
     fit_from: float | None = None,
     fit_to: float | None = None,
     discard: float = DEFAULT_DISCARD,
+    rule: str | None = None,
+    cv_max: float = DEFAULT_CV_MAX,
 ) -> ErgodicVerdict:
     """Is the diffusion ergodic?  A two-part rule over initial-condition families.
 
@@ -190,6 +233,11 @@ def ergodic_verdict(
     """
     if not families:
         raise ValueError("ergodic_verdict needs at least one initial-condition family")
+    rule = DEFAULT_RULE if rule is None else rule
+    if rule not in RULES:
+        raise ValueError(f"rule = {rule!r}; allowed: {', '.join(RULES)}")
+    if not (math.isfinite(cv_max) and cv_max > 0):
+        raise ValueError(f"cv_max = {cv_max!r} must be finite and > 0")
     if not (math.isfinite(tolerance) and tolerance > 0):
         raise ValueError(f"tolerance = {tolerance!r} must be finite and > 0")
     arrays = {str(name): _as_positions(v) for name, v in families.items()}
@@ -253,24 +301,45 @@ def ergodic_verdict(
                 f"[{lower.lo:.4g}, {lower.hi:.4g}] mm²/s: difference {diff:.3g} "
                 f"{'≤' if ok else '>'} sum of facing {ci:.0%} half-widths {combined:.3g}"
             )
-    eb_ok = True
+    level_ok = decay_ok = spread_ok = True
+    cv_hat: dict[str, float] = {}
     for name, value in eb.items():
         if math.isnan(value):
             reasons.append(f"n/a: (b) EB[{name}] undefined: no particle moves at lag {lag_s:g} s")
             continue
-        level_ok = value <= threshold
-        ratio = eb_half.get(name, math.nan) / value if value > 0 else math.nan
-        decay_ok = ratio >= decay_threshold  # False when NaN
-        ok = level_ok or decay_ok
-        eb_ok &= ok
+        lvl = value <= threshold
+        half = eb_half.get(name, math.nan)
+        ratio = half / value if value > 0 else math.nan
+        dec = ratio >= decay_threshold  # False when NaN
+        cv_hat[name] = _cv_from_eb(value, half)
+        spr = cv_hat[name] <= cv_max  # False when NaN (no half-run EB)
+        level_ok &= lvl
+        decay_ok &= dec
+        spread_ok &= spr
         reasons.append(
-            f"{'ok' if ok else 'FAIL'}: (b) EB[{name}] = {value:.3g} "
-            f"{'≤' if level_ok else '>'} {tolerance:g} × Brownian {eb_bm:.3g} = {threshold:.3g}"
-            f"; EB(T/2)/EB(T) = {ratio:.3g} {'≥' if decay_ok else '<'} {decay_threshold:.3g}"
+            f"{_mark(lvl)}: (b) level EB[{name}] = {value:.3g} {'≤' if lvl else '>'} {tolerance:g}"
+            f" × Brownian {eb_bm:.3g} = {threshold:.3g}"
+            f"; {_mark(dec)}: decay EB(T/2)/EB(T) = {ratio:.3g} {'≥' if dec else '<'} "
+            f"{decay_threshold:.3g}; {_mark(spr)}: spread CV(D_i) = sqrt(2 EB - EB(T/2)) = "
+            f"{cv_hat[name]:.3g} {'≤' if spr else '>'} {cv_max:g}"
             f" (lag {lag_idx * reg.dt:g} s, T = {(n_kept - 1) * reg.dt:g} s)"
         )
+    key = "(pooled)" if "(pooled)" in eb else next(iter(eb))
+    cv_upper = math.nan
+    if n_half and pooled_half:
+        rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(zlib.crc32(b"cv"),)))
+        full = np.concatenate(pooled)
+        half_all = np.concatenate(pooled_half)
+        cv_upper = _cv_upper(full, half_all, n_resamples, ci, rng)
+    parts = {"agree": agreement_ok, "level": level_ok, "decay": decay_ok, "spread": spread_ok}
+    ergodic = RULES[rule][0](parts)
+    eb_ok = RULES[rule][0]({**parts, "agree": True})
+    reasons.append(
+        f"{'ok' if ergodic else 'FAIL'}: rule {rule!r} = {RULES[rule][1]}; CV(D_i)[{key}] = "
+        f"{cv_hat.get(key, math.nan):.3g}, {ci:.0%} upper bound {cv_upper:.3g}"
+    )
     return ErgodicVerdict(
-        ergodic=agreement_ok and eb_ok,
+        ergodic=ergodic,
         reasons=tuple(reasons),
         agreement_ok=agreement_ok,
         eb_ok=eb_ok,
@@ -282,4 +351,39 @@ def ergodic_verdict(
         eb_decay_threshold=decay_threshold,
         lag=lag_idx * reg.dt,
         duration=(n_kept - 1) * reg.dt,
+        rule=rule,
+        level_ok=level_ok,
+        decay_ok=decay_ok,
+        spread_ok=spread_ok,
+        cv_hat=cv_hat,
+        cv_upper=cv_upper,
+        cv_max=cv_max,
+        error_rates=dict(RULE_ERROR_RATES.get(rule, {})),
     )
+
+
+def _mark(ok: bool) -> str:
+    return "ok" if ok else "FAIL"
+
+
+def _cv_from_eb(eb_full: float, eb_half: float) -> float:
+    """CV of per-particle D from EB over T and T/2: EB = CV² + K/T for a population whose
+    ergodic part falls like 1/T, so CV² = 2 EB(T) - EB(T/2) (NaN without EB(T/2))."""
+    return math.sqrt(max(0.0, 2.0 * eb_full - eb_half)) if math.isfinite(eb_half) else math.nan
+
+
+def _cv_upper(full: _FLOAT, half: _FLOAT, n_resamples: int, ci: float,
+              rng: np.random.Generator) -> float:
+    """One-sided ``ci`` percentile-bootstrap upper bound of _cv_from_eb over particles (the
+    same particles resampled for both halves of the run)."""
+    n = full.size
+    out = np.empty(n_resamples)
+    block = max(1, 4_000_000 // n)
+    for start in range(0, n_resamples, block):
+        m = min(block, n_resamples - start)
+        idx = rng.integers(0, n, size=(m, n))
+        f, h = full[idx], half[idx]
+        ebf = f.var(axis=1, ddof=1) / f.mean(axis=1) ** 2
+        ebh = h.var(axis=1, ddof=1) / h.mean(axis=1) ** 2
+        out[start : start + m] = np.sqrt(np.maximum(0.0, 2.0 * ebf - ebh))
+    return float(np.quantile(out, ci))
