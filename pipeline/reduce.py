@@ -15,9 +15,15 @@ EB_threshold eb_tolerance x its value for Brownian motion at that lag and run le
 EB_decay     EB over the first half of the analysed run / EB over all of it (same lag, pooled):
              ~2 for ergodic motion (EB ~ 1/T), ~1 for a population mixing different D
 EB_decay_threshold  the smallest passing EB_decay, halfway between 1 and the Brownian ratio
-ergodic      bbb.stats.ergodic_verdict: (a) the families' D agree within their CIs and (b) for
-             every family and the pool, EB <= EB_threshold or EB_decay >= EB_decay_threshold
-families_agree, eb_ok  the outcomes of (a) and (b) ((a) is true with a single family)
+ergodic      bbb.stats.ergodic_verdict under its rule (docs/statistics.md): by default (a) the
+             families' D agree within their CIs and (b) the spread CV_D <= cv_max
+families_agree, eb_ok  the outcomes of (a) and of the rule's EB part (b) ((a) is true with a
+             single family)
+rule         the rule's name;  level_ok, decay_ok, spread_ok  each EB component on its own
+CV_D, CV_D_upper  estimated CV of the per-particle D, sqrt(2 EB - EB(T/2)), pooled, and its
+             95 % bootstrap upper bound (a larger spread is excluded); cv_max the rule's limit
+rule_fp, rule_fn  the rule's worst measured false-positive / false-negative rates on
+             synthetic populations of the nearest calibrated size
 D_<fam>, D_<fam>_lo, D_<fam>_hi, EB_<fam>, EB_decay_<fam>  the same per initial-condition family
 D_half1, D_half2  D of the first and the second half of the analysed run (pooled), mm^2/s,
              fitted over the same fractions of a half (bbb.stationarity)
@@ -167,6 +173,11 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
             EB_threshold=verdict.eb_threshold, EB_decay=decay,
             EB_decay_threshold=verdict.eb_decay_threshold, ergodic=bool(verdict.ergodic),
             families_agree=bool(verdict.agreement_ok), eb_ok=bool(verdict.eb_ok),
+            rule=verdict.rule, level_ok=bool(verdict.level_ok), decay_ok=bool(verdict.decay_ok),
+            spread_ok=bool(verdict.spread_ok), CV_D=verdict.cv_hat.get(key, math.nan),
+            CV_D_upper=verdict.cv_upper, cv_max=verdict.cv_max,
+            rule_fp=verdict.error_rates.get("fp", math.nan),
+            rule_fn=verdict.error_rates.get("fn", math.nan),
         )
         for name, d in verdict.D.items():
             row.update({f"D_{name}": d.D, f"D_{name}_lo": d.lo, f"D_{name}_hi": d.hi,
