@@ -187,3 +187,19 @@ def test_adding_a_claim_is_one_record_and_it_appears_in_the_report(tmp_path):
         k.CLAIMS.remove(extra)
     line = next(ln for ln in text.splitlines() if extra.text in ln)
     assert line.startswith(f"| {len(PAPER) + 1} |") and "80 ± 1 Hz: added for the test" in line
+
+
+def test_the_ergodicity_verdicts_name_the_rule_its_error_rates_and_the_excluded_spread(
+        tmp_path_factory, tmp_path):
+    store, t = tiny_store(tmp_path_factory)
+    ergo = t["diffusion"].copy()
+    ergo["CV_D_upper"] = 0.37  # a distinctive spread bound: it must reach the report as is
+    path = write_report(tmp_path, stores={"figure2": store}, tables={"ergodicity": ergo})
+    text = path.read_text()
+    section = text.split("## Ergodicity verdicts, frequency by frequency", 1)[1]
+    r = ergo.iloc[0]
+    assert f"Rule `{r['rule']}`" in section
+    fp, fn = 100 * r["rule_fp"], 100 * r["rule_fn"]
+    assert f"false positive {fp:.0f} %, false negative {fn:.0f} %" in section
+    rows = [ln for ln in section.splitlines() if ln.startswith(f"| {r['f']:g} |")]
+    assert len(rows) == 1 and "| 37 % |" in rows[0]
