@@ -224,7 +224,8 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
              np.abs(gap_end), on_tol)
     _check_velocity(fl, numerics, rep, idx[k], vx, vy0 - fl.g * tau_f, xb, dxb, thb, vxb, vyb,
                     kind_a[k], dtau_clock[k])
-    _check_gap(fl, numerics, rep, idx[k], x0, y0, vx, vy0, th0, tau_f, dxb, samples, per_period)
+    _check_gap(fl, numerics, rep, idx[k], x0, y0, vx, vy0, th0, tau_f, dxb, samples, per_period,
+               dtau, on_tol)
     return rep
 
 
@@ -255,8 +256,11 @@ def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, d
         approach = un <= tol
         bounce = (np.abs(on - out) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) & (out >= vs - tol)
         stuck = (vxb == 0.0) & (np.abs(oy) <= 16.0 * EPS * fl.A * fl.w) & (out <= vs + tol)
-        with np.errstate(invalid="ignore"):  # 0·inf at a vertical cusp: no fly-off there
-            g2 = -fl.g - fl.A * fl.w**2 * np.sin(thb) + (fl.beta * ut * ny) ** 2 * fl.curvature(dd)
+        # the arc's pull (β u∥ n_y)² c'' = (β u∥)²/√(R² − d²), at its largest within δd of d
+        q_min = fl.q(np.minimum(np.abs(dd) + dxb, fl.R)) if not fl.flat else np.inf
+        with np.errstate(divide="ignore", invalid="ignore"):
+            pull = np.where(fl.beta * ut != 0.0, (fl.beta * ut) ** 2 / q_min, 0.0)
+        g2 = -fl.g - fl.A * fl.w**2 * np.sin(thb) + pull
         flies = (np.abs(on - vs) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) & (out <= vs + tol) \
             & (np.abs(fl.beta * ut) >= vs - tol) & (g2 > -tol * 1e3)
         ok |= near & approach & (bounce | stuck | flies)
@@ -267,10 +271,11 @@ def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, d
 
 
 def _check_gap(fl: Floor, numerics, rep: Report, index, x0, y0, vx, vy0, th0, tau, dx, samples,
-               per_period) -> None:
+               per_period, dtau, end_tol) -> None:
     """G ≥ 0 along every flight: dense samples, and a rigorous lower bound of G on
     sub-intervals within one arc, bisected until it is ≥ −tolerance (or the interval is
-    below 1e-15 s: then the flight is 'uncertified')."""
+    below 1e-15 s: then the flight is 'uncertified').  Within ``dtau`` of the end the
+    collision's own tolerance ``end_tol`` applies (the root may lie up to dtau earlier)."""
     g, A, w, S = fl.g, fl.A, fl.w, fl.S
     n = tau.size
     # start offset (the start point's own rounding) is part of every flight's tolerance
@@ -294,7 +299,7 @@ def _check_gap(fl: Floor, numerics, rep: Report, index, x0, y0, vx, vy0, th0, ta
     s = frac * tau[fi]
     xs = x0[fi] + vx[fi] * s
     gs, ds = gap(fi, s, fl.cell(xs))
-    tol_s = base[fi] + fl.height_error(ds, dx[fi])
+    tol_s = base[fi] + fl.height_error(ds, dx[fi]) + np.where(s >= tau[fi] - dtau[fi], end_tol[fi], 0.0)
     low = np.full(n, np.inf)
     np.minimum.at(low, fi, gs + tol_s)
     if gs.size:
@@ -339,12 +344,15 @@ def _check_gap(fl: Floor, numerics, rep: Report, index, x0, y0, vx, vy0, th0, ta
         lb = np.maximum(lb, np.minimum(gu - cu, gv - cv) - hmax * h * h / 8 + cmin)
         # bounds 3, 4: Taylor from either end with −G'' ≤ K = g + Aω² smax − vₓ² c''(min |d|)
         dmin = np.where(du * dv <= 0, 0.0, np.minimum(np.abs(du), np.abs(dv)))
-        K = np.maximum(g + A * w * w * smax - vx[fi] ** 2 * fl.curvature(dmin), 0.0)
+        with np.errstate(invalid="ignore"):
+            arc = np.where(vx[fi] != 0.0, vx[fi] ** 2 * fl.curvature(dmin), 0.0) if not fl.flat else 0.0
+        K = np.maximum(g + A * w * w * smax - arc, 0.0)
         with np.errstate(invalid="ignore"):
             t_u = np.minimum(gu, gu + dgap(fi, u, du) * h - 0.5 * K * h * h)
             t_v = np.minimum(gv, gv - dgap(fi, v, dv) * h - 0.5 * K * h * h)
         lb = np.fmax(lb, np.fmax(t_u, t_v))
-        tol = base[fi] + fl.height_error(np.maximum(np.abs(du), np.abs(dv)), dx[fi])
+        tol = base[fi] + fl.height_error(np.maximum(np.abs(du), np.abs(dv)), dx[fi]) \
+            + np.where(v >= tau[fi] - dtau[fi], end_tol[fi], 0.0)
         bad = (np.minimum(gu, gv) < -tol)
         below[fi[bad]] = True
         done = lb >= -tol
