@@ -146,9 +146,19 @@ def sin_range(a, b):
     return np.where(has_min, -1.0, lo), np.where(has_max, 1.0, hi)
 
 
+START, START_STUCK = 2.0, 3.0  # event codes of an initial state put before the record
+
+
+def start_event(p, cell: int, d: float, y: float, vx: float, vy: float, s: float, stuck: bool) -> np.ndarray:
+    """A particle's initial state (bbb.ensemble.InitialState fields, floor time s in s) as an
+    event row at t = 0, so that the flight from it (or the carried stretch) is checked too."""
+    return np.array([0.0, cell * p.S + d, y, vx, vy, s * p.f, START_STUCK if stuck else START])
+
+
 def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_period: int = 50) -> Report:
     """Check one particle's recorded events (rows of EVENT_FIELDS: t, x, y, vx, vy, phase,
-    event) against the model; ``p`` a bbb.Params, ``numerics`` a bbb.Numerics."""
+    event; the first row may be a ``start_event``) against the model; ``p`` a bbb.Params,
+    ``numerics`` a bbb.Numerics."""
     fl = Floor(p)
     rep = Report()
     ev = events[np.all(np.isfinite(events), axis=1)]
@@ -167,7 +177,8 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
              np.abs(tau - (t_b - t_a)), clock_tol)
     dtau_clock = 16.0 * EPS * (1.0 + tau * fl.f) / fl.f
     vf_tol = 16.0 * EPS * fl.A * fl.w
-    stuck_a = (kind_a == 0) & (vx_a == 0.0) & (np.abs(vy_a - fl.v(th_a)) <= vf_tol)
+    at_rest = (vx_a == 0.0) & (np.abs(vy_a - fl.v(th_a)) <= vf_tol)
+    stuck_a = ((kind_a == 0) & at_rest) | (kind_a == START_STUCK)
     dx_b = 2.0 * np.spacing(np.abs(x_b)) + np.spacing(fl.S * np.abs(fl.cell(x_b)) + fl.S)
 
     # ---- carried stretches: a collision that ended stuck, then its lift-off
@@ -195,8 +206,8 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
 
     # ---- flights: from a collision that did not stick, or from a lift-off, to a collision
     fly = ~lift
-    rep.flag("stuck_flight", fly & stuck_a & (kind_a == 0), idx, np.zeros_like(tau), np.zeros_like(tau))
-    fly &= ~(stuck_a & (kind_a == 0))
+    rep.flag("stuck_flight", fly & stuck_a, idx, np.zeros_like(tau), np.zeros_like(tau))
+    fly &= ~stuck_a
     rep.flights = int(np.count_nonzero(fly))
     if not rep.flights:
         return rep
@@ -222,15 +233,19 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
     gap_end = yp - fl.surface(xp, thb)
     rep.flag("off_surface", (np.abs(gap_end) > on_tol) | (np.abs(yb - yp) > on_tol + rnd), idx[k],
              np.abs(gap_end), on_tol)
+    # a collision is declared where G ≤ 0 in floating point: within √(2 rnd/K) of the true one
+    # when G' is small there, so the incoming normal speed may have either sign up to K·that
+    K = fl.g + fl.A * fl.w**2
+    graze = K * np.minimum(tau_f, np.sqrt(2.0 * rnd / K))
     _check_velocity(fl, numerics, rep, idx[k], vx, vy0 - fl.g * tau_f, xb, dxb, thb, vxb, vyb,
-                    kind_a[k], dtau_clock[k])
+                    kind_a[k], dtau_clock[k], graze)
     _check_gap(fl, numerics, rep, idx[k], x0, y0, vx, vy0, th0, tau_f, dxb, samples, per_period,
                dtau, on_tol)
     return rep
 
 
 def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, dxb, thb, vxb, vyb,
-                    kind_a, dtau) -> None:
+                    kind_a, dtau, graze) -> None:
     """Eqs. (5)-(6) relative to the moving floor: u⊥⁺ = −α u⊥⁻, u∥⁺ = β u∥⁻, and the
     kernel's sticking rule (α|u⊥⁻| < v_stick: carried with the floor, or, once, a fly-off
     with u⊥⁺ = v_stick where the arc falls away faster than g + a_floor pull it down)."""
@@ -253,7 +268,7 @@ def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, d
         un, ut = ux * nx + uy * ny, ux * ny - uy * nx
         on, ot = ox * nx + oy * ny, ox * ny - oy * nx
         out = fl.alpha * np.abs(un)
-        approach = un <= tol
+        approach = un <= tol + graze
         bounce = (np.abs(on - out) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) & (out >= vs - tol)
         stuck = (vxb == 0.0) & (np.abs(oy) <= 16.0 * EPS * fl.A * fl.w) & (out <= vs + tol)
         # the arc's pull (β u∥ n_y)² c'' = (β u∥)²/√(R² − d²), at its largest within δd of d
