@@ -107,7 +107,9 @@ def start_step(h_max, G1, vx, s, g, A, w, lifting):
         # vertical flight over a fixed point: Taylor to 4th order with |y_f''''| ≤ Aw⁴
         G2 = -g - floor_a(s, A, w)
         if lifting:
-            G2 = max(G2, 0.0)  # lift-off is timed where G'' ≥ 0; drop rounding below it
+            # lift-off is timed where G'' ≥ 0; drop rounding below it (sinks ≤ ε T²/2 with ε
+            # the rounding of G'', ≲ 1e-14 mm: docs/physics.md, "Why the lift-off step may clamp")
+            G2 = max(G2, 0.0)
         if G2 >= 0.0:
             G3 = -A * w * w * w * math.cos(w * s)
             K = A * w * w * w * w
