@@ -173,7 +173,7 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
     dph = ph_b - ph_a
     tau = (dph + np.round((t_b - t_a) * fl.f - dph)) / fl.f
     clock_tol = 8.0 * (np.spacing(np.abs(t_a)) + np.spacing(np.abs(t_b))) + 16.0 * EPS / fl.f
-    rep.flag("clock", (np.abs(tau - (t_b - t_a)) > clock_tol) | (tau < 0), idx,
+    rep.flag("clock", (np.abs(tau - (t_b - t_a)) > clock_tol) | (tau < -clock_tol), idx,
              np.abs(tau - (t_b - t_a)), clock_tol)
     dtau_clock = 16.0 * EPS * (1.0 + tau * fl.f) / fl.f
     vf_tol = 16.0 * EPS * fl.A * fl.w
