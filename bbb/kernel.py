@@ -107,7 +107,9 @@ def start_step(h_max, G1, vx, s, g, A, w, lifting):
         # vertical flight over a fixed point: Taylor to 4th order with |y_f''''| ≤ Aw⁴
         G2 = -g - floor_a(s, A, w)
         if lifting:
-            G2 = max(G2, 0.0)  # lift-off is timed where G'' ≥ 0; drop rounding below it
+            # lift-off is timed where G'' ≥ 0; drop rounding below it (sinks ≤ ε T²/2 with ε
+            # the rounding of G'', ≲ 1e-14 mm: docs/physics.md, "Why the lift-off step may clamp")
+            G2 = max(G2, 0.0)
         if G2 >= 0.0:
             G3 = -A * w * w * w * math.cos(w * s)
             K = A * w * w * w * w
@@ -309,7 +311,9 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
     """Run one particle from its initial state to t_max (s, from its own start).
 
     Writes x at ``sample_times`` into ``pos`` and post-collision (t, x, y, vx, vy, floor phase) at
-    t ≥ ``rec_from`` into ``rec`` (rows until full).  ``counters`` receives
+    t ≥ ``rec_from`` into ``rec`` (rows until full).  A ``rec`` with a 7th column also gets a
+    row per lift-off that starts a flight ending in a collision (the state leaving the floor),
+    column 6 = 1 for a lift-off, 0 for a collision.  ``counters`` receives
     collisions, sticking episodes, lift-offs, recorded rows, anomalies."""
     T = 2.0 * math.pi / w
     h_max = h_max_periods * T
@@ -365,6 +369,16 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
             continue
         retry = False
         x0 = cell * S + d
+        if lifting and rec.shape[1] > 6 and t_now >= rec_from and n_rec < nrec_max:
+            # a 7-column record also keeps lift-offs (event 1): the state the flight starts from
+            rec[n_rec, 0] = t_now
+            rec[n_rec, 1] = x0
+            rec[n_rec, 2] = y
+            rec[n_rec, 3] = vx
+            rec[n_rec, 4] = vy
+            rec[n_rec, 5] = s / T
+            rec[n_rec, 6] = 1.0
+            n_rec += 1
         t_end = t_now + tau
         while isamp < ns and sample_times[isamp] < t_end:
             pos[isamp] = x0 + vx * (sample_times[isamp] - t_now)
@@ -402,6 +416,8 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
             rec[n_rec, 3] = vx
             rec[n_rec, 4] = vy
             rec[n_rec, 5] = s / T
+            if rec.shape[1] > 6:
+                rec[n_rec, 6] = 0.0
             n_rec += 1
         from_surface = True
         lifting = False

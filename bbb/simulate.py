@@ -10,7 +10,7 @@ from .ensemble import InitialState, initial_state
 from .kernel import evolve_ensemble
 from .numerics import Numerics
 from .params import Params
-from .record import COLLISION_FIELDS, COUNTER_NAMES, SimRun
+from .record import COLLISION_FIELDS, COUNTER_NAMES, EVENT_FIELDS, SimRun
 
 __all__ = ["simulate"]
 
@@ -25,6 +25,7 @@ def simulate(
     sample_times: np.ndarray | None = None,
     record_collisions: int = 0,
     record_from: float = 0.0,
+    record_liftoffs: bool = False,
     numerics: Numerics | None = None,
     drop_height: tuple[float, float] = (0.0, 2.0),
     launch_speed: tuple[float, float] = (0.0, 200.0),
@@ -34,6 +35,9 @@ def simulate(
     sample_times      -- sorted times (s) in [0, t_max] at which x (mm) is recorded.
     record_collisions -- per particle, how many post-collision states to keep, counted
                          from the first collision at t ≥ ``record_from`` (s).
+    record_liftoffs   -- also record each lift-off that starts a flight (a row with the state
+                         leaving the floor, column ``event`` = 1); the rows then count
+                         collisions and lift-offs together.
     initial           -- a family name (see ``bbb.ensemble``) or an explicit InitialState.
     seed              -- int or SeedSequence; the same seed gives bit-identical output.
     Memory is O(n_particles × (n_samples + record_collisions)), never O(collisions).
@@ -74,7 +78,10 @@ def simulate(
         st = initial_state(params, n_particles, seed, initial,
                            drop_height=drop_height, launch_speed=launch_speed)
     pos = np.full((n_particles, times.size), np.nan)
-    rec = np.full((n_particles, record_collisions, len(COLLISION_FIELDS)), np.nan)
+    if not isinstance(record_liftoffs, bool):
+        raise ValueError(f"record_liftoffs must be True or False, got {record_liftoffs!r}")
+    fields = EVENT_FIELDS if record_liftoffs else COLLISION_FIELDS
+    rec = np.full((n_particles, record_collisions, len(fields)), np.nan)
     counters = np.zeros((n_particles, len(COUNTER_NAMES)), dtype=np.int64)
     p = params
     evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
@@ -91,6 +98,7 @@ def simulate(
         collisions_dense=rec if record_collisions > 0 else None,
         n_recorded=counters[:, 3].copy(),
         counters={name: counters[:, i].copy() for i, name in enumerate(COUNTER_NAMES)},
+        liftoffs=record_liftoffs,
     )
 
 

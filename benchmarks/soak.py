@@ -1,7 +1,7 @@
 """Soak: the invariant budget of issue 6 — ≥ 10⁹ collisions across the extreme-parameter table
 of tests/bbb/test_extremes.py, with zero particles below the surface and zero non-finite values.
 
-    .venv/bin/python benchmarks/soak.py [--target 1e9] [--workers 2] [--sample 1000]
+    .venv/bin/python benchmarks/soak.py [--target 1e9] [--workers 2] [--sample 1000] [--check 4]
 
 Not part of CI (10–20 min on 2 cores).  Commit the output under benchmarks/results/.
 
@@ -10,13 +10,16 @@ particles, spread over ``--workers`` processes (largest tasks first).  A 4-parti
 measures each case's collisions per particle; the target is shared out evenly, and cases
 whose particles come to rest (A = 0, f = 0.5 Hz, ...) take what they can give with at most
 ``--max-particles`` particles.  Checks stay cheap: every particle records a window of
-``--sample`` consecutive collisions near the end of its run (from the start if it has fewer),
-and every recorded collision is checked to be finite and on the surface (to 1e-9 mm; 1e-7 mm at
-the vertical cusps of R = S/2, where rounding of x leaves the height that uncertain); the first
-``--brute-force`` particles of each task also have every recorded flight searched on a fine
-time grid (tests/bbb/flight_check.py) for a point below the surface.  'below' counts
-particles with a collision off the surface, a flight below it, or a repaired velocity
-(counters['anomalies']).
+``--sample`` consecutive events (collisions and lift-offs) near the end of its run (from the
+start if it has fewer), every recorded value is checked to be finite, and the first ``--check``
+particles of each task go through the independent trajectory checker
+(tests/bbb/trajectory_check.py: each collision where the previous flight's parabola meets the
+moving surface — 'off surf' —, Eqs. (5)-(6) — 'rule' —, carried stretches and lift-off times
+— 'liftoff' —, the gap certified ≥ 0 along every flight — 'gap'; lift-off flights included,
+the first flight from the initial state too when the record starts at t = 0) and have every
+recorded flight searched on a fine time grid (tests/bbb/flight_check.py) for a point below
+the surface.  'below' counts particles with any checker failure, a flight below the surface,
+or a repaired velocity (counters['anomalies']).
 
 'sticks' counts recorded collisions that ended a flight in sticking; 'arrested' those among
 them where the particle could not have gone on chattering along the arc: its tangential
@@ -86,15 +89,15 @@ def pilot(index: int) -> float:
     return float(run.counters["collisions"].mean())
 
 
-def run_task(task: Task, sample: int, brute_force: int) -> dict:
+def run_task(task: Task, sample: int, check: int) -> dict:
     case = CASES[task.case]
     p = case.params
     t0 = time.process_time()
-    _, run = run_case(case, task.n, task.t_max, task.seed, record=sample, record_from=task.record_from,
-                      n_samples=11)
+    st, run = run_case(case, task.n, task.t_max, task.seed, record=sample, record_from=task.record_from,
+                       n_samples=11)
     kernel = time.process_time() - t0
     v = invariant_violations(p, run, per_period=case.per_period, flights=sample,
-                             brute_force_particles=brute_force)
+                             brute_force_particles=check, start=st if task.record_from == 0 else None)
     arrested = sticks = 0
     for i in range(run.n_particles):
         rows = rows_of(run, i)
@@ -106,6 +109,8 @@ def run_task(task: Task, sample: int, brute_force: int) -> dict:
             flies_off = ((np.abs(m["ut_in"]) > 1.0) & (m["ut_in"] ** 2 / p.R > m["weight"])
                          & (m["weight"] > 0) & (np.abs(d) < 0.5 * p.S - 0.01))
             arrested += int(np.count_nonzero(stuck & flies_off))
+    for m in v.pop("messages"):
+        print(f"  case {task.case} seed {task.seed}: {m}", file=sys.stderr, flush=True)
     v.update(case=task.case, particles=task.n, collisions=int(run.counters["collisions"].sum()),
              kernel_s=kernel, check_s=time.process_time() - t0 - kernel, sticks=sticks, arrested=arrested)
     return v
@@ -115,8 +120,9 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--target", type=float, default=1.0e9, help="total collisions (default 1e9)")
     ap.add_argument("--workers", type=int, default=2)
-    ap.add_argument("--sample", type=int, default=1000, help="recorded collisions per particle")
-    ap.add_argument("--brute-force", type=int, default=4, help="particles per task with flights brute-forced")
+    ap.add_argument("--sample", type=int, default=1000, help="recorded events per particle")
+    ap.add_argument("--check", type=int, default=4,
+                    help="particles per task through the trajectory checker and the brute force")
     ap.add_argument("--max-particles", type=int, default=100_000, help="per case")
     args = ap.parse_args()
     wall0 = time.perf_counter()
@@ -124,7 +130,8 @@ def main() -> None:
     print(f"# CPU: {cpu_name()}  ({os.cpu_count()} cores)  python {platform.python_version()}  "
           f"numba {numba.__version__}  numpy {np.__version__}")
     print(f"# target {args.target:.3g} collisions, {args.workers} worker processes, sample {args.sample} "
-          f"collisions/particle, brute force on {args.brute_force} particles/task, default Numerics")
+          f"events/particle, trajectory checker and brute force on {args.check} particles/task, "
+          "default Numerics")
     sys.stdout.flush()
 
     with ProcessPoolExecutor(max_workers=args.workers) as pool:
@@ -142,7 +149,7 @@ def main() -> None:
         print(f"# {len(tasks)} tasks; pilot took {time.perf_counter() - wall0:.1f} s")
         print()
         sys.stdout.flush()
-        futures = [pool.submit(run_task, t, args.sample, args.brute_force) for t in tasks]
+        futures = [pool.submit(run_task, t, args.sample, args.check) for t in tasks]
         done: list[dict] = []
         for fut in as_completed(futures):
             done.append(fut.result())
@@ -151,17 +158,26 @@ def main() -> None:
                   f"{time.perf_counter() - wall0:.0f} s", file=sys.stderr, flush=True)
     wall = time.perf_counter() - wall0
 
-    keys = ("particles", "collisions", "rows", "off_surface", "flights", "below", "anomalies", "nonfinite",
-            "sticks", "arrested", "kernel_s", "check_s")
+    keys = ("particles", "collisions", "rows", "checked", "off_surface", "rule", "liftoff", "gap", "flights",
+            "below", "anomalies", "nonfinite", "sticks", "arrested", "kernel_s", "check_s")
     per_case = {i: dict.fromkeys(keys, 0) | {"worst_gap": math.inf} for i in range(len(CASES))}
     for d in done:
         agg = per_case[d["case"]]
         for k in keys:
             agg[k] += d[k]
         agg["worst_gap"] = min(agg["worst_gap"], d["worst_gap"])
-    head = (f"{'case':<66} {'particles':>9} {'collisions':>11} {'rows chkd':>10} {'off surf':>8} "
-            f"{'flights bf':>10} {'min gap mm':>10} {'below':>5} {'anomal':>6} {'nonfin':>6} "
-            f"{'sticks':>7} {'arrested':>8} {'coll/s/core':>11}")
+    head = (f"{'case':<66} {'particles':>9} {'collisions':>11} {'rows':>10} {'checked':>9} {'off surf':>8} "
+            f"{'rule':>5} {'liftoff':>7} {'gap':>5} {'flights bf':>10} {'min gap mm':>10} {'below':>5} "
+            f"{'anomal':>6} {'nonfin':>6} {'sticks':>7} {'arrested':>8} {'coll/s/core':>11}")
+
+    def line(name: str, a: dict) -> str:
+        rate = a["collisions"] / a["kernel_s"] if a["kernel_s"] > 0 else float("nan")
+        return (f"{name[:66]:<66} {a['particles']:9d} {a['collisions']:11.4e} {a['rows']:10d} "
+                f"{a['checked']:9d} {a['off_surface']:8d} {a['rule']:5d} {a['liftoff']:7d} {a['gap']:5d} "
+                f"{a['flights']:10d} "
+                f"{a['worst_gap']:10.2e} {a['below']:5d} {a['anomalies']:6d} {a['nonfinite']:6d} "
+                f"{a['sticks']:7d} {a['arrested']:8d} {rate:11.3e}")
+
     print(head)
     print("-" * len(head))
     tot = dict.fromkeys(keys, 0) | {"worst_gap": math.inf}
@@ -170,21 +186,16 @@ def main() -> None:
         for k in keys:
             tot[k] += a[k]
         tot["worst_gap"] = min(tot["worst_gap"], a["worst_gap"])
-        rate = a["collisions"] / a["kernel_s"] if a["kernel_s"] > 0 else float("nan")
-        print(f"{case.name[:66]:<66} {a['particles']:9d} {a['collisions']:11.4e} {a['rows']:10d} "
-              f"{a['off_surface']:8d} {a['flights']:10d} {a['worst_gap']:10.2e} {a['below']:5d} "
-              f"{a['anomalies']:6d} {a['nonfinite']:6d} {a['sticks']:7d} {a['arrested']:8d} {rate:11.3e}")
+        print(line(case.name, a))
     print("-" * len(head))
-    rate = tot["collisions"] / tot["kernel_s"]
-    print(f"{'total':<66} {tot['particles']:9d} {tot['collisions']:11.4e} {tot['rows']:10d} "
-          f"{tot['off_surface']:8d} {tot['flights']:10d} {tot['worst_gap']:10.2e} {tot['below']:5d} "
-          f"{tot['anomalies']:6d} {tot['nonfinite']:6d} {tot['sticks']:7d} {tot['arrested']:8d} {rate:11.3e}")
+    print(line("total", tot))
     print()
     print(f"total collisions        {tot['collisions']:.4e}  (target {args.target:.3g})")
-    print(f"particles below surface {tot['below']}  (recorded collisions off the surface by > 1e-9 mm, "
-          "1e-7 mm at the vertical cusps of R = S/2: "
-          f"{tot['off_surface']}; brute-forced flights: {tot['flights']}, "
-          f"lowest gap {tot['worst_gap']:.2e} mm; anomalies: {tot['anomalies']})")
+    print(f"particles below surface {tot['below']}  (trajectory checker on {tot['checked']} flights and "
+          f"carried stretches: off the surface {tot['off_surface']}, against Eqs. (5)-(6) {tot['rule']}, "
+          f"lift-off {tot['liftoff']}, gap not certified >= 0 {tot['gap']}; "
+          f"brute-forced flights: {tot['flights']}, lowest gap {tot['worst_gap']:.2e} mm; "
+          f"anomalies: {tot['anomalies']})")
     print(f"non-finite values       {tot['nonfinite']}  (recorded collisions and sampled positions)")
     print(f"wall time               {wall:.0f} s on {args.workers} workers  (kernel {tot['kernel_s']:.0f} s, "
           f"checks {tot['check_s']:.0f} s of CPU; {tot['collisions'] / wall:.3e} collisions/s overall)")

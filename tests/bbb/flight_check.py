@@ -25,18 +25,23 @@ def on_surface_tolerance(p: Params) -> float:
 def gap_along_flights(p: Params, rows: np.ndarray, n_grid: int = 400,
                       per_period: int = 200) -> tuple[float, int]:
     """Brute force: the smallest gap (mm) between particle and surface on a fine time grid
-    inside every recorded flight (consecutive post-collision rows of one particle), and
-    the number of flights checked.  The grid has at least
-    ``per_period`` points per floor period.  Flights that start stuck (velocity = floor velocity,
-    vx = 0) are skipped: their lift-off time is not recorded."""
+    inside every recorded flight (consecutive rows of one particle), and the number of
+    flights checked.  The grid has at least ``per_period`` points per floor period.  With
+    lift-offs recorded (7 columns, ``event`` = 1) a flight starts at a collision or a lift-off
+    and ends at a collision; the stretch from a stuck collision to its lift-off is carried, not
+    flown.  Without them, flights that start stuck (velocity = floor velocity, vx = 0) are
+    skipped: their lift-off time is not recorded."""
     worst = math.inf
     checked = 0
     w = p.omega
+    events = rows.shape[1] > 6
     for k in range(rows.shape[0] - 1):
-        t0, x0, y0, vx, vy, ph = rows[k]
+        t0, x0, y0, vx, vy, ph = rows[k, :6]
         duration = rows[k + 1, 0] - t0
         vf = -p.A * w * math.cos(2 * math.pi * ph)
-        if vx == 0.0 and abs(vy - vf) < 1e-9:
+        if events and rows[k + 1, 6] == 1.0:
+            continue
+        if not events and vx == 0.0 and abs(vy - vf) < 1e-9:
             continue
         n = max(n_grid, int(per_period * duration * p.f))
         tau = np.linspace(0.0, duration, n + 2)[1:-1]

@@ -3,10 +3,13 @@
 Each row of ``CASES`` is one extreme (alpha → 0 or 1, beta = 0 or 1, R = S/2 or ∞, A = 0 or
 Γ ≫ 1, f tiny or huge, grazing, cusps, starts on the surface, 10⁶ floor periods) with the
 *physical* claim that must hold there.  Every row is also held to the invariants that hold
-everywhere: every recorded collision is finite and on the surface, every sampled position is
-finite, no velocity needed repair, and a brute-force fine-grid search finds no point of any
-recorded flight below the surface.  ``benchmarks/soak.py`` drives the same table to ≥ 10⁹
-collisions, so a row must make sense for any number of particles and any seed.
+everywhere: every recorded value is finite, no velocity needed repair, the independent
+trajectory checker (tests/bbb/trajectory_check.py) passes every recorded flight and lift-off
+(each collision where the previous flight's parabola meets the moving surface, Eqs. (5)-(6),
+the gap ≥ 0 in between, lift-off at the first moment the floor lets go), and a brute-force
+fine-grid search finds no point of any recorded flight below the surface.
+``benchmarks/soak.py`` drives the same table to ≥ 10⁹ collisions, so a row must make sense for
+any number of particles and any seed.
 """
 
 from __future__ import annotations
@@ -26,6 +29,7 @@ from bbb.numerics import Numerics
 from bbb.record import COLLISION_FIELDS, COUNTER_NAMES
 from bbb.surface import cell_of, depth, surface_normal
 from tests.bbb.flight_check import gap_along_flights, on_surface_tolerance
+from tests.bbb.trajectory_check import Report, check_particle, start_event
 
 G = 9800.0
 BASE = dict(g=G, A=0.1, f=60.0, R=15.0, S=2.0, alpha=0.7, beta=0.99)
@@ -77,13 +81,20 @@ def run_case(case: Case, n: int, t_max: float, seed: int, record: int, record_fr
              n_samples: int = 101) -> tuple[InitialState, SimRun]:
     st = start(case, n, seed)
     run = simulate(case.params, n, t_max, seed=seed, initial=st, record_collisions=record,
-                   record_from=record_from, sample_times=np.linspace(0.0, t_max, n_samples))
+                   record_from=record_from, sample_times=np.linspace(0.0, t_max, n_samples),
+                   record_liftoffs=True)
     return st, run
 
 
-def rows_of(run: SimRun, i: int) -> np.ndarray:
-    """Particle i's recorded post-collision rows (t, x, y, vx, vy, phase)."""
+def events_of(run: SimRun, i: int) -> np.ndarray:
+    """Particle i's recorded rows: collisions and (if recorded) lift-offs, in time order."""
     return run.collisions_dense[i, : run.n_recorded[i]]
+
+
+def rows_of(run: SimRun, i: int) -> np.ndarray:
+    """Particle i's recorded post-collision rows (t, x, y, vx, vy, phase), lift-offs left out."""
+    ev = events_of(run, i)
+    return ev[ev[:, 6] == 0.0, :6] if run.liftoffs else ev
 
 
 def surface_at(p: Params, x: np.ndarray, phase: np.ndarray) -> np.ndarray:
@@ -124,32 +135,46 @@ def impacts(p: Params, rows: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def invariant_violations(p: Params, run: SimRun, per_period: int = 200, flights: int = MAX_FLIGHTS_CHECKED,
-                         brute_force_particles: int | None = None) -> dict[str, float]:
+                         brute_force_particles: int | None = None,
+                         start: InitialState | None = None) -> dict[str, float]:
     """Everything that must never happen, whatever the parameters, counted over a run:
-    non-finite recorded values or positions, recorded collisions off the surface, repaired
-    velocities ('anomalies'), and the lowest brute-force gap of the last ``flights`` flights
-    of the first ``brute_force_particles`` particles (all by default; negative: a point of a
-    flight below the surface).  ``below`` counts particles with any of these faults."""
+    non-finite recorded values or positions, repaired velocities ('anomalies'), and on the
+    last ``flights`` recorded events of the first ``brute_force_particles`` particles (all by
+    default) the trajectory checker's failures — 'off_surface' (clock, parabola, surface),
+    'rule' (Eqs. (5)-(6)), 'liftoff' (carried stretches and lift-offs), 'gap' (a flight
+    below the surface or not certified above it) — and the lowest brute-force gap
+    (flight_check.gap_along_flights; negative: a point of a flight below the surface).
+    ``start``: the run's initial states, when it recorded from t = 0: the first flight (or
+    carried stretch) is checked too.  ``below`` counts particles with any of these faults."""
     nonfinite = int(np.count_nonzero(~np.isfinite(run.positions)))
     tol = on_surface_tolerance(p)
-    off_surface = rows_checked = n_flights = below = 0
+    rows_checked = n_flights = below = 0
     worst_gap = math.inf
+    total = Report()
     for i in range(run.n_particles):
-        rows = rows_of(run, i)
-        bad = int(np.count_nonzero(~np.isfinite(rows)))
-        good = rows[np.all(np.isfinite(rows), axis=1)]
-        height = good[:, 2] - surface_at(p, good[:, 1], good[:, 5])
-        off = int(np.count_nonzero(np.abs(height) > tol))
+        ev = events_of(run, i)
+        bad = int(np.count_nonzero(~np.isfinite(ev)))
+        good = ev[np.all(np.isfinite(ev), axis=1)]
+        if start is not None and good.shape[0] <= flights:
+            good = np.vstack([start_event(p, start.cell[i], start.d[i], start.y[i], start.vx[i], start.vy[i],
+                                          start.s[i], start.stuck[i]), good])
+        good = good[-flights - 1:]
         gap = math.inf
+        rep = Report()
         if brute_force_particles is None or i < brute_force_particles:
-            gap, checked = gap_along_flights(p, good[-flights - 1:], per_period=per_period)
+            gap, checked = gap_along_flights(p, good, per_period=per_period)
             n_flights += checked
+            rep = check_particle(p, run.numerics, good, per_period=per_period)
+            total.add(rep)
         nonfinite += bad
-        off_surface += off
-        rows_checked += rows.shape[0]
+        rows_checked += ev.shape[0]
         worst_gap = min(worst_gap, gap)
-        below += bool(off or gap <= -tol or run.counters["anomalies"][i])
-    return dict(nonfinite=nonfinite, rows=rows_checked, off_surface=off_surface,
+        below += bool(not rep.ok or gap <= -tol or run.counters["anomalies"][i])
+    f = total.failures
+    return dict(nonfinite=nonfinite, rows=rows_checked, checked=total.flights + total.carried,
+                off_surface=f["clock"] + f["off_parabola"] + f["off_surface"], rule=f["velocity"],
+                liftoff=f["carried"] + f["liftoff_state"] + f["liftoff_time"] + f["stuck_flight"],
+                gap=f["below"] + f["uncertified"], messages=total.messages,
                 anomalies=int(run.counters["anomalies"].sum()), flights=n_flights, worst_gap=worst_gap,
                 below=below)
 
@@ -486,7 +511,8 @@ def result(name: str) -> tuple[InitialState, SimRun]:
 @functools.cache
 def violations(name: str) -> dict[str, float]:
     case = CASES[IDS.index(name)]
-    return invariant_violations(case.params, result(name)[1], per_period=case.per_period)
+    st, run = result(name)
+    return invariant_violations(case.params, run, per_period=case.per_period, start=st)
 
 
 @pytest.mark.parametrize("case", CASES, ids=IDS)
@@ -496,9 +522,27 @@ def test_every_recorded_value_is_finite_and_no_velocity_needed_repair(case):
 
 
 @pytest.mark.parametrize("case", CASES, ids=IDS)
-def test_every_recorded_collision_lies_on_the_surface(case):
+def test_every_recorded_collision_lies_where_the_previous_flight_meets_the_surface(case):
     v = violations(case.name)
-    assert v["rows"] > 0 and v["off_surface"] == 0
+    assert v["checked"] > 0 and v["off_surface"] == 0, v["messages"]
+
+
+@pytest.mark.parametrize("case", CASES, ids=IDS)
+def test_every_outgoing_velocity_follows_eqs_5_6_from_the_incoming_one(case):
+    v = violations(case.name)
+    assert v["checked"] > 0 and v["rule"] == 0, v["messages"]
+
+
+@pytest.mark.parametrize("case", CASES, ids=IDS)
+def test_every_stuck_particle_is_carried_and_lifts_off_when_the_floor_first_lets_go(case):
+    v = violations(case.name)
+    assert v["liftoff"] == 0, v["messages"]
+
+
+@pytest.mark.parametrize("case", CASES, ids=IDS)
+def test_every_flight_is_certified_above_the_surface(case):
+    v = violations(case.name)
+    assert v["gap"] == 0, v["messages"]
 
 
 @pytest.mark.parametrize("case", CASES, ids=IDS)

@@ -8,8 +8,9 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from bbb import Numerics, Params, simulate
-from bbb.ensemble import InitialState
+from bbb.ensemble import InitialState, initial_state
 from tests.bbb.flight_check import gap_along_flights, on_surface_tolerance
+from tests.bbb.trajectory_check import check_particle, start_event
 
 ALPHA = 0.7
 # Period-1 orbit of a ball on a flat sinusoidal plate (restitution α): it exists for
@@ -81,22 +82,21 @@ def test_energy_is_conserved_on_an_elastic_motionless_floor(R):
 )
 def test_no_collision_is_missed_and_no_particle_goes_below_the_surface(f, A, radius, alpha, beta,
                                                                        family, seed):
+    """The independent trajectory checker passes every recorded flight, collision and
+    lift-off, from the initial state on; the brute-force grid finds no point below."""
     p = Params(g=9800.0, A=A, f=f, R=radius, S=2.0, alpha=alpha, beta=beta)
-    run = simulate(p, 3, 60.0 / f, seed=seed, initial=family, record_collisions=300,
-                   drop_height=(0.0, 1.0), launch_speed=(0.0, 150.0))
+    st = initial_state(p, 3, np.random.SeedSequence(seed), family, drop_height=(0.0, 1.0),
+                       launch_speed=(0.0, 150.0))
+    run = simulate(p, 3, 60.0 / f, seed=seed, initial=st, record_collisions=300, record_liftoffs=True)
     for i in range(3):
         rows = run.collisions_dense[i, : run.n_recorded[i]]
         assert np.all(np.isfinite(rows))
-        # every recorded collision lies on the surface
-        ph = rows[:, 5]
-        d = rows[:, 1] - np.floor(rows[:, 1] / p.S + 0.5) * p.S
-        surface = -p.A * np.sin(2 * np.pi * ph) - (0 if p.flat else d * d / (
-            p.R + np.sqrt(np.maximum(0, (p.R - np.abs(d)) * (p.R + np.abs(d))))))
-        tol = on_surface_tolerance(p)
-        assert np.allclose(rows[:, 2], surface, atol=tol)
+        start = start_event(p, st.cell[i], st.d[i], st.y[i], st.vx[i], st.vy[i], st.s[i], st.stuck[i])
+        rep = check_particle(p, run.numerics, np.vstack([start, rows]))
+        assert rep.ok, rep.messages
         # brute force: between two recorded collisions the particle stays above the surface
         worst, _ = gap_along_flights(p, rows, n_grid=200)
-        assert worst > -tol
+        assert worst > -on_surface_tolerance(p)
     assert run.counters["anomalies"].sum() == 0
 
 

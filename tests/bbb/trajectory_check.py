@@ -1,0 +1,396 @@
+"""An independent trajectory checker: does a recorded run obey the model's equations?
+
+Its own small numpy code (none of bbb's jitted helpers or bbb.surface): given one particle's
+recorded events — post-collision states (t, x, y, vx, vy, floor phase) and the lift-offs that
+start a flight from the floor (``simulate(record_liftoffs=True)``, column ``event`` = 1) — it
+checks every pair of consecutive events against the model of Klages, Barna & Mátyás (2004):
+
+* the clock: the time between two events from the recorded t agrees with the one from the
+  recorded floor phases (phase = f·t_floor mod 1), to the rounding of t;
+* a flight (from a collision or a lift-off to the next collision): in the floor's clock the
+  particle flies the parabola x = x₀ + vₓτ, y = y₀ + v_yτ − gτ²/2 (Eqs. 1-4); the next
+  collision point lies on that parabola and on the surface at its phase; between the two the
+  gap G(τ) = y(τ) − y_s(x(τ), τ) stays ≥ 0 (dense samples and a rigorous lower bound on
+  sub-intervals, below); the outgoing velocity follows Eqs. (5)-(6) from the incoming one;
+* a carried stretch (a collision that ended stuck, then its lift-off): x does not move, the
+  lift-off state is the floor's (on the surface, with the floor's velocity, vₓ = 0), and it
+  happens at the first moment the floor accelerates downward faster than g, sin(2πft) < −1/Γ.
+
+The floor (Sec. 2 and Fig. 1 of the paper): arc tops at y_f(t) = −A sin(2πft), arcs of radius
+R centred at x = kS, so a point at offset d = x − kS lies c(d) = R − √(R² − d²) below the top.
+
+Tolerances (all derived, none tuned): the kernel finds a collision time to ``tol_t``
+(bbb.Numerics) and puts the particle on the surface at that time, so a collision point may lie
+off the exact intersection by |G'|·δτ with δτ = tol_t + the clock's rounding, where G' is the
+particle's vertical speed relative to the floor (plus the arc's slope times vₓ); on top of that
+comes the rounding of the numbers involved (16 ε times their size) and the rounding of x
+(spacing(x)), which moves the height by at most min(c'·δx, √(2Rδx)) — the square root near the
+vertical cusps of R = S/2, where c' is infinite.  Velocities are compared to rounding plus
+the normal's uncertainty from δx.  The lift-off phase may be off the window's edge by the
+rounding of the phase (16 ε·2π rad).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+EPS = float(np.finfo(np.float64).eps)
+CHECKS = ("clock", "carried", "liftoff_state", "liftoff_time", "stuck_flight", "off_parabola",
+          "off_surface", "velocity", "below", "uncertified")
+
+
+@dataclass
+class Report:
+    """Per check, how many event pairs failed it; the first few failures in words."""
+
+    flights: int = 0
+    carried: int = 0
+    failures: dict[str, int] = field(default_factory=lambda: dict.fromkeys(CHECKS, 0))
+    messages: list[str] = field(default_factory=list)
+    worst_gap: float = math.inf  # mm, the lowest sampled gap of any flight
+
+    @property
+    def ok(self) -> bool:
+        return not any(self.failures.values())
+
+    def flag(self, check: str, mask: np.ndarray, index: np.ndarray, what: np.ndarray,
+             limit: np.ndarray) -> None:
+        mask = np.asarray(mask, bool)
+        self.failures[check] += int(np.count_nonzero(mask))
+        what, limit = np.broadcast_to(what, mask.shape), np.broadcast_to(limit, mask.shape)
+        for i in np.nonzero(mask)[0][: max(0, 5 - len(self.messages))]:
+            self.messages.append(f"{check} at event {int(index[i])}: {what[i]:.3e} > {limit[i]:.3e}")
+
+    def add(self, other: Report) -> None:
+        self.flights += other.flights
+        self.carried += other.carried
+        for k, v in other.failures.items():
+            self.failures[k] += v
+        self.messages += other.messages[: max(0, 10 - len(self.messages))]
+        self.worst_gap = min(self.worst_gap, other.worst_gap)
+
+
+class Floor:
+    """The moving corrugated floor of the paper, in its own numpy code."""
+
+    def __init__(self, p) -> None:
+        self.g, self.A, self.f, self.R, self.S = p.g, p.A, p.f, p.R, p.S
+        self.alpha, self.beta = p.alpha, p.beta
+        self.w = 2.0 * math.pi * p.f
+        self.flat = math.isinf(p.R)
+
+    def cell(self, x):
+        return np.floor(x / self.S + 0.5)
+
+    def q(self, d):
+        # √(R² − d²) as √((R−|d|)(R+|d|)): no cancellation at the cusps of R = S/2
+        ad = np.abs(d)
+        return np.sqrt(np.maximum((self.R - ad) * (self.R + ad), 0.0))
+
+    def depth(self, d):
+        """c(d) = R − √(R² − d²) (mm), written d²/(R + √(R² − d²))."""
+        if self.flat:
+            return np.zeros_like(d)
+        return d * d / (self.R + self.q(d))
+
+    def slope(self, d):
+        """c'(d) = d/√(R² − d²); ±inf at a vertical cusp."""
+        if self.flat:
+            return np.zeros_like(d)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.q(d) > 0, d / self.q(d), np.copysign(np.inf, d))
+
+    def curvature(self, d):
+        """c''(d) = R²/(R² − d²)^{3/2}, increasing in |d|."""
+        if self.flat:
+            return np.zeros_like(d)
+        with np.errstate(divide="ignore"):
+            return self.R**2 / self.q(d) ** 3
+
+    def normal(self, d):
+        """Outward unit normal (nₓ, n_y) of the arc at offset d."""
+        if self.flat:
+            return np.zeros_like(d), np.ones_like(d)
+        return d / self.R, self.q(d) / self.R
+
+    def height_error(self, d, dx):
+        """Largest change of c when d moves by dx: min(c'·dx, √(2R dx)) (mm)."""
+        if self.flat:
+            return np.zeros_like(d)
+        far = np.minimum(np.abs(d) + dx, self.R)
+        with np.errstate(invalid="ignore"):
+            lip = np.where(far < self.R, self.slope(far) * dx, np.inf)
+        return np.minimum(lip, np.sqrt(2.0 * self.R * dx))
+
+    def y(self, th):
+        return -self.A * np.sin(th)
+
+    def v(self, th):
+        return -self.A * self.w * np.cos(th)
+
+    def surface(self, x, th):
+        d = x - self.cell(x) * self.S
+        return self.y(th) - self.depth(d)
+
+
+def sin_range(a, b):
+    """Exact (min, max) of sin over [a, b] (radians, arrays)."""
+    two_pi = 2.0 * math.pi
+    lo = np.minimum(np.sin(a), np.sin(b))
+    hi = np.maximum(np.sin(a), np.sin(b))
+    has_min = np.floor((b - 1.5 * math.pi) / two_pi) >= np.ceil((a - 1.5 * math.pi) / two_pi)
+    has_max = np.floor((b - 0.5 * math.pi) / two_pi) >= np.ceil((a - 0.5 * math.pi) / two_pi)
+    return np.where(has_min, -1.0, lo), np.where(has_max, 1.0, hi)
+
+
+START, START_STUCK = 2.0, 3.0  # event codes of an initial state put before the record
+
+
+def start_event(p, cell: int, d: float, y: float, vx: float, vy: float, s: float, stuck: bool) -> np.ndarray:
+    """A particle's initial state (bbb.ensemble.InitialState fields, floor time s in s) as an
+    event row at t = 0, so that the flight from it (or the carried stretch) is checked too."""
+    return np.array([0.0, cell * p.S + d, y, vx, vy, s * p.f, START_STUCK if stuck else START])
+
+
+def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_period: int = 50) -> Report:
+    """Check one particle's recorded events (rows of EVENT_FIELDS: t, x, y, vx, vy, phase,
+    event; the first row may be a ``start_event``) against the model; ``p`` a bbb.Params,
+    ``numerics`` a bbb.Numerics."""
+    fl = Floor(p)
+    rep = Report()
+    ev = events[np.all(np.isfinite(events), axis=1)]
+    if ev.shape[0] < 2:
+        return rep
+    a, b = ev[:-1], ev[1:]
+    idx = np.arange(1, ev.shape[0])
+    t_a, x_a, y_a, vx_a, vy_a, ph_a, kind_a = a.T
+    t_b, x_b, y_b, vx_b, vy_b, ph_b, kind_b = b.T
+    th_a, th_b = 2.0 * math.pi * ph_a, 2.0 * math.pi * ph_b
+    # clock: τ from the phases (floor time, exact to the phase's rounding) against t
+    dph = ph_b - ph_a
+    tau = (dph + np.round((t_b - t_a) * fl.f - dph)) / fl.f
+    clock_tol = 8.0 * (np.spacing(np.abs(t_a)) + np.spacing(np.abs(t_b))) + 16.0 * EPS / fl.f
+    rep.flag("clock", (np.abs(tau - (t_b - t_a)) > clock_tol) | (tau < -clock_tol), idx,
+             np.abs(tau - (t_b - t_a)), clock_tol)
+    dtau_clock = 16.0 * EPS * (1.0 + tau * fl.f) / fl.f
+    vf_tol = 16.0 * EPS * fl.A * fl.w
+    at_rest = (vx_a == 0.0) & (np.abs(vy_a - fl.v(th_a)) <= vf_tol)
+    stuck_a = ((kind_a == 0) & at_rest) | (kind_a == START_STUCK)
+    dx_b = 2.0 * np.spacing(np.abs(x_b)) + np.spacing(fl.S * np.abs(fl.cell(x_b)) + fl.S)
+
+    # ---- carried stretches: a collision that ended stuck, then its lift-off
+    lift = kind_b == 1
+    rep.carried = int(np.count_nonzero(lift))
+    if rep.carried:
+        rep.flag("carried", lift & (~stuck_a | (np.abs(x_b - x_a) > dx_b)), idx, np.abs(x_b - x_a), dx_b)
+        d_b = x_b - fl.cell(x_b) * fl.S
+        y_tol = 16.0 * EPS * (np.abs(y_b) + fl.A + fl.depth(d_b)) + fl.height_error(d_b, dx_b)
+        off = np.abs(y_b - fl.surface(x_b, th_b))
+        bad = (vx_b != 0.0) | (np.abs(vy_b - fl.v(th_b)) > vf_tol) | (off > y_tol)
+        rep.flag("liftoff_state", lift & bad, idx, off, y_tol)
+        # lift-off: where −g − a_floor first reaches 0, a_floor = Aω² sin θ (never for Γ ≤ 1)
+        aw2 = fl.A * fl.w**2
+        g2 = -fl.g - aw2 * np.sin(th_b)
+        g2_tol = 16.0 * EPS * (fl.g + aw2) + aw2 * 16.0 * EPS * 2.0 * math.pi
+        late = np.zeros_like(lift)
+        if aw2 > fl.g:
+            th_l = math.pi + math.asin(fl.g / aw2)  # the window sin θ < −1/Γ opens here
+            inside_a = np.sin(th_a) < -fl.g / aw2 - g2_tol / aw2
+            end = th_a + fl.w * tau - 1e-9  # a window opening in (θ_a, θ_b − 1e-9 rad) was skipped
+            opens = np.floor((end - th_l) / (2 * math.pi)) >= np.ceil((th_a - th_l) / (2 * math.pi))
+            late = (inside_a & (tau > dtau_clock)) | opens
+        rep.flag("liftoff_time", lift & ((g2 < -g2_tol) | late), idx, -g2, g2_tol)
+
+    # ---- flights: from a collision that did not stick, or from a lift-off, to a collision
+    fly = ~lift
+    rep.flag("stuck_flight", fly & stuck_a, idx, np.zeros_like(tau), np.zeros_like(tau))
+    fly &= ~stuck_a
+    rep.flights = int(np.count_nonzero(fly))
+    if not rep.flights:
+        return rep
+    k = np.nonzero(fly)[0]
+    tau_f = tau[k]
+    x0, y0, vx, vy0, th0 = x_a[k], y_a[k], vx_a[k], vy_a[k], th_a[k]
+    xb, yb, vxb, vyb, thb = x_b[k], y_b[k], vx_b[k], vy_b[k], th_b[k]
+    dxb = dx_b[k]
+    xp = x0 + vx * tau_f
+    yp = y0 + vy0 * tau_f - 0.5 * fl.g * tau_f**2
+    x_tol = 4.0 * (np.spacing(np.abs(xb)) + np.spacing(np.abs(vx * tau_f)) + np.spacing(np.abs(x0))) \
+        + np.abs(vx) * dtau_clock[k] + dxb
+    rep.flag("off_parabola", np.abs(xb - xp) > x_tol, idx[k], np.abs(xb - xp), x_tol)
+    # on the surface at its phase, to |G'| δτ (δτ = tol_t + clock) + rounding of y and x
+    d_p = xp - fl.cell(xp) * fl.S
+    vf_b = fl.v(thb)
+    dtau = numerics.tol_t + dtau_clock[k]
+    g1 = np.abs(vy0 - fl.g * tau_f - vf_b)
+    scale = np.abs(y0) + np.abs(vy0 * tau_f) + 0.5 * fl.g * tau_f**2 + fl.A + fl.depth(d_p)
+    rnd = 16.0 * EPS * scale
+    on_tol = (g1 * dtau + fl.height_error(d_p, np.abs(vx) * dtau + x_tol) + rnd
+              + (fl.g + fl.A * fl.w**2) * dtau**2)
+    gap_end = yp - fl.surface(xp, thb)
+    rep.flag("off_surface", (np.abs(gap_end) > on_tol) | (np.abs(yb - yp) > on_tol + rnd), idx[k],
+             np.abs(gap_end), on_tol)
+    # a collision is declared where G ≤ 0 in floating point: within √(2 rnd/K) of the true one
+    # when G' is small there, so the incoming normal speed may have either sign up to K·that
+    K = fl.g + fl.A * fl.w**2
+    graze = K * np.minimum(tau_f, np.sqrt(2.0 * rnd / K))
+    _check_velocity(fl, numerics, rep, idx[k], vx, vy0 - fl.g * tau_f, xb, dxb, thb, vxb, vyb,
+                    kind_a[k], dtau_clock[k], graze)
+    _check_gap(fl, numerics, rep, idx[k], x0, y0, vx, vy0, th0, tau_f, dxb, samples, per_period,
+               dtau, on_tol)
+    return rep
+
+
+def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, dxb, thb, vxb, vyb,
+                    kind_a, dtau, graze) -> None:
+    """Eqs. (5)-(6) relative to the moving floor: u⊥⁺ = −α u⊥⁻, u∥⁺ = β u∥⁻, and the
+    kernel's sticking rule (α|u⊥⁻| < v_stick: carried with the floor, or, once, a fly-off
+    with u⊥⁺ = v_stick where the arc falls away faster than g + a_floor pull it down)."""
+    vf = fl.v(thb)
+    ux, uy = vx_in, vy_in - vf
+    ox, oy = vxb, vyb - vf
+    speed = np.hypot(ux, uy)
+    d = xb - fl.cell(xb) * fl.S
+    # the normal from d is known to δn ≤ δd/R + √(2R δd)/R (the √ at a vertical cusp)
+    dn = 0.0 if fl.flat else dxb / fl.R + np.sqrt(2.0 * fl.R * dxb) / fl.R
+    tol = 32.0 * EPS * (speed + np.abs(vf) + np.hypot(ox, oy)) + 2.0 * speed * dn \
+        + (fl.g + fl.A * fl.w**2) * dtau
+    vs = numerics.v_stick
+    ok = np.zeros(d.shape, bool)
+    kick = np.zeros(d.shape, bool)
+    # at a cusp (d = ±S/2) either arc's normal is the contact normal
+    for dd in (d, d - np.sign(d) * fl.S):
+        near = np.abs(dd) <= 0.5 * fl.S + dxb
+        nx, ny = fl.normal(dd)
+        un, ut = ux * nx + uy * ny, ux * ny - uy * nx
+        on, ot = ox * nx + oy * ny, ox * ny - oy * nx
+        out = fl.alpha * np.abs(un)
+        approach = un <= tol + graze
+        bounce = (np.abs(on - out) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) & (out >= vs - tol)
+        stuck = (vxb == 0.0) & (np.abs(oy) <= 16.0 * EPS * fl.A * fl.w) & (out <= vs + tol)
+        # the arc's pull (β u∥ n_y)² c'' = (β u∥)²/√(R² − d²), at its largest within δd of d
+        q_min = fl.q(np.minimum(np.abs(dd) + dxb, fl.R)) if not fl.flat else np.inf
+        with np.errstate(divide="ignore", invalid="ignore"):
+            pull = np.where(fl.beta * ut != 0.0, (fl.beta * ut) ** 2 / q_min, 0.0)
+        g2 = -fl.g - fl.A * fl.w**2 * np.sin(thb) + pull
+        flies = (np.abs(on - vs) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) & (out <= vs + tol) \
+            & (np.abs(fl.beta * ut) >= vs - tol) & (g2 > -tol * 1e3)
+        ok |= near & approach & (bounce | stuck | flies)
+        kick |= near & approach & flies & ~bounce & ~stuck
+    # a fly-off never follows a fly-off (kick after kick would be an endless Zeno sequence)
+    twice = kick & np.concatenate([[False], kick[:-1]]) & (kind_a == 0)
+    rep.flag("velocity", ~ok | twice, index, np.zeros_like(tol), tol)
+
+
+def _check_gap(fl: Floor, numerics, rep: Report, index, x0, y0, vx, vy0, th0, tau, dx, samples,
+               per_period, dtau, end_tol) -> None:
+    """G ≥ 0 along every flight: dense samples, and a rigorous lower bound of G on
+    sub-intervals within one arc, bisected until it is ≥ −tolerance (or the interval is
+    below 1e-15 s: then the flight is 'uncertified').  Within ``dtau`` of the end the
+    collision's own tolerance ``end_tol`` applies (the root may lie up to dtau earlier)."""
+    g, A, w, S = fl.g, fl.A, fl.w, fl.S
+    n = tau.size
+    # start offset (the start point's own rounding) is part of every flight's tolerance
+    base = 16.0 * EPS * (np.abs(y0) + np.abs(vy0 * tau) + 0.5 * g * tau**2 + A + (0 if fl.flat else fl.R))
+    g0 = y0 - fl.surface(x0, th0)
+    base = base + np.maximum(-g0, 0.0) + (g + A * w * w) * numerics.tol_t**2 / 8
+
+    def gap(i, s, k):
+        d = x0[i] + vx[i] * s - k * S
+        return y0[i] + vy0[i] * s - 0.5 * g * s * s + A * np.sin(th0[i] + w * s) + fl.depth(d), d
+
+    def dgap(i, s, d):
+        with np.errstate(invalid="ignore"):
+            slope = np.where(vx[i] != 0.0, fl.slope(d) * vx[i], 0.0)
+        return vy0[i] - g * s + A * w * np.cos(th0[i] + w * s) + slope
+
+    # dense samples (nearest arc): at least `samples` per flight and `per_period` per period
+    m = np.maximum(samples, np.ceil(per_period * tau * fl.f).astype(np.int64))
+    fi = np.repeat(np.arange(n), m)
+    frac = (np.arange(fi.size) - np.repeat(np.cumsum(m) - m, m) + 0.5) / np.repeat(m, m)
+    s = frac * tau[fi]
+    xs = x0[fi] + vx[fi] * s
+    gs, ds = gap(fi, s, fl.cell(xs))
+    tol_s = base[fi] + fl.height_error(ds, dx[fi]) + np.where(s >= tau[fi] - dtau[fi], end_tol[fi], 0.0)
+    low = np.full(n, np.inf)
+    np.minimum.at(low, fi, gs + tol_s)
+    if gs.size:
+        rep.worst_gap = min(rep.worst_gap, float(np.min(gs)))
+    below = low < 0
+
+    # sub-intervals within one arc: split each flight at the cusps x = (m + ½)S it crosses
+    xe = x0 + vx * tau
+    lo_c = np.ceil(np.minimum(x0, xe) / S - 0.5)
+    hi_c = np.floor(np.maximum(x0, xe) / S - 0.5)
+    ncusp = np.zeros(n, np.int64) if fl.flat else np.maximum(hi_c - lo_c + 1, 0).astype(np.int64)
+    ncusp[vx == 0.0] = 0
+    fi = np.repeat(np.arange(n), ncusp + 1)
+    j = np.arange(fi.size) - np.repeat(np.cumsum(ncusp + 1) - (ncusp + 1), ncusp + 1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        first = np.where(vx[fi] > 0, lo_c[fi], hi_c[fi])
+        step = np.where(vx[fi] > 0, 1.0, -1.0)
+        cut = ((first + step * j + 0.5) * S - x0[fi]) / vx[fi]
+    last = j == ncusp[fi]
+    u = np.where(j == 0, 0.0, np.roll(cut, 1))
+    v = np.where(last, tau[fi], cut)
+    u, v = np.clip(u, 0.0, tau[fi]), np.clip(v, 0.0, tau[fi])
+    uncert = np.zeros(n, bool)
+    for _ in range(200):
+        keep = (v > u) & ~below[fi]
+        fi, u, v = fi[keep], u[keep], v[keep]
+        if not fi.size:
+            break
+        h = v - u
+        mid = 0.5 * (u + v)
+        k = fl.cell(x0[fi] + vx[fi] * mid)
+        gu, du = gap(fi, u, k)
+        gv, dv = gap(fi, v, k)
+        cu, cv = fl.depth(du), fl.depth(dv)
+        cmin = np.where(du * dv <= 0, 0.0, np.minimum(cu, cv))
+        smin, smax = sin_range(th0[fi] + w * u, th0[fi] + w * v)
+        # bound 1, term by term: the parabola is concave (min at an end), sin exact, c ≥ cmin
+        pu, pv = gu - A * np.sin(th0[fi] + w * u) - cu, gv - A * np.sin(th0[fi] + w * v) - cv
+        lb = np.minimum(pu, pv) + A * smin + cmin
+        # bound 2, chord of H = G − c (H'' = −g − Aω² sin ≤ −g − Aω² smin) plus c ≥ cmin
+        hmax = np.maximum(-g - A * w * w * smin, 0.0)
+        lb = np.maximum(lb, np.minimum(gu - cu, gv - cv) - hmax * h * h / 8 + cmin)
+        # bounds 3, 4: Taylor from either end with −G'' ≤ K = g + Aω² smax − vₓ² c''(min |d|)
+        dmin = np.where(du * dv <= 0, 0.0, np.minimum(np.abs(du), np.abs(dv)))
+        with np.errstate(invalid="ignore"):
+            arc = np.where(vx[fi] != 0.0, vx[fi] ** 2 * fl.curvature(dmin), 0.0) if not fl.flat else 0.0
+        K = np.maximum(g + A * w * w * smax - arc, 0.0)
+        with np.errstate(invalid="ignore"):
+            t_u = np.minimum(gu, gu + dgap(fi, u, du) * h - 0.5 * K * h * h)
+            t_v = np.minimum(gv, gv - dgap(fi, v, dv) * h - 0.5 * K * h * h)
+        lb = np.fmax(lb, np.fmax(t_u, t_v))
+        tol = base[fi] + fl.height_error(np.maximum(np.abs(du), np.abs(dv)), dx[fi]) \
+            + np.where(v >= tau[fi] - dtau[fi], end_tol[fi], 0.0)
+        bad = (np.minimum(gu, gv) < -tol)
+        below[fi[bad]] = True
+        done = lb >= -tol
+        tiny = ~done & (h <= 1e-15 * (1.0 + v))
+        uncert[fi[tiny]] = True
+        split = ~done & ~tiny & ~bad
+        fi = np.concatenate([fi[split], fi[split]])
+        u, v = np.concatenate([u[split], mid[split]]), np.concatenate([mid[split], v[split]])
+    else:
+        uncert[fi] = True
+    rep.flag("below", below, index, -low, np.zeros(n))
+    rep.flag("uncertified", uncert & ~below, index, np.zeros(n), np.zeros(n))
+
+
+def check_run(run, particles=None, last: int | None = None) -> Report:
+    """Check the recorded events of ``particles`` (all by default) of a bbb.SimRun made with
+    ``record_liftoffs=True``; ``last``: only each particle's last that many events."""
+    if not run.liftoffs:
+        raise ValueError("the trajectory checker needs simulate(..., record_liftoffs=True)")
+    rep = Report()
+    for i in range(run.n_particles) if particles is None else particles:
+        ev = run.collisions_dense[i, : run.n_recorded[i]]
+        if last is not None:
+            ev = ev[-last:]
+        rep.add(check_particle(run.params, run.numerics, ev))
+    return rep
