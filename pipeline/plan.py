@@ -30,7 +30,8 @@ The cost model, and where each number comes from:
   1/sqrt(N), reaches ``d_resolved`` sooner (D = 0 from rest in the creeping regime is
   resolved by the first wave) or the pilot's relative spread is more than twice the law's
   (mixed creeping/bouncing frequencies, where the law was not measured); rounded up to
-  waves of 1, 1, 2, 4, ... chunks and capped at ``max_particles``.
+  whole chunks (the wave rule of pipeline/adaptive.py ends there when the law holds) and
+  capped at ``max_particles``.  The wall time ignores the waits between waves.
 
 The pure part (``predict``, ``plan_table``) takes a workflow and a :class:`Rates` table;
 ``pilot_rates`` measures one.
@@ -190,31 +191,31 @@ def particles_needed(study: Study, cell: Cell) -> tuple[int, str]:
     """(particles, why) one (frequency, family) is expected to end with.
 
     Fixed-N scene: (n_particles, "fixed").  Target-driven (``accuracy.target_ci``): the
-    particles the 1/sqrt(N) law asks for, in waves of 1, 1, 2, 4, ... chunks (cumulative 1,
-    2, 4, 8, ...), capped at ``max_particles``; ``why`` says which rule decided.
+    chunks the 1/sqrt(N) law asks for -- the wave rule of pipeline/adaptive.py doubles until
+    that number is in reach, then goes to it, so with an exact law it ends there -- capped at
+    ``max_particles`` (default n_particles); ``why`` says which rule decided.
     """
     acc = study.accuracy
     target = getattr(acc, "target_ci", None)
     if target is None:
         return acc.n_particles, "fixed"
     d_resolved = getattr(acc, "d_resolved", None)
-    cap = getattr(acc, "max_particles", None)
+    cap = getattr(acc, "max_particles", None) or acc.n_particles
     k, why = CI_LAW, "target"
     if cell.D > 0 and math.isfinite(cell.D_hw):
         k_pilot = cell.D_hw / cell.D * math.sqrt(cell.n)
         if k_pilot > 2 * CI_LAW:  # far outside the measured law: trust the pilot's spread
             k, why = k_pilot, "law?"
-    need = (k / target) ** 2
+    need = (k / target) ** 2 if cell.D > 0 or not math.isfinite(cell.D) else math.inf
     if d_resolved is not None and math.isfinite(cell.D_hw):
         need_abs = (cell.D_hw * math.sqrt(cell.n) / d_resolved) ** 2
         if need_abs <= need:
             need, why = need_abs, "resolved"
-    chunks = 1
-    while chunks * acc.chunk_size < need:
-        chunks *= 2
-    if cap is not None and chunks * acc.chunk_size > cap:
-        chunks, why = max(1, cap // acc.chunk_size), "cap"
-    return chunks * acc.chunk_size, why
+    cap_chunks = max(1, cap // acc.chunk_size)
+    chunks = max(1, math.ceil(need / acc.chunk_size)) if math.isfinite(need) else math.inf
+    if chunks > cap_chunks:
+        chunks, why = cap_chunks, "cap"
+    return int(chunks) * acc.chunk_size, why
 
 
 def makespan(durations: list[float], workers: int) -> float:

@@ -110,11 +110,18 @@ def _cell(D, hw_rel):
 
 
 def test_target_driven_particles_follow_the_one_over_sqrt_n_law():
-    """3 % needs (1.6 / 0.03)^2 = 2844 particles: 6 chunks of 512, rounded up to the wave
-    total 8 chunks = 4096; 10 % needs 256: the first wave."""
+    """3 % needs (1.6 / 0.03)^2 = 2844 particles: 6 chunks of 512 = 3072; 10 % needs 256:
+    one chunk."""
     law = _cell(300.0, 1.6 / math.sqrt(8))
-    assert particles_needed(_target_study(0.03), law) == (4096, "target")
+    assert particles_needed(_target_study(0.03), law) == (3072, "target")
     assert particles_needed(_target_study(0.10), law) == (512, "target")
+
+
+def test_target_driven_particles_take_the_pilots_spread_far_outside_the_law():
+    """A pilot spread 4x the law's (mixed creeping/bouncing): 16x the particles, 10 % then
+    needs 4096 = 8 chunks."""
+    assert particles_needed(_target_study(0.10), _cell(300.0, 4 * 1.6 / math.sqrt(8))) == (
+        4096, "law?")
 
 
 def test_target_driven_zero_is_resolved_by_the_first_wave():
@@ -124,9 +131,11 @@ def test_target_driven_zero_is_resolved_by_the_first_wave():
 
 
 def test_target_driven_particles_stop_at_the_cap():
-    """1 % needs 25 600 particles; max_particles = 8192 stops at 16 chunks and says so."""
+    """1 % needs 25 600 particles; max_particles = 8192 stops at 16 chunks and says so;
+    without max_particles the cap is n_particles (4096)."""
     law = _cell(300.0, 1.6 / math.sqrt(8))
     assert particles_needed(_target_study(0.01, max_particles=8192), law) == (8192, "cap")
+    assert particles_needed(_target_study(0.01), law) == (4096, "cap")
 
 
 def test_fixed_n_scene_keeps_its_particles():
