@@ -244,8 +244,9 @@ def predict(study: Study, rates: Rates, workers: int, overheads: Overheads = Ove
     target = getattr(acc, "target_ci", None)
     size = (f"target_ci {target:g} (chunks of {acc.chunk_size})" if target is not None else
             f"{acc.n_particles} particles in chunks of {acc.chunk_size}")
+    fams = "family" if len(study.families) == 1 else "families"
     header = (f"{study.name}: {len(study.frequencies)} frequencies x {len(study.families)} "
-              f"families, accuracy {acc.preset}: {size}, t_max {acc.t_max:g} s")
+              f"{fams}, accuracy {acc.preset}: {size}, t_max {acc.t_max:g} s")
     return Plan(study.name, tuple(rows), workers, r, overheads, makespan(durations, workers),
                 max(durations, default=0.0), rates.source, header, acc.t_max)
 
