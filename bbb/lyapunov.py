@@ -39,7 +39,7 @@ from .params import Params
 from .simulate import simulate
 from .surface import cell_of, depth
 
-__all__ = ["Lyapunov", "flat_floor_tangent_exponent", "lyapunov"]
+__all__ = ["Lyapunov", "flat_floor_jacobian", "flat_floor_tangent_exponent", "lyapunov"]
 
 _FLOAT = NDArray[np.float64]
 # collisions kept per particle and period; a particle with more is re-run from its last one
@@ -149,29 +149,36 @@ def flat_floor_tangent_exponent(rows: _FLOAT, params: Params) -> tuple[float, fl
         dv_{n+1} = [(1+α) a_{n+1} + αg] dt_{n+1} − αg dt_n − α dv_n.
     Returns (λ per unit time 1/s, λ per collision), in the metric (ω t, v ω/g).
     """
-    g, A, w, alpha = params.g, params.A, params.omega, params.alpha
+    g = params.g
     t = rows[:, 0]
     s = rows[:, 5] / params.f  # floor time within the period
     v = rows[:, 4]
     vec = np.array([1.0, 1.0]) / math.sqrt(2.0)
+    # in the metric (ω t, v ω/g): J' = diag(ω, ω/g) J diag(1/ω, g/ω)
+    metric = np.array([[1.0, g], [1.0 / g, 1.0]])
     total = 0.0
     for n in range(rows.shape[0] - 1):
-        tau = t[n + 1] - t[n]
-        u0 = -A * w * math.cos(w * s[n])
-        u1 = -A * w * math.cos(w * s[n + 1])
-        a1 = A * w * w * math.sin(w * s[n + 1])
-        vm = v[n] - g * tau
-        dt_dt = (vm - u0) / (vm - u1)
-        dt_dv = -tau / (vm - u1)
-        c = (1 + alpha) * a1 + alpha * g
-        # in the metric (ω t, v ω/g): J' = diag(ω, ω/g) J diag(1/ω, g/ω)
-        J = np.array([[dt_dt, g * dt_dv], [(c * dt_dt - alpha * g) / g, c * dt_dv - alpha]])
-        vec = J @ vec
+        vec = (flat_floor_jacobian(t[n + 1] - t[n], v[n], s[n], s[n + 1], params) * metric) @ vec
         size = float(np.hypot(vec[0], vec[1]))
         total += math.log(size)
         vec /= size
-    n_maps = rows.shape[0] - 1
-    return total / (t[-1] - t[0]), total / n_maps
+    return total / (t[-1] - t[0]), total / (rows.shape[0] - 1)
+
+
+def flat_floor_jacobian(tau: float, v: float, s0: float, s1: float, p: Params) -> _FLOAT:
+    """∂(t_{n+1}, v_{n+1})/∂(t_n, v_n) of the exact flat-floor map (formulas above).
+
+    tau -- flight time (s); v -- launch velocity v_n (mm/s); s0, s1 -- floor times (s) of
+    the launch and of the next impact."""
+    g, A, w, alpha = p.g, p.A, p.omega, p.alpha
+    u0 = -A * w * math.cos(w * s0)
+    u1 = -A * w * math.cos(w * s1)
+    a1 = A * w * w * math.sin(w * s1)
+    vm = v - g * tau
+    dt_dt = (vm - u0) / (vm - u1)
+    dt_dv = -tau / (vm - u1)
+    c = (1 + alpha) * a1 + alpha * g
+    return np.array([[dt_dt, dt_dv], [c * dt_dt - alpha * g, c * dt_dv - alpha]])
 
 
 # ---- one period of the pair ensemble -----------------------------------------------------

@@ -12,6 +12,7 @@ from __future__ import annotations
 import argparse
 import datetime
 import math
+import os
 import platform
 import time
 
@@ -28,6 +29,17 @@ DISCARD = 0.1
 ROWS = 4000
 
 
+def cpu_name() -> str:
+    try:
+        with open("/proc/cpuinfo") as fh:
+            for line in fh:
+                if line.startswith("model name"):
+                    return line.split(":", 1)[1].strip()
+    except OSError:
+        pass
+    return platform.processor() or platform.machine()
+
+
 def ci(v: float, lo: float, hi: float) -> str:
     return f"{v:8.2f} [{lo:.2f}, {hi:.2f}]"
 
@@ -39,8 +51,9 @@ def main() -> None:
     ap.add_argument("--f", default="54,58,60,62,80")
     args = ap.parse_args()
     freqs = [float(f) for f in args.f.split(",")]
-    print(f"# bbb mechanisms, {datetime.date.today()}, {platform.machine()} "
-          f"{platform.processor() or ''}, python {platform.python_version()}")
+    print(f"# bbb mechanisms  {datetime.date.today()}")
+    print(f"# CPU: {cpu_name()} ({os.cpu_count()} cores)  python {platform.python_version()}  "
+          f"numpy {np.__version__}")
     print(f"# klages2004, rest, seed {SEED}, {args.particles} particles x {args.t_max:g} s, "
           f"transient {DISCARD:.0%}; D in mm²/s with 95 % bootstrap CIs over particles")
     for f in freqs:

@@ -8,7 +8,7 @@ import pytest
 
 from bbb import Params, simulate
 from bbb.ensemble import InitialState
-from bbb.lyapunov import flat_floor_tangent_exponent, lyapunov
+from bbb.lyapunov import flat_floor_jacobian, flat_floor_tangent_exponent, lyapunov
 
 ALPHA = 0.7
 A, G = 0.1, 9800.0
@@ -80,6 +80,53 @@ def test_benettin_agrees_with_the_exact_tangent_map_on_a_chaotic_flat_floor():
     se = math.hypot(tangent.std(ddof=1), ben.lam_i.std(ddof=1)) / math.sqrt(n)
     assert tangent.mean() > 20  # chaotic: a positive exponent, not a stable orbit
     assert abs(tangent.mean() - ben.lam) <= 3 * se
+
+
+def exact_flat_map(t0: float, v0: float, p: Params) -> tuple[float, float]:
+    """Next impact time and launch velocity of the flat-floor map, by scanning the flight
+    gap on a fine grid and bisecting its first sign change (independent of the kernel)."""
+    w, A, g = p.omega, p.A, p.g
+
+    def gap(tau):
+        return -A * math.sin(w * t0) + v0 * tau - 0.5 * g * tau * tau + A * np.sin(w * (t0 + tau))
+
+    taus = np.linspace(1e-6, 2 * (v0 + A * w) / g + 1e-3, 200001)
+    k = int(np.argmax(gap(taus) <= 0))
+    a, b = taus[k - 1], taus[k]
+    for _ in range(200):
+        m = 0.5 * (a + b)
+        a, b = (m, b) if gap(m) > 0 else (a, m)
+    tau = 0.5 * (a + b)
+    u1 = -A * w * math.cos(w * (t0 + tau))
+    return t0 + tau, (1 + p.alpha) * u1 - p.alpha * (v0 - g * tau)
+
+
+@pytest.mark.parametrize(("t0", "v0"), [(0.003, 150.0), (0.011, 90.0), (0.017, 300.0)])
+def test_flat_floor_jacobian_equals_finite_differences_of_the_exact_map(t0, v0):
+    p = flat(2.0, alpha=0.8)
+    t1, v1 = exact_flat_map(t0, v0, p)
+    J = flat_floor_jacobian(t1 - t0, v0, t0, t1, p)
+    ht, hv = 1e-7, 1e-4
+    fd = np.empty((2, 2))
+    fd[:, 0] = (np.subtract(exact_flat_map(t0 + ht, v0, p), exact_flat_map(t0 - ht, v0, p))) / (2 * ht)
+    fd[:, 1] = (np.subtract(exact_flat_map(t0, v0 + hv, p), exact_flat_map(t0, v0 - hv, p))) / (2 * hv)
+    np.testing.assert_allclose(J, fd, rtol=1e-5, atol=1e-9)
+
+
+def test_flat_floor_tangent_map_conserves_area_when_elastic_on_a_motionless_floor():
+    # α = β = 1, A = 0: a Hamiltonian bounce; det J = 1 per collision in (t, v)
+    p = Params(g=G, A=0.0, f=50.0, R=math.inf, S=2.0, alpha=1.0, beta=1.0)
+    st = InitialState(np.zeros(3, np.int64), np.zeros(3), np.array([0.5, 1.0, 3.0]), np.zeros(3),
+                      np.array([0.0, 40.0, -20.0]), np.array([0.0, 0.005, 0.013]),
+                      np.zeros(3, bool), np.zeros(3, bool))
+    run = simulate(p, 3, 2.0, 0, st, record_collisions=100)
+    for i in range(3):
+        rows = run.collisions_dense[i, : run.n_recorded[i]]
+        dets = [np.linalg.det(flat_floor_jacobian(rows[n + 1, 0] - rows[n, 0], rows[n, 4],
+                                                  rows[n, 5] / p.f, rows[n + 1, 5] / p.f, p))
+                for n in range(rows.shape[0] - 1)]
+        assert len(dets) > 10
+        np.testing.assert_allclose(dets, 1.0, atol=1e-10)
 
 
 def mirrored(st: InitialState) -> InitialState:
