@@ -53,7 +53,9 @@ class Lyapunov:
     lam, lam_lo, lam_hi        -- λ per unit time, 1/s (mean over non-collapsed particles)
     per_coll, per_coll_lo, per_coll_hi -- λ per collision (dimensionless)
     lam_i, per_coll_i          -- per particle (−inf where the separation collapsed)
-    n_collapsed                -- particles whose separation became exactly 0
+    n_collapsed                -- particles whose separation became exactly 0 at any period
+                                  (their companion is then restarted along ``direction``,
+                                  but their λ stays −inf)
     collisions                 -- per particle, collisions of the primary after the transient
     duration                   -- time over which λ was averaged, s
     """
@@ -108,7 +110,7 @@ def lyapunov(
         prim = _as_arrays(initial_state(params, n_particles, np.random.SeedSequence(seed), initial))
     n = prim["cell"].size
     scale = _scales(params)
-    sec = _displace(params, prim, np.tile(u, (n, 1)), d0, scale, numerics)
+    sec = _displace(params, prim, np.tile(u, (n, 1)), d0, scale)
     n_skip = int(math.ceil(discard * n_periods - 1e-9))
     log_sum = np.zeros(n)
     collisions = np.zeros(n, np.int64)
@@ -127,7 +129,7 @@ def lyapunov(
             log_sum[ok] += np.log(size[ok] / before[ok])
             collisions += coll[:n]
         unit = np.where(size[:, None] > 0, delta / np.where(size > 0, size, 1.0)[:, None], u)
-        sec = _displace(params, prim, unit, d0, scale, numerics)
+        sec = _displace(params, prim, unit, d0, scale)
     duration = (n_periods - n_skip) * period
     lam_i = np.where(collapsed, -np.inf, log_sum / duration)
     per_coll_i = np.where(collapsed, -np.inf, log_sum / np.maximum(collisions, 1))
@@ -212,7 +214,7 @@ def _surface(p: Params, d: _FLOAT, s: _FLOAT) -> _FLOAT:
 
 
 def _displace(p: Params, prim: dict[str, np.ndarray], unit: _FLOAT, d0: float,
-              scale: _FLOAT, numerics: Numerics) -> dict[str, np.ndarray]:
+              scale: _FLOAT) -> dict[str, np.ndarray]:
     """The companion: the primary moved by d0 along ``unit`` (units L, L, V, V).
 
     A companion that would start below the surface is moved the other way; if that is below

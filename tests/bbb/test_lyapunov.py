@@ -147,3 +147,13 @@ def test_a_trajectory_and_its_mirror_image_give_the_same_exponent():
     # the kernel treats d and −d alike to the last bit (|d|, copysign, symmetric cell
     # rounding), so the mirror ensemble is the same computation: equal exactly, measured
     np.testing.assert_array_equal(b.lam_i, a.lam_i)
+
+
+def test_a_separation_that_sticking_collapses_to_zero_is_counted_and_left_out():
+    # flat floor, Γ = 0.4 < Γ1: a dropped ball chatters down and sticks for good; a vertical
+    # separation dies with it (both copies stuck at the same x), so λ = −inf for each
+    p = flat(0.4)
+    res = lyapunov(p, 4, 200 / p.f, 2, "dropped", direction=VERTICAL, n_resamples=10)
+    assert res.n_collapsed == 4
+    assert np.all(res.lam_i == -np.inf)
+    assert math.isnan(res.lam)
