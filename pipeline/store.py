@@ -293,6 +293,7 @@ class StudyStore:
             if dims and dims[0] == "frequency" and arr.shape[0] != F:
                 arr.resize((F, *arr.shape[1:]))
         old = len(self.study.frequencies)
+        g = zarr.open_group(self.path, mode="r+", use_consolidated=False)  # the new shapes
         g["frequency"][old:] = np.asarray(study.frequencies[old:], dtype=np.float64)
         g["refined"][old:] = True
         g.attrs.update({"workflow": _json_attr(study.to_dict())})
