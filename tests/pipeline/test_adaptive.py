@@ -108,15 +108,17 @@ def test_an_existing_scheduler_gives_the_same_adaptive_store(scene, two_workers,
 
 
 def test_a_run_failing_mid_wave_resumes_to_the_same_store(scene, two_workers, tmp_path):
-    """60 Hz rest needs 8 chunks (waves 1, 2, 4, 8): its chunk 2 is in the third wave.  The
-    failed run leaves it open; the re-run replays the decisions from the done chunks."""
+    """72 Hz launched needs 6 chunks (waves 1, 2, 4, 6): its chunk 3 fails in the third wave,
+    so 3 of its chunks are done, not a wave boundary.  The failed run leaves it open; the
+    re-run replays the decisions from the first chunks (a resume that decided from the 3 done
+    chunks instead ends with another number of chunks: the store differs)."""
     study = parse_workflow(SCENE, str(scene))
     store = tmp_path / "failed.zarr"
-    with pytest.raises(RunFailed, match="f = 60 Hz, family rest, chunk 2"):
-        run_study(study, store, workers=2, fail_chunks="60:rest:2", **QUIET)
+    with pytest.raises(RunFailed, match="f = 72 Hz, family launched, chunk 3"):
+        run_study(study, store, workers=2, fail_chunks="72:launched:3", **QUIET)
     done = StudyStore.open(store).done()
-    assert done[1, 0, :2].all() and not done[1, 0, 2]  # it did fail inside a later wave
-    assert _stops(store)[1][1, 0] == OPEN
+    assert done[2, 1, :2].all() and not done[2, 1, 3]  # it did fail inside a later wave
+    assert _stops(store)[1][2, 1] == OPEN
     run_study(study, store, workers=2, **QUIET)
     assert_same_store(store, two_workers)
 
