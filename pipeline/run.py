@@ -370,9 +370,9 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
             try:
                 res: ChunkResult = fut.result()
             except Exception as e:
-                client.cancel(list(futures))
                 _failed(fut, study, study.f_mhz.index(round(f * 1000)),
-                        [m.name for m in study.families].index(fam), ci, e)
+                        [m.name for m in study.families].index(fam), ci, e,
+                        lambda: client.cancel(list(futures)))
             report.computed.append(res.key)
             report.collisions += res.collisions
             report.task_seconds += res.seconds
@@ -382,11 +382,14 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
         bar.close()
 
 
-def _failed(fut, study: Study, fi: int, mi: int, ci: int, e: Exception):
-    """Raise RunFailed naming the chunk of a failed task, its cause and where it was raised."""
+def _failed(fut, study: Study, fi: int, mi: int, ci: int, e: Exception, cancel) -> None:
+    """Cancel the other tasks (``cancel()``) and raise RunFailed naming the chunk of a failed
+    task, its cause and where it was raised (read first: cancelling drops the traceback)."""
+    where = _where(fut)
+    cancel()
     f, fam = study.frequencies[fi], study.families[mi].name
     raise RunFailed(f"chunk f = {f:g} Hz, family {fam}, chunk {ci} failed: "
-                    f"{type(e).__name__}: {e}{_where(fut)}") from e
+                    f"{type(e).__name__}: {e}{where}") from e
 
 
 def _where(fut) -> str:

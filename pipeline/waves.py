@@ -202,8 +202,8 @@ class Waves:
                     try:
                         res = fut.result()
                     except Exception as e:
-                        client.cancel(list(pending))
-                        on_failure(fut, self.store.study, fi, mi, ci, e)
+                        on_failure(fut, self.store.study, fi, mi, ci, e,
+                                   lambda: client.cancel(list(pending)))
                     report.computed.append(res.key)
                     report.collisions += res.collisions
                     report.task_seconds += res.seconds
