@@ -274,11 +274,11 @@ def _store_with_analysis_of(path: str, workflow: str):
     refuse = (f"{workflow}: simulation settings differ from the store {store.path} "
               "({}); allowed: a workflow that differs from the store's only in [analysis] "
               "and accuracy.n_resamples")
-    extra = sorted(set(old.f_mhz) - set(new.f_mhz))
+    extra = sorted({round(f * 1000) for f in old.base_frequencies} - set(new.f_mhz))
     if extra:
         raise UsageError(refuse.format(f"frequencies: store has {extra[0] / 1000:g} Hz, "
                                        "the workflow does not"))
-    new_here = new.with_frequencies(old.frequencies)  # a store of a --frequencies subset
+    new_here = new.with_frequencies(old.base_frequencies)  # a store of a --frequencies subset
     if new_here.fingerprint() != old.fingerprint():
         raise UsageError(refuse.format(_difference(old, new_here)))
     acc = replace(old.accuracy, n_resamples=new.accuracy.n_resamples)
@@ -349,11 +349,23 @@ def _status_text(store) -> str:
              f"{study.accuracy.n_chunks} chunks of {study.accuracy.chunk_size} particles)"]
     names = [fam.name for fam in study.families]
     width = max(len(n) for n in names)
+    stops = store.stops()  # target_ci: chunks used and why each (f, family) stopped
+    if stops is not None:
+        from .adaptive import STOP_LEGEND
+
+        width = max(width, 22)
+        lines[0] += f"; target CI half-width {study.accuracy.target_ci:g} of D"
+    refined = {round(f * 1000) for f in study.refined}
     lines.append("f (Hz)    " + "  ".join(n.rjust(max(width, 5)) for n in names))
     for fi, f in enumerate(study.frequencies):
-        cells = [f"{int(done[fi, mi].sum())}/{done.shape[2]}".rjust(max(width, 5))
-                 for mi in range(len(names))]
-        lines.append(f"{f:<9g} " + "  ".join(cells))
+        cells = [f"{int(done[fi, mi].sum())}/{done.shape[2]}" for mi in range(len(names))]
+        if stops is not None:
+            cells = [c + f" {STOP_LEGEND[int(stops[1][fi, mi])]}" for mi, c in enumerate(cells)]
+        mark = "*" if round(f * 1000) in refined else " "
+        lines.append(f"{f:<8g}{mark} " + "  ".join(c.rjust(max(width, 5)) for c in cells))
+    if refined:
+        lines.append(f"* added by refinement ({len(refined)} frequencies, to "
+                     f"{study.refine.to:g} Hz)")
     return "\n".join(lines)
 
 
