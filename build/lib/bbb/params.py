@@ -1,0 +1,100 @@
+"""Physical parameters of the bouncing ball billiard, validated on construction.
+
+Units are the paper's reduced units: lengths in mm, times in s, so g = 9800 mm/s².
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass, fields, replace
+
+__all__ = ["Params", "PRESETS"]
+
+# The paper prints A = 0.01; with g = 9800 that gives Γ < 0.41 for f ≤ 100 Hz and
+# nothing ever lifts off.  A = 0.1 puts Γ = 1 at f ≈ 49.8 Hz, where the paper sees
+# the onset of diffusion (see DESIGN.md, "Units and the amplitude").
+PRESETS: dict[str, dict[str, float]] = {
+    "klages2004": dict(g=9800.0, A=0.1, R=15.0, S=2.0, alpha=0.7, beta=0.99),
+    "matyas2004": dict(g=9800.0, A=0.1, R=25.0, S=2.0, alpha=0.5, beta=0.99),
+}
+
+
+@dataclass(frozen=True)
+class Params:
+    """One bouncing-ball-billiard configuration.
+
+    g     -- gravitational acceleration, mm/s² (> 0)
+    A     -- floor amplitude, mm (≥ 0); floor height y_f(t) = -A sin(2π f t)
+    f     -- floor frequency, Hz (> 0)
+    R     -- scatterer (arc) radius, mm (≥ S/2; ``inf`` is a flat floor)
+    S     -- distance between scatterer centres, mm (> 0)
+    alpha -- normal restitution coefficient, Eq. (5) (0 < alpha ≤ 1)
+    beta  -- tangential restitution coefficient, Eq. (6) (0 ≤ beta ≤ 1)
+    """
+
+    g: float
+    A: float
+    f: float
+    R: float
+    S: float
+    alpha: float
+    beta: float
+
+    def __post_init__(self) -> None:
+        for fl in fields(self):
+            value = getattr(self, fl.name)
+            if isinstance(value, bool) or not isinstance(value, (int, float)):
+                raise ValueError(f"Params.{fl.name} must be a real number, got {value!r}")
+            object.__setattr__(self, fl.name, float(value))
+            if math.isnan(value) or (math.isinf(value) and fl.name != "R"):
+                raise ValueError(f"Params.{fl.name} = {value!r} must be finite")
+        _check("g", self.g, self.g > 0, "g > 0")
+        _check("A", self.A, self.A >= 0, "A ≥ 0")
+        _check("f", self.f, self.f > 0, "f > 0")
+        _check("S", self.S, self.S > 0, "S > 0")
+        _check("R", self.R, self.R >= self.S / 2,
+               f"R ≥ S/2 = {self.S / 2:g} (arcs must close the floor), or inf")
+        _check("alpha", self.alpha, 0 < self.alpha <= 1, "0 < alpha ≤ 1")
+        _check("beta", self.beta, 0 <= self.beta <= 1, "0 ≤ beta ≤ 1")
+
+    @classmethod
+    def preset(cls, name: str, **overrides: float) -> Params:
+        """A named parameter set (``klages2004``, ``matyas2004``) with ``f`` and any overrides."""
+        if name not in PRESETS:
+            raise ValueError(f"unknown preset {name!r}; allowed: {', '.join(sorted(PRESETS))}")
+        values = dict(PRESETS[name])
+        unknown = set(overrides) - {fl.name for fl in fields(cls)}
+        if unknown:
+            raise ValueError(
+                f"unknown Params field(s) {sorted(unknown)}; allowed: g, A, f, R, S, alpha, beta"
+            )
+        values.update(overrides)
+        if "f" not in values:
+            raise ValueError("Params.f (floor frequency, Hz) must be given, e.g. preset(name, f=60.0)")
+        return cls(**values)
+
+    def with_(self, **changes: float) -> Params:
+        """A copy with some fields changed (validated again)."""
+        return replace(self, **changes)
+
+    @property
+    def omega(self) -> float:
+        """Angular frequency 2πf, 1/s."""
+        return 2.0 * math.pi * self.f
+
+    @property
+    def gamma(self) -> float:
+        """Dimensionless peak floor acceleration Γ = A(2πf)²/g."""
+        return self.A * self.omega**2 / self.g
+
+    @property
+    def flat(self) -> bool:
+        return math.isinf(self.R)
+
+    def as_dict(self) -> dict[str, float]:
+        return asdict(self)
+
+
+def _check(name: str, value: float, ok: bool, allowed: str) -> None:
+    if not ok:
+        raise ValueError(f"Params.{name} = {value!r} is out of range; allowed: {allowed}")

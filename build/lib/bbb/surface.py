@@ -1,0 +1,121 @@
+"""The vibrating corrugated floor: height, slope, curvature and normal of the arcs.
+
+The floor moves rigidly with y_f(t) = -A sin(2π f t) (mm).  Arcs of radius R (mm) are
+centred at x = kS with their tops at y_f; a point at offset d = x - kS (|d| ≤ S/2)
+lies c(d) = R - sqrt(R² - d²) below the top.  Cusps (valleys) sit at x = (k + 1/2) S.
+``R = inf`` is a flat floor (c ≡ 0).  All jitted functions take time as the offset
+``s`` (s) within the current floor period, never a huge absolute time.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from numba import njit
+
+from .params import Params
+
+__all__ = ["depth", "floor_height", "surface_height", "surface_normal", "cell_of"]
+
+
+@njit(cache=True, inline="always")
+def floor_y(s, A, w):
+    # Sec. 2: y_f = -A sin(2πft)
+    return -A * math.sin(w * s)
+
+
+@njit(cache=True, inline="always")
+def floor_v(s, A, w):
+    return -A * w * math.cos(w * s)
+
+
+@njit(cache=True, inline="always")
+def floor_a(s, A, w):
+    return A * w * w * math.sin(w * s)
+
+
+@njit(cache=True, inline="always")
+def root_r2_d2(d, R):
+    # (R-|d|)(R+|d|) instead of R²-d²: exact to rounding at the cusps when R = S/2
+    ad = abs(d)
+    return math.sqrt(max(0.0, (R - ad) * (R + ad)))
+
+
+@njit(cache=True, inline="always")
+def arc_depth(d, R):
+    # Fig. 1 geometry: R - sqrt(R²-d²) written as d²/(R+sqrt(R²-d²)), free of cancellation
+    if math.isinf(R):
+        return 0.0
+    return d * d / (R + root_r2_d2(d, R))
+
+
+@njit(cache=True, inline="always")
+def arc_slope(d, R):
+    # dc/dd; infinite at a vertical cusp (R = S/2, |d| = R)
+    if math.isinf(R):
+        return 0.0
+    q = root_r2_d2(d, R)
+    if q == 0.0:
+        return math.copysign(math.inf, d)
+    return d / q
+
+
+@njit(cache=True, inline="always")
+def arc_curvature(d, R):
+    # d²c/dd² = R²/(R²-d²)^(3/2), increasing in |d|
+    if math.isinf(R):
+        return 0.0
+    q = root_r2_d2(d, R)
+    if q == 0.0:
+        return math.inf
+    return R * R / (q * q * q)
+
+
+@njit(cache=True, inline="always")
+def arc_normal(d, R):
+    # outward unit normal of the arc at offset d (Fig. 1's v_perp direction)
+    if math.isinf(R):
+        return 0.0, 1.0
+    return d / R, root_r2_d2(d, R) / R
+
+
+# ---- thin numpy wrappers for analysis, plots and tests --------------------------------
+
+
+def cell_of(x: np.ndarray | float, S: float) -> tuple[np.ndarray, np.ndarray]:
+    """Cell index k (nearest arc centre kS) and offset d = x - kS in [-S/2, S/2), mm."""
+    x = np.asarray(x, dtype=np.float64)
+    k = np.floor(x / S + 0.5)
+    return k.astype(np.int64), x - k * S
+
+
+def depth(d: np.ndarray | float, R: float) -> np.ndarray:
+    """Depth c(d) (mm) of the arc below its top at offset d (mm) from its centre."""
+    d = np.asarray(d, dtype=np.float64)
+    if math.isinf(R):
+        return np.zeros_like(d)
+    q = np.sqrt(np.maximum(0.0, (R - np.abs(d)) * (R + np.abs(d))))
+    return d * d / (R + q)
+
+
+def floor_height(p: Params, t: np.ndarray | float) -> np.ndarray:
+    """Height y_f(t) (mm) of the arc tops at time t (s)."""
+    t = np.asarray(t, dtype=np.float64)
+    s = np.mod(t, 1.0 / p.f)
+    return -p.A * np.sin(p.omega * s)
+
+
+def surface_height(p: Params, x: np.ndarray | float, t: np.ndarray | float) -> np.ndarray:
+    """Height (mm) of the floor surface at position x (mm) and time t (s)."""
+    _, d = cell_of(x, p.S)
+    return floor_height(p, t) - depth(d, p.R)
+
+
+def surface_normal(p: Params, x: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+    """Outward unit normal (n_x, n_y) of the arc under x (mm)."""
+    _, d = cell_of(x, p.S)
+    if p.flat:
+        return np.zeros_like(d), np.ones_like(d)
+    q = np.sqrt(np.maximum(0.0, (p.R - np.abs(d)) * (p.R + np.abs(d))))
+    return d / p.R, q / p.R

@@ -1,0 +1,156 @@
+"""Reduce a study store to tables: D(f) with bootstrap CIs, ergodicity verdicts, counters.
+
+``diffusion.parquet`` / ``diffusion.csv`` (stores with positions), one row per frequency:
+
+f            floor frequency, Hz
+Gamma        peak floor acceleration A (2 pi f)^2 / g
+D, D_lo, D_hi  D of all families pooled, mm^2/s, from the fit MSD(lag) = 2 D lag + c to the
+             time-and-ensemble averaged MSD (bbb.stats), with its bootstrap CI over particles
+D_last       the single-origin MSD(t_end) / (2 t_end), mm^2/s, over the whole run (paper Eq. 10)
+n_particles, n_moving  particles analysed (of done chunks), and those whose x ever changed
+t_max        simulated time, s
+fit_from, fit_to  lag range of the fit, s;  eb_lag: lag of EB, s
+EB           ergodicity-breaking parameter Var(δ²)/<δ²>² at eb_lag, all families pooled
+EB_threshold eb_tolerance x its value for Brownian motion at that lag and run length
+EB_decay     EB over the first half of the analysed run / EB over all of it (same lag, pooled):
+             ~2 for ergodic motion (EB ~ 1/T), ~1 for a population mixing different D
+EB_decay_threshold  the smallest passing EB_decay, halfway between 1 and the Brownian ratio
+ergodic      bbb.stats.ergodic_verdict: (a) the families' D agree within their CIs and (b) for
+             every family and the pool, EB <= EB_threshold or EB_decay >= EB_decay_threshold
+families_agree, eb_ok  the outcomes of (a) and (b) ((a) is true with a single family)
+D_<fam>, D_<fam>_lo, D_<fam>_hi, EB_<fam>, EB_decay_<fam>  the same per initial-condition family
+verdict      the verdict's reasons, '; '-joined
+
+``counters.parquet`` / ``counters.csv`` (every store), one row per (frequency, family):
+collisions, sticks, liftoffs (and any other bbb counter) per particle per second, and the
+summed simulation time of its chunks (s, from chunk_seconds).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import zlib
+from collections.abc import Callable
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .store import COUNTERS, StudyStore
+from .workflow import Study
+
+__all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir"]
+
+
+def default_out_dir(store_path: str, study: Study) -> str:
+    """Beside the store: ``runs/smoke.zarr`` -> ``runs/smoke``."""
+    if "://" in store_path:
+        return study.name
+    p = Path(store_path.rstrip("/"))
+    return str(p.with_suffix("") if p.suffix == ".zarr" else p.parent / f"{p.name}.tables")
+
+
+def reduce_store(store_path: str | os.PathLike, out_dir: str | os.PathLike | None = None,
+                 *, echo: Callable[[str], None] = print) -> dict[str, pd.DataFrame]:
+    """Write the tables of one store to ``out_dir`` (default: beside the store); returns them."""
+    store = StudyStore.open(store_path)
+    study = store.study
+    out = Path(out_dir if out_dir is not None else default_out_dir(store.path, study))
+    out.mkdir(parents=True, exist_ok=True)
+    done = store.done()
+    if not done.all():
+        echo(f"{study.name}: {int((~done).sum())} of {done.size} chunks not done; "
+             "reducing the done ones (re-run `bbb run` to finish)")
+    tables = {"counters": counters_table(store, done)}
+    if study.observables.positions:
+        tables["diffusion"] = diffusion_table(store, done)
+    for name, df in tables.items():
+        df.to_parquet(out / f"{name}.parquet", index=False)
+        df.to_csv(out / f"{name}.csv", index=False)
+    echo(f"{study.name}: wrote {', '.join(f'{n}.parquet/.csv' for n in tables)} to {out}")
+    return tables
+
+
+def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
+    """One row per frequency (columns in the module docstring)."""
+    from bbb import stats
+
+    study = store.study
+    an, acc = study.analysis, study.accuracy
+    times = study.sample_times()
+    T = an.duration(acc.t_max)
+    fit_from, fit_to, eb_lag = an.fit_from * T, an.fit_to * T, an.eb_lag * T
+    fit = dict(fit_from=fit_from, fit_to=fit_to, discard=an.discard)
+    rows = []
+    for fi, f in enumerate(study.frequencies):
+        fams = {}
+        for mi, fam in enumerate(study.families):
+            pos = store.read_done("positions", fi, mi, done[fi, mi])  # (particle, time)
+            if pos.shape[0] >= 2:
+                fams[fam.name] = pos
+        row: dict = {"f": f, "Gamma": study.params(f).gamma}
+        if not fams:
+            rows.append(row)
+            continue
+        x = np.concatenate(list(fams.values()))
+        seed = _reduce_seed(study, f)
+        est = stats.diffusion_coefficient(x, times, **fit)
+        ci = stats.bootstrap_D(x, times, n_resamples=acc.n_resamples, ci=an.ci, seed=seed,
+                               method=an.ci_method, **fit)
+        verdict = stats.ergodic_verdict(
+            fams, times, lag=eb_lag, tolerance=an.eb_tolerance, ci=an.ci,
+            n_resamples=acc.n_resamples, seed=int(seed.generate_state(1)[0]), **fit)
+        eb_pooled = verdict.eb.get("(pooled)", next(iter(verdict.eb.values())))
+        key = "(pooled)" if "(pooled)" in verdict.eb else next(iter(verdict.eb))
+        decay = _ratio(verdict.eb_half.get(key, math.nan), verdict.eb[key])
+        row.update(
+            D=ci.D, D_lo=ci.lo, D_hi=ci.hi, D_last=est.D_last, n_particles=x.shape[0],
+            n_moving=int(np.count_nonzero(np.ptp(x, axis=1) > 0)), t_max=acc.t_max,
+            fit_from=est.fit_from, fit_to=est.fit_to, eb_lag=verdict.lag, EB=eb_pooled,
+            EB_threshold=verdict.eb_threshold, EB_decay=decay,
+            EB_decay_threshold=verdict.eb_decay_threshold, ergodic=bool(verdict.ergodic),
+            families_agree=bool(verdict.agreement_ok), eb_ok=bool(verdict.eb_ok),
+        )
+        for name, d in verdict.D.items():
+            row.update({f"D_{name}": d.D, f"D_{name}_lo": d.lo, f"D_{name}_hi": d.hi,
+                        f"EB_{name}": verdict.eb.get(name, math.nan),
+                        f"EB_decay_{name}": _ratio(verdict.eb_half.get(name, math.nan),
+                                                   verdict.eb.get(name, math.nan))})
+        row["verdict"] = "; ".join(verdict.reasons)
+        rows.append(row)
+    df = pd.DataFrame(rows)
+    for col in ("ergodic", "families_agree", "eb_ok"):
+        if col in df:
+            df[col] = df[col].astype("boolean")
+    return df
+
+
+def counters_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
+    """One row per (frequency, family): counters per particle per second, task wall time."""
+    study = store.study
+    g = store.group()
+    seconds = np.asarray(g["chunk_seconds"][...])
+    rows = []
+    for fi, f in enumerate(study.frequencies):
+        for mi, fam in enumerate(study.families):
+            counts = {name: store.read_done(f"n_{name}", fi, mi, done[fi, mi])
+                      for name in COUNTERS}
+            n = len(counts[COUNTERS[0]])
+            row = {"f": f, "family": fam.name, "initial": fam.initial, "n_particles": n,
+                   "t_max": study.accuracy.t_max}
+            for name, arr in counts.items():
+                per = arr / study.accuracy.t_max
+                row[f"{name}_per_s"] = float(per.mean()) if n else math.nan
+            row["task_seconds"] = float(np.nansum(seconds[fi, mi][done[fi, mi]]))
+            rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def _ratio(a: float, b: float) -> float:
+    return a / b if b > 0 else math.nan  # EB = 0 (identical trajectories) or NaN (none move)
+
+
+def _reduce_seed(study: Study, f: float) -> np.random.SeedSequence:
+    # Keyed by value like the chunk seeds, and apart from them by the extra "reduce" key.
+    return np.random.SeedSequence(study.seed, spawn_key=(round(f * 1000), zlib.crc32(b"reduce")))

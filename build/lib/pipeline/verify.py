@@ -1,0 +1,394 @@
+"""``bbb verify STORE``: re-check a study store against its own workflow, chunk by chunk.
+
+What is checked (each failure is one :class:`Problem`, naming the array and, for data, the
+frequency, family and chunk):
+
+- root attributes: every attribute `bbb run` writes is there; the stored workflow, as this
+  version of bbb reads it, gives the stored ``fingerprint`` (else `bbb run` would refuse to
+  resume the store); ``params`` are the workflow's stored resolved parameters, ``numerics``,
+  ``accuracy`` and ``seeding`` what its stored accuracy and the seeding rule give; the layout
+  version is known.  (The TOML source is not re-parsed: what a preset name means may change
+  between versions, the stored resolved workflow is what the data were made with);
+- layout: every array of the workflow's layout exists with its shape, chunks, dtype and
+  dimension names, coordinates hold the workflow's values, and there is no other array;
+- every chunk marked done (chunks not done are not data yet: a re-run recomputes them):
+  ``positions`` finite, starting inside the first cell (|x(0)| <= S/2, mm);
+  ``n_recorded`` within [0, record]; ``collisions`` finite in the first ``n_recorded`` rows and
+  NaN after them; each recorded collision at record_from <= t <= t_max (s), floor phase in
+  [0, 1], times non-decreasing, and on the floor surface y = -A sin(2 pi phase) - c(d) (mm)
+  of the stored parameters, within :data:`ON_SURFACE_MM`; counters >= 0,
+  n_recorded <= n_collisions, n_anomalies = 0 (bbb repairs no velocity in a sound run);
+  ``chunk_seconds`` finite and >= 0; and every chunk file of the chunk readable.
+
+Reading needs no lock: a done chunk is complete before its marker is written, so a store can
+be verified while a run is still filling it.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from collections.abc import Callable, Iterator
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+import numpy as np
+import zarr
+
+from bbb.params import Params
+from bbb.surface import cell_of, depth
+
+from .store import COUNTERS, LAYOUT_VERSION, SEEDING, StoreError, _create_layout, normalize_path
+from .store import package_version as _version
+from .workflow import Study
+
+__all__ = ["Problem", "VerifyReport", "verify_store", "ON_SURFACE_MM", "REQUIRED_ATTRS"]
+
+#: A recorded collision further than this from the floor surface is an inconsistency, mm.
+#: Rounding puts a sound collision within ~1e-9 mm of it (benchmarks/soak.py: none beyond
+#: that in 5e8 checked rows); the faults looked for here (a value written below the surface,
+#: a chunk of another run or of garbage) are orders of magnitude larger.
+ON_SURFACE_MM = 1e-6
+REQUIRED_ATTRS = ("workflow", "workflow_toml", "params", "numerics", "accuracy", "seeding",
+                  "bbb_version", "bbb_store_layout", "created", "fingerprint")
+_REPRODUCED = ("params", "numerics", "accuracy", "seeding")  # attrs re-derived from the workflow
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One inconsistency: ``where`` names the attribute or the array (and chunk)."""
+
+    where: str
+    what: str
+
+    def __str__(self) -> str:
+        return f"{self.where}: {self.what}"
+
+
+@dataclass
+class VerifyReport:
+    """The outcome of :func:`verify_store`: chunks done / checked and the problems found."""
+
+    path: str
+    name: str = "?"
+    n_chunks: int = 0
+    n_done: int = 0
+    chunks_checked: bool = False
+    problems: list[Problem] = field(default_factory=list)
+
+    @property
+    def ok(self) -> bool:
+        return not self.problems
+
+    def summary(self) -> str:
+        verdict = "OK" if self.ok else f"{len(self.problems)} inconsistencies"
+        if not self.chunks_checked:
+            return f"{self.name}: chunks not checked (workflow or layout unusable) in {self.path}: {verdict}"
+        return (f"{self.name}: verified {self.n_done} done of {self.n_chunks} chunks in "
+                f"{self.path}: {verdict}")
+
+
+def verify_store(path: str | os.PathLike) -> VerifyReport:
+    """Check the store at ``path`` (local path or fsspec URL); problems are returned, not raised.
+
+    Raises StoreError only when ``path`` holds no bbb study store at all (nothing to verify).
+    """
+    path = normalize_path(path)
+    report = VerifyReport(path)
+    try:
+        # the arrays' own metadata, not the consolidated copy in the root (checked apart)
+        g = zarr.open_group(path, mode="r", use_consolidated=False)
+    except (FileNotFoundError, zarr.errors.GroupNotFoundError, zarr.errors.NodeTypeValidationError):
+        raise StoreError(f"{path}: no such store; allowed: a store made by `bbb run`") from None
+    except Exception as e:  # e.g. a file, or an unreadable zarr.json, where the store should be
+        raise StoreError(f"{path}: cannot open ({type(e).__name__}: {e}); "
+                         "allowed: a store made by `bbb run`") from None
+    attrs = dict(g.attrs)
+    if "fingerprint" not in attrs and "workflow" not in attrs:
+        raise StoreError(f"{path}: not a (complete) bbb study store; "
+                         "allowed: a store made by `bbb run`")
+    study = _check_attrs(attrs, report.problems)
+    if study is None:  # without its workflow nothing else can be checked
+        return report
+    report.name = study.name
+    if _check_layout(g, study, report.problems):
+        _check_chunks(g, study, report, _stored_params(attrs, study))
+    _check_consolidated(path, g, report.problems)
+    return report
+
+
+# -- attributes ---------------------------------------------------------------------------------
+def _check_attrs(attrs: dict[str, Any], problems: list[Problem]) -> Study | None:
+    for key in REQUIRED_ATTRS:
+        if key not in attrs:
+            problems.append(Problem(f"attribute {key}", "missing"))
+    try:
+        study = Study.from_dict(attrs["workflow"], text=attrs.get("workflow_toml", ""))
+    except Exception as e:  # any malformed dict: KeyError, TypeError, ValueError, ...
+        problems.append(Problem("attribute workflow",
+                                f"not a readable workflow ({type(e).__name__}: {e})"))
+        return None
+    try:
+        fp = study.fingerprint()
+    except Exception as e:  # e.g. a parameter preset this version no longer has
+        problems.append(Problem("attribute workflow", f"not usable by bbb {_version()} "
+                                f"({type(e).__name__}: {e})"))
+        return None
+    if "fingerprint" in attrs and attrs["fingerprint"] != fp:
+        problems.append(Problem("attribute fingerprint", f"{_short(attrs['fingerprint'])} does "
+                                f"not match the stored workflow ({_short(fp)}): the attributes "
+                                "were altered, or the parameter presets changed since bbb "
+                                f"{attrs.get('bbb_version', '?')} made the store"))
+    resolved = attrs["workflow"].get("resolved_params", study.base_params)
+    expected = {
+        "params": resolved,
+        "numerics": study.accuracy.numerics().as_dict(),
+        "accuracy": asdict(study.accuracy),
+        "seeding": SEEDING,
+    }
+    for key in _REPRODUCED:
+        if key not in attrs:
+            continue
+        got, want = _json(attrs[key]), _json(expected[key])
+        if key == "accuracy" and isinstance(got, dict):
+            # the preset name and n_resamples do not determine the data; a later run may
+            # change n_resamples (recorded in `workflow` for `bbb reduce`)
+            got = {k: v for k, v in got.items() if k not in ("preset", "n_resamples")}
+            want = {k: v for k, v in want.items() if k not in ("preset", "n_resamples")}
+        if got != want:
+            problems.append(Problem(f"attribute {key}", f"{_diff(got, want)} (stored vs. the "
+                                    "stored workflow's)"))
+    layout = attrs.get("bbb_store_layout")
+    if "bbb_store_layout" in attrs and layout != LAYOUT_VERSION:
+        problems.append(Problem("attribute bbb_store_layout",
+                                f"{layout!r}; allowed: {LAYOUT_VERSION}"))
+    return study
+
+
+# -- layout ---------------------------------------------------------------------------------------
+def _check_layout(g: zarr.Group, study: Study, problems: list[Problem]) -> bool:
+    """Arrays as `bbb run` lays them out for this study; False if chunks cannot be checked."""
+    ref = zarr.open_group(zarr.storage.MemoryStore(), mode="w")
+    _create_layout(ref, study)
+    want = dict(ref.arrays())
+    try:
+        have = dict(g.arrays())
+    except Exception as e:
+        problems.append(Problem("layout", f"arrays cannot be listed ({type(e).__name__}: {e})"))
+        return False
+    n_before = len(problems)
+    for name in sorted(set(have) - set(want)):
+        problems.append(Problem(name, "not an array of this workflow's layout"))
+    for name, w in want.items():
+        if name not in have:
+            problems.append(Problem(name, "missing"))
+            continue
+        h = have[name]
+        for what, a, b in (("shape", h.shape, w.shape), ("chunks", h.chunks, w.chunks),
+                           ("dtype", str(h.dtype), str(w.dtype)),
+                           ("dimension names", _dims(h), _dims(w))):
+            if a != b:
+                problems.append(Problem(name, f"{what} {a}; allowed: {b}"))
+        if w.shape and len(w.shape) == 1 and h.shape == w.shape and name not in _DATA:
+            try:
+                same = np.array_equal(np.asarray(h[...]), np.asarray(w[...]))
+            except Exception as e:
+                problems.append(Problem(name, f"unreadable ({type(e).__name__}: {e})"))
+                continue
+            if not same:
+                problems.append(Problem(name, "coordinate values differ from the workflow's"))
+    # chunk checks index every data array by (frequency, family, particle...): they need the
+    # data arrays and done to be laid out right
+    return not any(p.where in _DATA or p.where == "layout" for p in problems[n_before:])
+
+
+def _check_consolidated(path: str, g: zarr.Group, problems: list[Problem]) -> None:
+    """The consolidated metadata (what xarray.open_zarr reads) lists the arrays as they are."""
+    try:
+        meta = zarr.open_group(path, mode="r").metadata.consolidated_metadata
+    except Exception as e:
+        problems.append(Problem("consolidated metadata", f"unreadable ({type(e).__name__}: {e})"))
+        return
+    if meta is None:
+        return  # not consolidated (yet): readers fall back to the arrays' own metadata
+    listed = {k: tuple(v.shape) for k, v in meta.metadata.items() if hasattr(v, "shape")}
+    actual = {k: a.shape for k, a in g.arrays()}
+    if listed != actual:
+        diff = sorted(set(listed) ^ set(actual)) or sorted(
+            k for k in listed if listed[k] != actual[k])
+        problems.append(Problem("consolidated metadata", f"differs from the arrays ({', '.join(diff)}); "
+                                "a finishing `bbb run` rewrites it"))
+
+
+_DATA = ("positions", "collisions", "n_recorded", "done", "chunk_seconds",
+         *(f"n_{c}" for c in COUNTERS))
+
+
+# -- chunks --------------------------------------------------------------------------------------
+def _stored_params(attrs: dict[str, Any], study: Study) -> Callable[[float], Params]:
+    """Params at f from the stored ``params`` attribute (what the data were made with), or
+    from the workflow if that attribute is unusable (reported by the attribute checks)."""
+    try:
+        base = {k: float(v) for k, v in dict(attrs["params"]).items()}
+        Params(f=1.0, **base)
+    except Exception:
+        return study.params
+    return lambda f: Params(f=float(f), **base)
+
+
+def _check_chunks(g: zarr.Group, study: Study, report: VerifyReport,
+                  params_at: Callable[[float], Params]) -> None:
+    problems = report.problems
+    try:
+        done = np.asarray(g["done"][...], dtype=bool)
+    except Exception as e:
+        problems.append(Problem("done", f"unreadable ({type(e).__name__}: {e})"))
+        return
+    report.n_chunks, report.n_done = done.size, int(done.sum())
+    report.chunks_checked = True
+    for fi, mi, ci in zip(*np.nonzero(done), strict=True):
+        f, fam = study.frequencies[fi], study.families[mi]
+        label = f"[f = {f:g} Hz, family {fam.name}, chunk {ci}]"
+        for array, what in _chunk_problems(g, study, int(fi), int(mi), int(ci), params_at):
+            problems.append(Problem(array + label, what))
+
+
+def _chunk_problems(g: zarr.Group, study: Study, fi: int, mi: int, ci: int,
+                    params_at: Callable[[float], Params]) -> Iterator[tuple[str, str]]:
+    acc, obs = study.accuracy, study.observables
+    cs = acc.chunk_size
+    sl = slice(ci * cs, (ci + 1) * cs)
+    p = params_at(study.frequencies[fi])
+    data: dict[str, np.ndarray] = {}
+    names = ["chunk_seconds", *(f"n_{c}" for c in COUNTERS)]
+    names += ["positions"] if obs.positions else []
+    names += ["n_recorded", "collisions"] if obs.collisions else []
+    for name in names:
+        try:
+            data[name] = np.asarray(g[name][fi, mi, ci] if name == "chunk_seconds"
+                                    else g[name][fi, mi, sl])
+        except Exception as e:  # a torn or foreign chunk file
+            yield name, f"unreadable ({type(e).__name__}: {e})"
+
+    sec = data.get("chunk_seconds")
+    if sec is not None and not (math.isfinite(float(sec)) and float(sec) >= 0):
+        yield "chunk_seconds", f"{float(sec)!r}; allowed: finite, >= 0 s"
+    for c in COUNTERS:
+        n = data.get(f"n_{c}")
+        if n is not None and (n < 0).any():
+            i = int(np.argmax(n < 0))
+            yield f"n_{c}", f"{int((n < 0).sum())} negative counts (particle {ci * cs + i}: {n[i]})"
+    anomalies = data.get("n_anomalies")
+    if anomalies is not None and (anomalies > 0).any():
+        i = int(np.argmax(anomalies > 0))
+        yield "n_anomalies", (f"{int((anomalies > 0).sum())} particles with repaired velocities "
+                              f"(particle {ci * cs + i}: {anomalies[i]}); allowed: 0")
+
+    x = data.get("positions")
+    if x is not None:
+        bad = ~np.isfinite(x)
+        if bad.any():
+            i, k = np.argwhere(bad)[0]
+            yield "positions", (f"{int(bad.sum())} non-finite values (first: particle "
+                                f"{ci * cs + i}, t = {study.sample_times()[k]:g} s: {float(x[i, k])!r})")
+        x0 = x[:, 0]
+        out = np.isfinite(x0) & (np.abs(x0) > 0.5 * p.S)
+        if out.any():
+            i = int(np.argmax(out))
+            yield "positions", (f"{int(out.sum())} particles start outside the first cell "
+                                f"(particle {ci * cs + i}: x(0) = {float(x0[i])!r} mm); allowed: "
+                                f"|x(0)| <= S/2 = {0.5 * p.S:g} mm")
+
+    nrec = data.get("n_recorded")
+    rows = data.get("collisions")
+    if nrec is not None:
+        K = obs.collisions_record
+        wrong = (nrec < 0) | (nrec > K)
+        if wrong.any():
+            i = int(np.argmax(wrong))
+            yield "n_recorded", (f"{int(wrong.sum())} out of range (particle {ci * cs + i}: "
+                                 f"{nrec[i]}); allowed: 0 <= n_recorded <= record = {K}")
+        ncoll = data.get("n_collisions")
+        if ncoll is not None and (nrec > ncoll).any():
+            i = int(np.argmax(nrec > ncoll))
+            yield "n_recorded", (f"exceeds n_collisions for {int((nrec > ncoll).sum())} particles "
+                                 f"(particle {ci * cs + i}: {nrec[i]} > {ncoll[i]})")
+        if rows is not None and not wrong.any():
+            yield from _collision_problems(rows, nrec, p, study, ci * cs)
+
+
+def _collision_problems(rows: np.ndarray, nrec: np.ndarray, p, study: Study, first: int
+                        ) -> Iterator[tuple[str, str]]:
+    """rows (particle, collision, field) of one chunk, n_recorded (particle,)."""
+    from bbb.record import COLLISION_FIELDS
+
+    col = {name: i for i, name in enumerate(COLLISION_FIELDS)}
+    valid = np.arange(rows.shape[1])[None, :] < nrec[:, None]
+    finite = np.isfinite(rows).all(axis=2)
+    nan_pad = np.isnan(rows).all(axis=2)
+
+    def first_of(mask) -> str:
+        i, k = np.argwhere(mask)[0]
+        return f"particle {first + i}, collision {k}"
+
+    bad = valid & ~finite
+    if bad.any():
+        yield "collisions", (f"{int(bad.sum())} recorded rows with non-finite values "
+                             f"(first: {first_of(bad)}), within n_recorded")
+    bad = ~valid & ~nan_pad
+    if bad.any():
+        yield "collisions", (f"{int(bad.sum())} rows beyond n_recorded are not NaN padding "
+                             f"(first: {first_of(bad)})")
+    ok = valid & finite
+    if not ok.any():
+        return
+    t, x, y, ph = (rows[..., col[k]] for k in ("t", "x", "y", "phase"))
+    acc, obs = study.accuracy, study.observables
+    bad = ok & ((t < obs.collisions_from) | (t > acc.t_max))
+    if bad.any():
+        yield "collisions", (f"{int(bad.sum())} collisions outside record_from <= t <= t_max = "
+                             f"[{obs.collisions_from:g}, {acc.t_max:g}] s (first: "
+                             f"{first_of(bad)}: t = {float(t[tuple(np.argwhere(bad)[0])])!r} s)")
+    back = np.zeros_like(ok)
+    back[:, 1:] = ok[:, 1:] & ok[:, :-1] & (np.diff(t, axis=1) < 0)
+    if back.any():
+        yield "collisions", (f"{int(back.sum())} times run backwards (first: {first_of(back)})")
+    bad = ok & ((ph < 0) | (ph > 1))
+    if bad.any():
+        yield "collisions", (f"{int(bad.sum())} floor phases outside [0, 1] "
+                             f"(first: {first_of(bad)})")
+    _, d = cell_of(np.where(ok, x, 0.0), p.S)
+    surface = -p.A * np.sin(2 * np.pi * np.where(ok, ph, 0.0)) - depth(d, p.R)
+    gap = np.where(ok, y - surface, 0.0)
+    bad = np.abs(gap) > ON_SURFACE_MM
+    if bad.any():
+        i, k = np.argwhere(bad)[0]
+        below = int((gap < -ON_SURFACE_MM).sum())
+        yield "collisions", (f"{int(bad.sum())} collisions off the floor surface by more than "
+                             f"{ON_SURFACE_MM:g} mm ({below} below it; first: particle {first + i}, "
+                             f"collision {k}: y = {y[i, k]:.9g} mm, surface {surface[i, k]:.9g} mm "
+                             f"at x = {x[i, k]:.9g} mm, phase {ph[i, k]:.6g})")
+
+
+# -- helpers ---------------------------------------------------------------------------------
+def _json(o: Any) -> Any:
+    # attributes went through JSON: compare like with like (tuples -> lists, inf kept)
+    return json.loads(json.dumps(o))
+
+
+def _diff(got: Any, want: Any) -> str:
+    if isinstance(got, dict) and isinstance(want, dict):
+        for k in sorted(set(got) | set(want)):
+            if got.get(k) != want.get(k):
+                return f"{k}: {got.get(k)!r}, expected {want.get(k)!r}"
+    return f"{got!r}, expected {want!r}"
+
+
+def _dims(a: zarr.Array) -> tuple | None:
+    names = getattr(a.metadata, "dimension_names", None)
+    return tuple(names) if names is not None else None
+
+
+def _short(fp: Any) -> str:
+    return str(fp)[:12]
