@@ -28,6 +28,7 @@ import numpy as np
 import pandas as pd
 from matplotlib import rc_context
 from matplotlib.figure import Figure
+from matplotlib.ticker import MultipleLocator
 
 from bbb.approx import spiral
 from bbb.locking import creep_speed, flight_time_max, flight_times
@@ -366,7 +367,9 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
         if letters:
             _letters(ax, tops, letters, f, lim=None if inset is None else (inset[1], np.inf))
         if inset is not None and np.any((f >= inset[0]) & (f <= inset[1])):
-            ix = ax.inset_axes([0.07, 0.53, 0.36, 0.43])
+            # x0 leaves room for the inset's tick labels inside the main axes, clear of its
+            # y axis and tick labels
+            ix = ax.inset_axes([0.14, 0.57, 0.31, 0.40])
             sel = (main["f"] >= inset[0] - 0.5) & (main["f"] <= inset[1] + 0.5)
             esel = None if ergo is None else ergo[(ergo["f"] >= inset[0]) & (ergo["f"] <= inset[1])]
             itops = _draw_D(ix, main[sel], cols, esel, main_family, legend=False, small=True)
@@ -374,6 +377,7 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
             ix.set_xlim(inset[0] - 0.5, inset[1] + 0.5)
             ix.set_ylim(bottom, 1.18 * itop)
             ix.tick_params(labelsize=5.5, length=2)
+            ix.xaxis.set_major_locator(MultipleLocator(5.0))
             if letters:
                 _letters(ix, itops, letters, f, lim=inset)
         ax.set_ylabel(r"$D$ (mm$^2$/s)")
