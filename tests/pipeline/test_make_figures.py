@@ -6,7 +6,15 @@ import tomllib
 
 import pytest
 
-from pipeline.make_figures import SCENES, _toml_dump, draft_text, load_scene, scene_path
+from pipeline.make_figures import (
+    SCENES,
+    _toml_dump,
+    draft_text,
+    load_scene,
+    scene_label,
+    scene_names,
+    scene_path,
+)
 
 
 @pytest.mark.parametrize("name", SCENES)
@@ -24,8 +32,14 @@ def test_draft_collision_scenes_are_short_and_record_after_a_transient():
 
 
 def test_a_workflow_file_wins_over_the_built_in_scene():
-    assert scene_path("figure2").parent.name == "workflows"
-    assert scene_path("locking").parent.name == "scenes"
+    assert scene_label("figure2") == "workflows/figure2.toml"
+    assert scene_label("locking") == "pipeline/scenes/locking.toml"
+
+
+def test_every_scene_and_workflow_is_found_through_the_package():
+    assert set(SCENES) | {"smoke", "accuracy"} <= set(scene_names())
+    with pytest.raises(FileNotFoundError, match="allowed: .*smoke"):
+        scene_path("no_such_scene")
 
 
 def test_toml_dump_round_trips_a_workflow_document():

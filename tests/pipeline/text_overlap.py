@@ -20,31 +20,32 @@ from matplotlib.text import Text
 TOL_PT = 0.5
 
 
-def _drawn_tick_labels(fig: Figure) -> tuple[list[Text], set[int]]:
+def _drawn_tick_labels(fig: Figure) -> tuple[list[tuple[Text, object]], set[int]]:
     drawn, every = [], set()
     for axis in fig.findobj(Axis):
         for tick in axis.get_major_ticks() + axis.get_minor_ticks():
             every.update({id(tick.label1), id(tick.label2)})
         # the ticks the axis draws: those within its view interval (private, stable since mpl 2)
         for tick in axis._update_ticks():
-            drawn += [t for t in (tick.label1, tick.label2) if t.get_visible()]
+            drawn += [(t, axis.axes) for t in (tick.label1, tick.label2) if t.get_visible()]
     return drawn, every
 
 
-def visible_texts(fig: Figure) -> list[Text]:
-    """The Text artists a render of ``fig`` draws with some text in them."""
+def visible_texts(fig: Figure) -> list[tuple[Text, object]]:
+    """(Text, the Axes it belongs to or None) of every Text artist a render of ``fig`` draws
+    with some text in it."""
     if not isinstance(fig.canvas, FigureCanvasAgg):
         FigureCanvasAgg(fig)
     fig.draw_without_rendering()  # lays out ticks, legends, annotations as savefig would
     ticks, every_tick = _drawn_tick_labels(fig)
-    others = [t for t in fig.findobj(Text) if id(t) not in every_tick]
+    others = [(t, t.axes) for t in fig.findobj(Text) if id(t) not in every_tick]
     out = []
-    for t in ticks + others:
+    for t, ax in ticks + others:
         if not t.get_text().strip() or not t.get_visible():
             continue
-        if t.axes is not None and not t.axes.get_visible():
+        if ax is not None and not ax.get_visible():
             continue
-        out.append(t)
+        out.append((t, ax))
     return out
 
 
@@ -52,7 +53,9 @@ def overlaps(fig: Figure, tol: float = TOL_PT) -> list[tuple[str, str, float, fl
     """Pairs (text a, text b or ``spine of <axes>``, overlap width, overlap height) of drawn
     texts whose boxes intersect each other, or the spine of another axes, by more than ``tol``
     points in x and in y (widths in points)."""
-    texts = visible_texts(fig)
+    found_texts = visible_texts(fig)
+    texts = [t for t, _ in found_texts]
+    owners = [ax for _, ax in found_texts]
     renderer = fig.canvas.get_renderer()
     boxes = [t.get_window_extent(renderer) for t in texts]
     px = fig.dpi / 72.0
@@ -69,13 +72,13 @@ def overlaps(fig: Figure, tol: float = TOL_PT) -> list[tuple[str, str, float, fl
             if w > tol and h > tol:
                 found.append((texts[i].get_text(), texts[j].get_text(), w, h))
     spines = [s for s in fig.findobj(Spine) if s.get_visible() and s.axes.get_visible()]
-    for t, box in zip(texts, boxes, strict=True):
+    for t, owner, box in zip(texts, owners, boxes, strict=True):
         for sp in spines:
-            if sp.axes is t.axes:
+            if sp.axes is owner:
                 continue
             w, h = cut(box, sp.get_window_extent(renderer))
             # a spine is a line: crossing it means overlapping its width, however thin
             if w > 0 and h > 0 and max(w, h) > tol:
-                found.append((t.get_text(), f"spine {sp.spine_type} of {sp.axes.get_label() or 'axes'}",
-                              w, h))
+                name = sp.axes.get_label() or type(sp.axes).__name__
+                found.append((t.get_text(), f"spine {sp.spine_type} of {name}", w, h))
     return found
