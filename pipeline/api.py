@@ -128,11 +128,12 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     st = StudyStore.open(path)  # checks that it is a complete bbb store
     ds = xr.open_zarr(normalize_path(path), consolidated=None)
     ds.attrs = {k: json.dumps(v) if isinstance(v, dict | list) else v for k, v in ds.attrs.items()}
+    # the per-particle mask in memory (F x M x N booleans): as a dask array indexed from
+    # `done`'s one-element chunks it would split every variable into one chunk per particle
     chunk_of = np.arange(ds.sizes["particle"]) // st.study.accuracy.chunk_size
-    done_p = ds["done"].isel(chunk=xr.DataArray(chunk_of, dims="particle")).drop_vars(
-        "chunk", errors="ignore")
-    ds = ds.assign_coords(particle_done=done_p.assign_attrs(
-        long_name="the particle's chunk is marked done", units=""))
+    done_p = np.asarray(ds["done"].values, dtype=bool)[:, :, chunk_of]
+    ds = ds.assign_coords(particle_done=(("frequency", "family", "particle"), done_p, {
+        "long_name": "the particle's chunk is marked done", "units": ""}))
     if mask:
         for name, var in ds.data_vars.items():
             if "particle" in var.dims:
