@@ -1,7 +1,0 @@
-"""``python -m pipeline`` is the ``bbb`` command."""
-
-import sys
-
-from .cli import main
-
-sys.exit(main())
