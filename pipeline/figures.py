@@ -432,7 +432,7 @@ def figure3(store: str | os.PathLike | StudyStore | Sequence[str | os.PathLike |
     stores = [as_store(s) for s in (store if isinstance(store, (list, tuple)) else [store])]
     with rc_context(STYLE):
         fig = _new_figure(name, (COLUMN, 5.0))
-        axes = fig.subplots(3, 2, sharex=True, gridspec_kw={"hspace": 0.12, "wspace": 0.32})
+        axes = fig.subplots(3, 2, sharex=True, gridspec_kw={"hspace": 0.2, "wspace": 0.32})
         seen: dict[str, bool] = {}
         for ax, (letter, fp) in zip(axes.ravel(), panels.items(), strict=False):
             flights, p = [], None
