@@ -1,6 +1,8 @@
 """``python -m pipeline.make_figures``: run the figure scenes, reduce, draw, write REPORT.md.
 
-Scenes (workflow TOMLs; a file in ``workflows/`` wins over the one in ``pipeline/scenes/``):
+Scenes (workflow TOMLs shipped as package data -- ``workflows/*.toml``, installed as
+``pipeline.workflows``, and ``pipeline/scenes/*.toml`` -- found through importlib.resources, so
+an installed bbb finds them from any directory; a name in both: ``workflows/`` wins):
 
 =====================  ======================================================================
 figure2                D(f), 124 frequencies, particles at rest           -> Fig. 2
@@ -36,11 +38,16 @@ import sys
 import time
 import tomllib
 from collections.abc import Callable
+from importlib import resources
+from importlib.resources.abc import Traversable
 from pathlib import Path
 
-__all__ = ["SCENES", "scene_path", "load_scene", "draft_text", "make_figures", "main"]
+__all__ = ["SCENES", "SCENE_PACKAGES", "scene_names", "scene_path", "scene_label",
+           "load_scene", "draft_text", "make_figures", "main"]
 
-ROOT = Path(__file__).resolve().parent.parent
+#: where scenes live, first match wins: the top-level workflows/ (package pipeline.workflows)
+#: and the built-in pipeline/scenes/
+SCENE_PACKAGES = ("pipeline.workflows", "pipeline.scenes")
 SCENES = ("figure2", "ergodicity", "figure3", "locking", "figure2_matyas2004",
           "locking_matyas2004")
 #: draft accuracy of collision scenes (positions scenes use the plain "draft" preset)
@@ -48,13 +55,51 @@ DRAFT_COLLISIONS = {"n_particles": 4, "chunk_size": 4, "t_max": 60.0}
 DRAFT_RECORD = {"record": 1000, "record_from": 20.0}
 
 
-def scene_path(name: str) -> Path:
-    """``workflows/<name>.toml`` if it exists, else ``pipeline/scenes/<name>.toml``."""
-    for folder in (ROOT / "workflows", Path(__file__).resolve().parent / "scenes"):
+#: the source tree (the repository); paths in run_log.json are relative to it
+ROOT = Path(__file__).resolve().parent.parent
+
+#: where each scene package lives in the source tree (for labels and a tree not installed)
+_SOURCE_FOLDERS = {"pipeline.workflows": "workflows", "pipeline.scenes": "pipeline/scenes"}
+
+
+def _scene_folders() -> list[tuple[str, Traversable]]:
+    """(source-tree label, folder) of every scene package, in order of precedence."""
+    folders = []
+    for pkg in SCENE_PACKAGES:
+        try:
+            folders.append((_SOURCE_FOLDERS[pkg], resources.files(pkg)))
+        except ModuleNotFoundError:  # a source tree put on sys.path without `pip install`
+            root = Path(__file__).resolve().parent.parent
+            folders.append((_SOURCE_FOLDERS[pkg], root / _SOURCE_FOLDERS[pkg]))
+    return folders
+
+
+def _find_scene(name: str) -> tuple[str, Traversable]:
+    for label, folder in _scene_folders():
         p = folder / f"{name}.toml"
-        if p.exists():
-            return p
-    raise FileNotFoundError(f"no scene {name!r} in workflows/ or pipeline/scenes/")
+        if p.is_file():
+            return f"{label}/{name}.toml", p
+    raise FileNotFoundError(f"no scene {name!r} in {' or '.join(SCENE_PACKAGES)}; "
+                            f"allowed: {', '.join(scene_names())}")
+
+
+def scene_path(name: str) -> Traversable:
+    """The scene ``<name>.toml``: from ``workflows/`` (installed as ``pipeline.workflows``) if
+    there, else from ``pipeline/scenes/``; found through importlib.resources (a
+    ``pathlib.Path`` when the package is installed as files)."""
+    return _find_scene(name)[1]
+
+
+def scene_label(name: str) -> str:
+    """Where the scene lives in the source tree, e.g. ``workflows/figure2.toml`` (never an
+    absolute path of this machine)."""
+    return _find_scene(name)[0]
+
+
+def scene_names() -> list[str]:
+    """Every scene name that :func:`scene_path` resolves, sorted."""
+    return sorted({p.name.removesuffix(".toml") for _, folder in _scene_folders()
+                   for p in folder.iterdir() if p.name.endswith(".toml")})
 
 
 def _toml_value(v) -> str:
@@ -110,13 +155,14 @@ def load_scene(name: str, fast: bool = False):
 
     path = scene_path(name)
     text = path.read_text(encoding="utf-8")
-    return parse_workflow(draft_text(text) if fast else text, source=str(path))
+    return parse_workflow(draft_text(text) if fast else text, source=scene_label(name))
+
 
 
 def run_log_entry(name: str, store: str) -> dict[str, str]:
     """A scene's paths as run_log.json records them: relative to the repository (a committed
     log holds no absolute path of the machine it ran on)."""
-    return {"workflow": os.path.relpath(scene_path(name), ROOT), "store": os.path.relpath(store, ROOT)}
+    return {"workflow": scene_label(name), "store": os.path.relpath(store, ROOT)}
 
 
 def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.PathLike = "runs",
@@ -180,17 +226,19 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
         table_files[name] = str(p)
 
     echo("drawing figures ...")
-    paths = []
-    paths += fg.figure1(stores["locking"], None, out)
-    paths += fg.figure2(stores["figure2"], {"diffusion": tables["figure2"],
-                                            "ergodicity": tables["ergodicity"]}, out)
-    paths += fg.figure3([stores["figure3"], stores["locking"]], None, out)
-    paths += fg.figure_locking(stores["locking"], {"locking": tables["locking"]}, out)
-    paths += fg.figure2(stores["figure2_matyas2004"],
-                        {"diffusion": tables["figure2_matyas2004"],
-                         "locking": tables["locking_matyas2004"]},
-                        out, name="fig2_matyas2004", letters=None, inset=None,
-                        legend_loc="upper left")
+    figs = [
+        fg.figure1(stores["locking"], None, out),
+        fg.figure2(stores["figure2"], {"diffusion": tables["figure2"],
+                                       "ergodicity": tables["ergodicity"]}, out),
+        fg.figure3([stores["figure3"], stores["locking"]], None, out),
+        fg.figure_locking(stores["locking"], {"locking": tables["locking"]}, out),
+        fg.figure2(stores["figure2_matyas2004"],
+                   {"diffusion": tables["figure2_matyas2004"],
+                    "locking": tables["locking_matyas2004"]},
+                   out, name="fig2_matyas2004", letters=None, inset=None,
+                   legend_loc="upper left"),
+    ]
+    paths = [p for fig in figs for p in fg.figure_files(out, fig.get_label())]
     log["this_invocation_s"] = time.perf_counter() - t_start
     log["wall_s"] = sum(e.get("wall_s", 0.0) for e in log["scenes"].values()) + sum(
         e.get("reduce_s", 0.0) for e in log["scenes"].values())
