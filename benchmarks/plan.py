@@ -1,5 +1,5 @@
 """`bbb plan` against measured runs: every workflow in workflows/ and every scene in
-pipeline/scenes/ (issue 12, item 4).
+pipeline/studies/*/scenes/ (issue 12, item 4).
 
     .venv/bin/python benchmarks/plan.py > benchmarks/results/plan-DATE.txt
 
@@ -37,7 +37,7 @@ def scenes():
     log = json.loads((ROOT / "figures" / "run_log.json").read_text())["scenes"]
     measured = {e["workflow"]: (e["wall_s"], e["task_s"]) for e in log.values()}
     paths = sorted((ROOT / "workflows").glob("*.toml")) + sorted(
-        (ROOT / "pipeline" / "scenes").glob("*.toml"))
+        (ROOT / "pipeline" / "studies").glob("*/scenes/*.toml"))
     for p in paths:
         rel = p.relative_to(ROOT).as_posix()
         yield rel, load_workflow(p), measured.get(rel)

@@ -44,9 +44,9 @@ TABLE_UNITS = {
 
 def load_study(workflow: str | os.PathLike | Study) -> Study:
     """A Study from a workflow file path, a scene name (``"smoke"``, ``"figure2"``: the
-    workflows shipped with the package, see ``pipeline.make_figures.scene_names()``), TOML
+    workflows shipped with the package, see ``pipeline.scenes.scene_names()``), TOML
     text, or a Study (returned as is).  Bad input raises WorkflowError naming file, line, key."""
-    from .make_figures import scene_label, scene_names, scene_path
+    from .scenes import scene_label, scene_names, scene_path
     from .workflow import Study, load_workflow, parse_workflow
 
     if isinstance(workflow, Study):

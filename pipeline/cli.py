@@ -286,7 +286,7 @@ def _store_with_analysis_of(path: str, workflow: str):
 
 
 def _cmd_accuracy(args) -> int:
-    from .accuracy_study import run_accuracy_study
+    from .studies.accuracy.study import run_accuracy_study
 
     if args.scheduler and args.workers:
         raise UsageError("--workers sizes a LocalCluster; with --scheduler the cluster's own "

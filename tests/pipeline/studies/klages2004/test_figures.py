@@ -11,12 +11,12 @@ import pandas as pd
 import pytest
 from matplotlib.figure import Figure
 
-from pipeline import figures as fg
+from pipeline.studies.klages2004 import figures as fg
 
-from .figure_store import assert_png_drawn, tiny_store
-from .text_overlap import overlaps
+from ...figure_store import assert_png_drawn, tiny_store
+from ...text_overlap import overlaps
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[4]
 
 
 @pytest.fixture(scope="module")
@@ -85,8 +85,9 @@ def test_without_out_dir_a_figure_is_returned_and_nothing_written(made, tmp_path
 
 
 def test_importing_the_figures_selects_no_matplotlib_backend():
-    # a notebook's inline backend must survive `import pipeline.figures`
-    code = ("import matplotlib; matplotlib.use('svg'); import pipeline.figures, pipeline.api; "
+    # a notebook's inline backend must survive `import pipeline.studies.klages2004.figures`
+    code = ("import matplotlib; matplotlib.use('svg'); "
+            "import pipeline.studies.klages2004.figures, pipeline.api; "
             "print(matplotlib.get_backend())")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "svg"
@@ -126,7 +127,7 @@ def test_fig2_drawn_from_the_committed_tables_has_no_text_over_text():
 
 
 def test_accuracy_plot_of_the_committed_summary_has_no_text_over_text():
-    from pipeline.accuracy_study import accuracy_figure
+    from pipeline.studies.accuracy.study import accuracy_figure
 
     assert overlaps(accuracy_figure(_committed("accuracy_summary.csv"))) == []
 

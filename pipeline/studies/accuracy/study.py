@@ -38,8 +38,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .accuracy import ACCURACY_PRESETS
-from .workflow import Study, parse_workflow
+from ...accuracy import ACCURACY_PRESETS
+from ...workflow import Study, parse_workflow
 
 __all__ = [
     "Variant", "default_variants", "variant_study", "run_accuracy_study", "compare",
@@ -128,7 +128,7 @@ def _acc_table(study: Study) -> dict:
 
 def variant_study(ref_text: str, variant: Variant, source: str = "<accuracy>") -> Study:
     """The reference workflow with its [accuracy] table replaced by the variant's."""
-    from .make_figures import _toml_dump  # the workflow-shaped TOML writer
+    from ...scenes import toml_dump as _toml_dump  # the workflow-shaped TOML writer
 
     doc = tomllib.loads(ref_text)
     doc["accuracy"] = dict(variant.accuracy)
@@ -154,9 +154,9 @@ def run_accuracy_study(
 
     Returns {"rows", "summary", "scaling"} (columns: ROW_/SUMMARY_/SCALING_COLUMNS).
     """
-    from .reduce import counters_table, diffusion_table
-    from .run import _connect, run_study
-    from .store import StudyStore
+    from ...reduce import counters_table, diffusion_table
+    from ...run import _connect, run_study
+    from ...store import StudyStore
 
     text = Path(workflow).read_text(encoding="utf-8")
     ref = parse_workflow(text, source=str(workflow))

@@ -13,15 +13,9 @@ from pathlib import Path
 
 import pytest
 
-from pipeline.make_figures import (
-    SCENES,
-    _toml_dump,
-    draft_text,
-    load_scene,
-    scene_label,
-    scene_names,
-    scene_path,
-)
+from pipeline.make_figures import SCENES
+from pipeline.scenes import draft_text, load_scene, scene_label, scene_names, scene_path
+from pipeline.scenes import toml_dump as _toml_dump
 
 
 @pytest.mark.parametrize("name", SCENES)
@@ -40,7 +34,7 @@ def test_draft_collision_scenes_are_short_and_record_after_a_transient():
 
 def test_a_workflow_file_wins_over_the_built_in_scene():
     assert scene_label("figure2") == "workflows/figure2.toml"
-    assert scene_label("locking") == "pipeline/scenes/locking.toml"
+    assert scene_label("locking") == "pipeline/studies/klages2004/scenes/locking.toml"
 
 
 def test_every_scene_and_workflow_is_found_through_the_package():
@@ -59,7 +53,8 @@ def test_toml_dump_round_trips_a_workflow_document():
 def test_the_run_log_records_paths_relative_to_the_repository(tmp_path):
     import os
 
-    from pipeline.make_figures import ROOT, run_log_entry
+    from pipeline.make_figures import run_log_entry
+    from pipeline.scenes import ROOT
 
     for store in (ROOT / "runs" / "figure2.zarr", tmp_path / "runs" / "figure2.zarr"):
         entry = run_log_entry("figure2", str(store))
@@ -67,13 +62,13 @@ def test_the_run_log_records_paths_relative_to_the_repository(tmp_path):
         assert (ROOT / entry["store"]).resolve() == store.resolve()
         assert (ROOT / entry["workflow"]).resolve() == scene_path("figure2").resolve()
     assert run_log_entry("locking", str(ROOT / "runs" / "locking.zarr")) == {
-        "workflow": "pipeline/scenes/locking.toml", "store": "runs/locking.zarr"}
+        "workflow": "pipeline/studies/klages2004/scenes/locking.toml", "store": "runs/locking.zarr"}
 
 
 def test_the_committed_run_log_holds_no_absolute_path():
     import json
 
-    from pipeline.make_figures import ROOT
+    from pipeline.scenes import ROOT
 
     log = json.loads((ROOT / "figures" / "run_log.json").read_text())
     for name, entry in log["scenes"].items():
@@ -82,7 +77,7 @@ def test_the_committed_run_log_holds_no_absolute_path():
 
 
 # -- a non-editable install, used from outside the repository -------------------------------
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[4]
 
 
 @pytest.fixture(scope="module")
@@ -124,8 +119,8 @@ def _run_outside(py: Path, code: str, cwd: Path) -> str:
 
 
 def test_a_wheel_ships_every_scene_and_module(installed, tmp_path):
-    code = ("import pipeline, bbb, json; from pipeline.make_figures import SCENES, load_scene, "
-            "scene_names\n"
+    code = ("import pipeline, bbb, json; from pipeline.make_figures import SCENES; "
+            "from pipeline.scenes import load_scene, scene_names\n"
             "[load_scene(n, fast=f) for n in SCENES for f in (False, True)]\n"
             "print(json.dumps({'file': pipeline.__file__, 'scenes': scene_names(), "
             "'version': bbb.__version__}))")

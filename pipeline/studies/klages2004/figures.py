@@ -33,8 +33,8 @@ from matplotlib.ticker import MultipleLocator
 from bbb.approx import spiral
 from bbb.locking import creep_speed, flight_time_max, flight_times
 
-from .collisions import as_store, states
-from .store import StudyStore
+from ...collisions import as_store, states
+from ...store import StudyStore
 
 __all__ = ["PANELS", "PAPER_K", "STYLE", "figure1", "figure2", "figure3", "figure_locking",
            "figure_files", "main_columns"]
