@@ -182,7 +182,8 @@ def work_left(study, store_path) -> bool:
     """Whether ``bbb run`` has chunks to compute in this store, found before any job is
     submitted; refuses, as the run would, a store held by another run or made by another
     workflow (StoreError).  Lays the store out if it is new, as the run would."""
-    from .store import StudyStore, normalize_path, run_lock
+    from .lock import run_lock
+    from .store import StudyStore, normalize_path
 
     path = normalize_path(store_path)
     with run_lock(path):

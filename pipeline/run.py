@@ -23,7 +23,8 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from .store import KERNEL_ATTRS, StudyStore, _is_local, normalize_path, run_lock
+from .lock import run_lock
+from .store import KERNEL_ATTRS, StudyStore, _is_local, normalize_path
 from .waves import Waves
 from .workflow import Study
 

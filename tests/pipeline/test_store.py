@@ -15,6 +15,7 @@ import zarr
 
 from bbb.provenance import kernel_hash, kernel_identity
 from bbb.record import COLLISION_FIELDS
+from pipeline.lock import run_lock
 from pipeline.store import (
     JSON_ATTRS,
     KERNEL_ATTRS,
@@ -22,7 +23,6 @@ from pipeline.store import (
     StudyStore,
     collision_field_units,
     read_attrs,
-    run_lock,
     store_fingerprint,
 )
 from pipeline.workflow import parse_workflow
