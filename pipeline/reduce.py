@@ -70,7 +70,8 @@ __all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir
 
 # (pattern, unit) by column name, first match wins; see the module docstring
 _UNITS = ((r"f", "Hz"), (r"lam(_lo|_hi)?", "1/s"), (r"lag_s", "s"),
-          (r"(lam_coll.*|lag|max_lag|frac_creep)", "1"), (r"D(_.*)?", "mm^2/s"), (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),
+          (r"(lam_coll.*|lag|max_lag|frac_creep)", "1"), (r"D(_.*)?", "mm^2/s"),
+          (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),
           (r".*_per_s", "1/s"), (r"(Gamma|EB.*)", "1"), (r"n_.*", "1"))
 
 

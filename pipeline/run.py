@@ -26,7 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .store import KERNEL_ATTRS, n_periods, StudyStore, _is_local, normalize_path, run_lock
+from .store import KERNEL_ATTRS, StudyStore, _is_local, n_periods, normalize_path, run_lock
 from .waves import Waves
 from .workflow import Study
 
