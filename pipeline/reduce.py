@@ -32,6 +32,9 @@ dD_tol       what that CI must clear to flag: 5 % of D plus 1e-6 mm^2/s
 stationary   False where D depends on the run length (the CI of dD lies beyond +-dD_tol)
 verdict      the verdict's reasons, '; '-joined
 
+``mechanisms.parquet`` / ``.csv`` (stores with jumps or lyapunov): the Green–Kubo expansion
+and the Lyapunov exponent per frequency (columns in :mod:`pipeline.mechanisms`).
+
 ``counters.parquet`` / ``counters.csv`` (every store), one row per (frequency, family):
 collisions, sticks, liftoffs (and any other bbb counter) per particle per second, and the
 summed simulation time of its chunks (s, from chunk_seconds).
@@ -66,7 +69,9 @@ __all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir
            "table_metadata", "write_table"]
 
 # (pattern, unit) by column name, first match wins; see the module docstring
-_UNITS = ((r"f", "Hz"), (r"D(_.*)?", "mm^2/s"), (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),
+_UNITS = ((r"f", "Hz"), (r"lam(_lo|_hi)?", "1/s"), (r"lag_s", "s"),
+          (r"(lam_coll.*|lag|max_lag|frac_creep)", "1"), (r"D(_.*)?", "mm^2/s"),
+          (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),
           (r".*_per_s", "1/s"), (r"(Gamma|EB.*)", "1"), (r"n_.*", "1"))
 
 
@@ -94,6 +99,10 @@ def reduce_store(store_path: str | os.PathLike | StudyStore,
     tables = {"counters": counters_table(store, done)}
     if study.observables.positions:
         tables["diffusion"] = diffusion_table(store, done)
+    if study.observables.jumps or study.observables.lyapunov:
+        from .mechanisms import mechanisms_table
+
+        tables["mechanisms"] = mechanisms_table(store, done)
     provenance = _provenance(store)
     for name, df in tables.items():
         write_table(df, out / f"{name}.parquet", {**provenance, "table": name})

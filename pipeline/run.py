@@ -13,6 +13,7 @@ before marking the chunk done.  It is read by the client, not the workers.
 
 from __future__ import annotations
 
+import dataclasses
 import logging
 import os
 import socket
@@ -23,8 +24,10 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from .lock import run_lock
-from .store import KERNEL_ATTRS, StudyStore, _is_local, normalize_path
+from .store import KERNEL_ATTRS, StudyStore, _is_local, n_periods, normalize_path
 from .waves import Waves
 from .workflow import Study
 
@@ -114,18 +117,62 @@ def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = Fal
     f, fam = study.frequencies[fi], study.families[mi]
     _check_kernel(store)
     acc, obs = study.accuracy, study.observables
+    times, pick, period_cols = _sample_grid(study, f)
     run = simulate(
         study.params(f), acc.chunk_size, acc.t_max, study.seed_sequence(f, fam, ci),
-        sample_times=study.sample_times() if obs.positions else None,
+        sample_times=times,
         record_collisions=obs.collisions_record or 0, record_from=obs.collisions_from,
         numerics=acc.numerics(), **fam.simulate_kwargs(),
     )
+    extra = {}
+    if obs.jumps:
+        extra["jumps"] = np.diff(run.positions[:, period_cols], axis=1).astype(np.float32)
+    if pick is not None:
+        run = dataclasses.replace(run, positions=run.positions[:, pick])
+    if obs.lyapunov:
+        extra.update(_lyapunov_chunk(study, f, fam, ci))
     seconds = time.perf_counter() - t0
-    store.write_chunk(fi, mi, ci, run, seconds, mark_done=not fail)
+    store.write_chunk(fi, mi, ci, run, seconds, mark_done=not fail, extra=extra)
     if fail:
         raise InjectedFailure(f"{FAIL_ENV} asked this chunk to fail after writing its data")
     return ChunkResult((f, fam.name, ci), int(run.counters["collisions"].sum()), seconds,
                        time.perf_counter() - t0 - seconds, socket.gethostname())
+
+
+def _sample_grid(study: Study, f: float) -> tuple[np.ndarray | None, np.ndarray | None,
+                                                  np.ndarray | None]:
+    """The sample times of one chunk's simulation: the positions' grid and, with jumps, the
+    floor periods n/f, n = 0 … floor(t_max f).  Returns (times, columns of the positions
+    grid or None when it is all of them, columns of the period grid or None)."""
+    obs = study.observables
+    pos = study.sample_times() if obs.positions else None
+    if not obs.jumps:
+        return pos, None, None
+    periods = np.minimum(np.arange(n_periods(study.accuracy.t_max, f) + 1) / f,
+                         study.accuracy.t_max)
+    times = periods if pos is None else np.union1d(pos, periods)
+    pick = np.searchsorted(times, pos) if pos is not None else None
+    return times, pick, np.searchsorted(times, periods)
+
+
+def _lyapunov_chunk(study: Study, f: float, fam, ci: int) -> dict[str, np.ndarray]:
+    """λ (1/s, per collision) of this chunk's particles among the first
+    ``lyapunov_particles`` of the ensemble, from the same initial states as the chunk."""
+    from bbb.ensemble import InitialState, initial_state
+    from bbb.lyapunov import lyapunov
+
+    obs, acc = study.observables, study.accuracy
+    first = ci * acc.chunk_size
+    k = min(acc.chunk_size, obs.lyapunov_particles - first)
+    if k <= 0:
+        return {}
+    kw = fam.simulate_kwargs()
+    p = study.params(f)
+    st = initial_state(p, acc.chunk_size, study.seed_sequence(f, fam, ci), kw.pop("initial"), **kw)
+    sub = InitialState(**{fd.name: getattr(st, fd.name)[:k] for fd in dataclasses.fields(st)})
+    lam = lyapunov(p, k, acc.t_max, 0, sub, discard=obs.lyapunov_discard, d0=obs.lyapunov_d0,
+                   numerics=acc.numerics(), n_resamples=10)
+    return {"lyapunov": lam.lam_i, "lyapunov_per_collision": lam.per_coll_i}
 
 
 class KernelMismatch(RuntimeError):

@@ -111,6 +111,11 @@ def draft_text(text: str) -> str:
         coll["record"] = min(int(coll.get("record", 1000)), DRAFT_RECORD["record"])
         coll["record_from"] = DRAFT_RECORD["record_from"]
         obs["collisions"] = coll
+    if isinstance(obs.get("lyapunov"), dict):  # at most the draft's particles
+        from .accuracy import ACCURACY_PRESETS
+
+        n = acc.get("n_particles", ACCURACY_PRESETS["draft"]["n_particles"])
+        obs["lyapunov"] = {**obs["lyapunov"], "particles": min(obs["lyapunov"]["particles"], n)}
     doc["accuracy"] = acc
     doc["observables"] = obs
     return "# draft version written by pipeline.scenes.draft_text\n" + toml_dump(doc)

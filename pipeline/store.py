@@ -23,7 +23,15 @@ chunk_seconds  (frequency, family, chunk)   simulate, s    f8      (1, 1, 1)   n
 n_chunks_used  (frequency, family)          chunks         i8      (1, 1)      [target_ci]
 stop_reason    (frequency, family)          STOP_LEGEND    i1      (1, 1)      [target_ci]
 refined        (frequency,)                 added by refine b1     like frequency  [refine]
+period         (period,)                    index          i8      whole    [jumps]
+jumps          (frequency, family, particle, period)  Δx, mm  f4  (1, 1, chunk_size, P)  [jumps]
+lyapunov       (frequency, family, particle)  λ, 1/s       f8      (1, 1, chunk_size)  [lyapunov]
+lyapunov_per_collision  (frequency, family, particle)  λ per collision  f8  [lyapunov]
 =============  ==========================================  ======  ===========================
+
+``jumps[..., n]`` = x((n+1)/f) − x(n/f) for n < floor(t_max f) (P: its largest value over the
+frequencies; NaN beyond).  ``lyapunov*`` hold the first ``[observables.lyapunov] particles``
+particles of each (frequency, family) (NaN beyond; −inf where the separation collapsed).
 
 With ``target_ci`` the chunk axis is sized by the cap (max_particles); a (frequency, family)
 uses the first ``n_chunks_used`` chunks, and ``stop_reason`` says why it stopped
@@ -52,6 +60,7 @@ from __future__ import annotations
 import datetime as _dt
 import hashlib
 import json
+import math
 import os
 import warnings
 from dataclasses import dataclass
@@ -240,12 +249,14 @@ class StudyStore:
 
     # -- writing ---------------------------------------------------------------------------
     def write_chunk(self, fi: int, mi: int, ci: int, run: Any, seconds: float,
-                    mark_done: bool = True) -> None:
+                    mark_done: bool = True, extra: dict[str, np.ndarray] | None = None) -> None:
         """Write one task's results (a bbb SimRun) into its own chunk of every array, then
         mark it done.  Indices: fi frequency, mi family, ci chunk; seconds: its simulation time.
 
         Idempotent: Dask may run a task twice, and a rerun writes the same bytes.
         mark_done=False leaves a written chunk unfinished (fault injection in tests).
+        extra: {array name: values for this chunk's particles (leading axis)} ([jumps],
+        [lyapunov]); a shorter leading axis fills the chunk's first particles.
         """
         g = self.group("r+")
         sl = self.chunk_particles(ci)
@@ -257,6 +268,13 @@ class StudyStore:
             g["n_recorded"][fi, mi, sl] = run.n_recorded
         for name in COUNTERS:
             g[f"n_{name}"][fi, mi, sl] = run.counters[name]
+        for name, values in (extra or {}).items():
+            a = np.asarray(values)
+            rows = slice(sl.start, sl.start + a.shape[0])
+            if a.ndim == 1:
+                g[name][fi, mi, rows] = a
+            else:
+                g[name][fi, mi, rows, : a.shape[1]] = a
         g["chunk_seconds"][fi, mi, ci] = seconds
         # Only now, after every data array: the chunk is complete.
         if mark_done:
@@ -363,6 +381,16 @@ def _create_layout(g: zarr.Group, study: Study) -> None:
     for name in COUNTERS:
         data(f"n_{name}", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs), "int64", 0,
              "", f"number of {name} up to t_max")
+    if obs.jumps:
+        P = max(n_periods(study.accuracy.t_max, f) for f in study.frequencies)
+        coord("period", np.arange(P), "int64", "", "floor period n: jump from n/f to (n+1)/f")
+        data("jumps", ("frequency", "family", "particle", "period"), (F, M, N, P), (1, 1, cs, P),
+             "float32", np.nan, "mm", "displacement over floor period n, NaN beyond t_max f")
+    if obs.lyapunov:
+        data("lyapunov", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs), "float64",
+             np.nan, "1/s", "largest Lyapunov exponent per unit time (NaN: not measured)")
+        data("lyapunov_per_collision", ("frequency", "family", "particle"), (F, M, N),
+             (1, 1, cs), "float64", np.nan, "1", "largest Lyapunov exponent per collision")
     data("done", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "bool", False, "",
          "chunk completely written")
     data("chunk_seconds", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "float64",
@@ -375,6 +403,11 @@ def _create_layout(g: zarr.Group, study: Study) -> None:
              "chunks used: the first n_chunks_used chunks (0: not decided yet)")
         data("stop_reason", ("frequency", "family"), (F, M), (1, 1), "int8", 0, "",
              f"why sampling stopped ({legend})", legend=legend)
+
+
+def n_periods(t_max: float, f: float) -> int:
+    """Whole floor periods in t_max s at f Hz (the jumps of one particle)."""
+    return int(math.floor(t_max * f + 1e-9))
 
 
 #: units of the recorded collision fields (bbb.record.COLLISION_FIELDS), "1": dimensionless

@@ -422,7 +422,7 @@ def _target_keys(r: Reader, vals: dict, raw: dict) -> None:
 
 
 def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
-    on = "[observables.positions] and/or [observables.collisions]"
+    on = "[observables.positions], [observables.collisions], [observables.jumps] or [observables.lyapunov]"
     if "observables" not in doc:
         r.fail(("observables",), "missing", on)
     obs = r.table(doc["observables"], ("observables",), ObservablesTable, {"t_max": acc.t_max})
@@ -432,10 +432,18 @@ def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
     if adaptive and obs["positions"] is None:
         r.fail(("observables", "positions"), f"{adaptive} needs D, so positions",
                "[observables.positions] beside " + adaptive)
-    coll = obs["collisions"]
+    coll, lyap = obs["collisions"], obs["lyapunov"]
+    if lyap is not None and lyap.particles > acc.n_particles:
+        r.fail(("observables", "lyapunov", "particles"),
+               f"{lyap.particles} > n_particles = {acc.n_particles}",
+               f"1 … {acc.n_particles} (accuracy n_particles)")
     return Observables(positions=obs["positions"] is not None,
                        collisions_record=coll.record if coll else None,
-                       collisions_from=float(coll.record_from) if coll else 0.0)
+                       collisions_from=float(coll.record_from) if coll else 0.0,
+                       jumps=obs["jumps"] is not None,
+                       lyapunov_particles=lyap.particles if lyap else None,
+                       lyapunov_d0=float(lyap.d0) if lyap else 1e-8,
+                       lyapunov_discard=float(lyap.discard) if lyap else 0.1)
 
 
 def _analysis(r: Reader, doc: dict) -> Analysis:
