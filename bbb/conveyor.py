@@ -33,9 +33,16 @@ from .surface import arc_curvature, arc_depth, arc_normal, arc_slope
 
 
 @njit(cache=True, inline="always")
+def round_half_away(u):
+    # nearest integer, ties away from 0: odd in u bit for bit, so a mirrored run (x → −x)
+    # takes mirrored decisions everywhere
+    return math.floor(u + 0.5) if u >= 0.0 else -math.floor(0.5 - u)
+
+
+@njit(cache=True, inline="always")
 def nearest(d, S):
-    # offset from the nearest arc centre; an exact tie (a cusp) goes to the right-hand arc
-    return d - math.floor(d / S + 0.5) * S
+    # offset from the nearest arc centre
+    return d - round_half_away(d / S) * S
 
 
 @njit(cache=True, inline="always")
@@ -60,8 +67,10 @@ def offset_range(da, db, h, Dx, S):
     e = Dx * h * h * 0.125
     lo = min(da, db) - e
     hi = max(da, db) + e
-    cusp = (math.ceil(lo / S - 0.5) + 0.5) * S <= hi  # the first cusp at or above lo
-    centre = math.ceil(lo / S) * S <= hi  # the first arc centre at or above lo
+    # a cusp lies in [lo, hi] iff the nearest centres differ; a centre iff an integer lies in
+    # [lo/S, hi/S] (both tests odd under lo, hi → −hi, −lo)
+    cusp = round_half_away(lo / S) != round_half_away(hi / S)
+    centre = math.ceil(lo / S) <= math.floor(hi / S)
     nl = abs(nearest(lo, S))
     nh = abs(nearest(hi, S))
     amax = 0.5 * S if cusp else max(nl, nh)
@@ -418,7 +427,7 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
             isamp += 1
         # the flight (module doc): offset relative to the floor, then the nearest arc
         d = d + vx * tau - 0.5 * gx * tau * tau + Ax * (math.sin(w * (s + tau)) - math.sin(w * s))
-        k = math.floor(d / S + 0.5)
+        k = round_half_away(d / S)
         d -= k * S
         cell += int(k)
         d = min(max(d, -0.5 * S), 0.5 * S)
