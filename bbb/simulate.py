@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from .conveyor import evolve_ensemble_c
 from .ensemble import InitialState, initial_state
 from .kernel import evolve_ensemble
 from .numerics import Numerics
@@ -29,6 +30,7 @@ def simulate(
     numerics: Numerics | None = None,
     drop_height: tuple[float, float] = (0.0, 2.0),
     launch_speed: tuple[float, float] = (0.0, 200.0),
+    _force_conveyor: bool = False,
 ) -> SimRun:
     """Evolve ``n_particles`` independent particles for ``t_max`` seconds.
 
@@ -40,6 +42,9 @@ def simulate(
                          collisions and lift-offs together.
     initial           -- a family name (see ``bbb.ensemble``) or an explicit InitialState.
     seed              -- int or SeedSequence; the same seed gives bit-identical output.
+    A floor with ``tilt`` or ``throw`` (bbb.Params) runs bbb.conveyor's kernel; positions and
+    recorded x are then along the floor's plane in the lab (x = cell·S + d + X_f(t)).
+    ``_force_conveyor`` runs that kernel on the paper's floor too (tests compare the two).
     Memory is O(n_particles × (n_samples + record_collisions)), never O(collisions).
     """
     if not isinstance(params, Params):
@@ -84,10 +89,17 @@ def simulate(
     rec = np.full((n_particles, record_collisions, len(fields)), np.nan)
     counters = np.zeros((n_particles, len(COUNTER_NAMES)), dtype=np.int64)
     p = params
-    evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
-                    p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, float(t_max), times, pos,
-                    float(record_from), rec, numerics.tol_t, numerics.v_stick,
-                    numerics.max_step, counters)
+    if p.transport or _force_conveyor:
+        # tilted or thrown floor: its own compiled kernel; the paper's floor keeps bbb.kernel
+        evolve_ensemble_c(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
+                          p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, p.tilt, p.throw,
+                          float(t_max), times, pos, float(record_from), rec, numerics.tol_t,
+                          numerics.v_stick, numerics.max_step, counters)
+    else:
+        evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
+                        p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, float(t_max), times,
+                        pos, float(record_from), rec, numerics.tol_t, numerics.v_stick,
+                        numerics.max_step, counters)
     return SimRun(
         params=params,
         numerics=numerics,
