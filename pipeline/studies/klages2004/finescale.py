@@ -38,7 +38,7 @@ from matplotlib.figure import Figure
 from bbb.extrema import Extremum, find_extrema
 
 __all__ = ["LEVELS", "LevelCount", "Located", "subsample", "extrema_per_hz",
-           "located_extrema", "figure_finescale", "finescale_summary", "write_table"]
+           "located_extrema", "new_extrema", "table_arrays", "figure_finescale", "finescale_summary", "write_table"]
 
 #: resolutions (Hz) at which the extrema are counted: the base grid and three halvings
 LEVELS = (0.4, 0.2, 0.1, 0.05)
@@ -79,10 +79,30 @@ def subsample(f_hz, h: float, origin: float) -> np.ndarray:
     return (f_mhz - round(origin * 1000)) % round(h * 1000) == 0
 
 
-def _arrays(table: pd.DataFrame, cols=("f", "D", "D_lo", "D_hi")):
+def table_arrays(table: pd.DataFrame, cols=("f", "D", "D_lo", "D_hi")):
     t = table.sort_values(cols[0])
     t = t[np.isfinite(t[list(cols)]).all(axis=1)]
     return tuple(t[c].to_numpy(dtype=np.float64) for c in cols)
+
+
+def _counts(f, D, lo, hi, levels, origin, ci, n_boot, seed):
+    """Sorted arrays; per level the subsample mask, the count and the bootstrap counts
+    (n_boot resamples, the same draws at every level)."""
+    f, D, lo, hi = (np.asarray(a, dtype=np.float64) for a in (f, D, lo, hi))
+    order = np.argsort(f, kind="stable")
+    f, D, lo, hi = f[order], D[order], lo[order], hi[order]
+    origin = float(f.min()) if origin is None else origin
+    sigma = (hi - lo) / (2 * NormalDist().inv_cdf(0.5 + ci / 2))
+    draws = D + np.random.default_rng(seed).standard_normal((n_boot, D.size)) * sigma
+    masks, counts, boot = [], [], np.zeros((n_boot, len(levels)), dtype=np.int64)
+    for j, h in enumerate(levels):
+        m = subsample(f, h, origin)
+        fm, Dm, lm, hm = f[m], D[m], lo[m], hi[m]
+        masks.append(m)
+        counts.append(len(find_extrema(fm, Dm, lm, hm, ci=ci)))
+        boot[:, j] = [len(find_extrema(fm, d[m], d[m] - (Dm - lm), d[m] + (hm - Dm), ci=ci))
+                      for d in draws]
+    return f, masks, counts, boot
 
 
 def extrema_per_hz(f, D, lo, hi, *, levels=LEVELS, origin: float | None = None,
@@ -91,24 +111,22 @@ def extrema_per_hz(f, D, lo, hi, *, levels=LEVELS, origin: float | None = None,
     """The significant extrema per Hz at each resolution in ``levels`` (Hz), with their 95 %
     bootstrap interval (module docstring).  f in Hz, D and its CI [lo, hi] in mm²/s at level
     ``ci``; origin and width default to the window min(f) and max(f) - min(f)."""
-    f, D, lo, hi = (np.asarray(a, dtype=np.float64) for a in (f, D, lo, hi))
-    order = np.argsort(f, kind="stable")
-    f, D, lo, hi = f[order], D[order], lo[order], hi[order]
-    origin = float(f.min()) if origin is None else origin
-    width = float(f.max() - f.min()) if width is None else width
-    sigma = (hi - lo) / (2 * NormalDist().inv_cdf(0.5 + ci / 2))
-    rng = np.random.default_rng(seed)
-    draws = D + rng.standard_normal((n_boot, D.size)) * sigma
-    out = []
-    for h in levels:
-        m = subsample(f, h, origin)
-        fm, Dm, lm, hm = f[m], D[m], lo[m], hi[m]
-        n = len(find_extrema(fm, Dm, lm, hm, ci=ci))
-        boot = [len(find_extrema(fm, d[m], d[m] - (Dm - lm), d[m] + (hm - Dm), ci=ci))
-                for d in draws]
-        q_lo, q_hi = np.percentile(boot, [2.5, 97.5])
-        out.append(LevelCount(h, int(m.sum()), n, float(q_lo), float(q_hi), width))
-    return out
+    fs, masks, counts, boot = _counts(f, D, lo, hi, levels, origin, ci, n_boot, seed)
+    width = float(fs.max() - fs.min()) if width is None else width
+    q = np.percentile(boot, [2.5, 97.5], axis=0)
+    return [LevelCount(h, int(m.sum()), n, float(q[0, j]), float(q[1, j]), width)
+            for j, (h, m, n) in enumerate(zip(levels, masks, counts, strict=True))]
+
+
+def new_extrema(f, D, lo, hi, *, coarse: float = LEVELS[0], fine: float = LEVELS[-1],
+                origin: float | None = None, ci: float = 0.95, n_boot: int = 400,
+                seed: int = 2004) -> tuple[int, float, float]:
+    """How many more significant extrema the ``fine`` resolution shows than the ``coarse``
+    one: (value, lo, hi), the interval from the same bootstrap, paired draw by draw."""
+    _, _, counts, boot = _counts(f, D, lo, hi, (coarse, fine), origin, ci, n_boot, seed)
+    diff = boot[:, 1] - boot[:, 0]
+    q = np.percentile(diff, [2.5, 97.5])
+    return counts[1] - counts[0], float(q[0]), float(q[1])
 
 
 def located_extrema(f, D, lo, hi, *, ci: float = 0.95) -> list[Located]:
@@ -142,7 +160,7 @@ def figure_finescale(table: pd.DataFrame, out_dir: str | os.PathLike | None,
 def _draw(table: pd.DataFrame, out_dir, name: str) -> Figure:
     from .figures import _new_figure, _save
 
-    f, D, lo, hi = _arrays(table)
+    f, D, lo, hi = table_arrays(table)
     origin = float(f.min())
     counts = extrema_per_hz(f, D, lo, hi, origin=origin)
     located = located_extrema(f, D, lo, hi)
@@ -176,7 +194,7 @@ def _draw(table: pd.DataFrame, out_dir, name: str) -> Figure:
 
 def finescale_summary(table: pd.DataFrame) -> tuple[list[LevelCount], list[Located]]:
     """The counts per level and the located extrema of a finescale diffusion table."""
-    f, D, lo, hi = _arrays(table)
+    f, D, lo, hi = table_arrays(table)
     return extrema_per_hz(f, D, lo, hi, origin=float(f.min())), located_extrema(f, D, lo, hi)
 
 

@@ -10,6 +10,7 @@ from pipeline.studies.klages2004.finescale import (
     extrema_per_hz,
     figure_finescale,
     located_extrema,
+    new_extrema,
     subsample,
 )
 
@@ -57,3 +58,11 @@ def test_the_figure_is_drawn_to_png_and_pdf(tmp_path):
     assert len(fig.axes) == 2
     assert (tmp_path / "fig_finescale.png").stat().st_size > 0
     assert (tmp_path / "fig_finescale.pdf").stat().st_size > 0
+
+
+def test_the_extrema_only_the_fine_resolution_shows_are_counted_with_a_paired_interval():
+    assert new_extrema(*_window(), n_boot=100) == (2, 2.0, 2.0)
+    f, D, lo, hi = _window()
+    smooth = D.copy()
+    smooth[np.isclose(f, 59.05)] -= 20.0  # no spike: nothing new at 0.05 Hz
+    assert new_extrema(f, smooth, smooth - 1.0, smooth + 1.0, n_boot=100)[0] == 0
