@@ -18,8 +18,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .adaptive import (OPEN, STOP_LEGEND, StoppingRule, UnitState, advance, refine_frequencies,
-                       remaining)
+from .adaptive import OPEN, STOP_LEGEND, StoppingRule, UnitState, advance, refine_frequencies, remaining
 from .store import StudyStore
 from .workflow import Study
 

@@ -314,7 +314,7 @@ def _matyas(claim: Claim, ctx) -> Measured:
 def _finescale(claim: Claim, ctx) -> Measured:
     """Significant extrema that the 0.05 Hz resolution shows and the 0.4 Hz grid does not, in
     the refined window (scene finescale; pipeline/studies/klages2004/finescale.py)."""
-    from .finescale import table_arrays, extrema_per_hz, located_extrema, new_extrema
+    from .finescale import extrema_per_hz, located_extrema, new_extrema, table_arrays
 
     table = ctx["tables"].get("finescale")
     if table is None:

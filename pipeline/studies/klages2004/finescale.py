@@ -38,7 +38,8 @@ from matplotlib.figure import Figure
 from bbb.extrema import Extremum, find_extrema
 
 __all__ = ["LEVELS", "LevelCount", "Located", "subsample", "extrema_per_hz",
-           "located_extrema", "new_extrema", "table_arrays", "figure_finescale", "finescale_summary", "write_table"]
+           "located_extrema", "new_extrema", "table_arrays", "figure_finescale",
+           "finescale_summary", "write_table"]
 
 #: resolutions (Hz) at which the extrema are counted: the base grid and three halvings
 LEVELS = (0.4, 0.2, 0.1, 0.05)
