@@ -25,7 +25,7 @@ ROOT = Path(__file__).resolve().parent.parent
 DRAFT_COLLISIONS = {"n_particles": 4, "chunk_size": 4, "t_max": 60.0}
 DRAFT_RECORD = {"record": 1000, "record_from": 20.0}
 #: draft accuracy of target-driven scenes: a loose target, small chunks, a low cap
-DRAFT_TARGET = {"target_ci": 0.15, "chunk_size": 32, "max_particles": 256}
+DRAFT_TARGET = {"target_ci": 0.15, "chunk_size": 64, "max_particles": 256}
 
 
 def _scene_folders() -> list[tuple[str, Traversable]]:

@@ -236,4 +236,5 @@ class Waves:
         return f"waves: {k} (f, family) mid-wave, need ~{n} more chunks; {self.summary()}"
 
     def _postfix(self, bar, outstanding) -> None:
-        bar.set_postfix_str(self.progress_line(), refresh=False)
+        if not bar.disable:  # the line reads the store: not for a bar nobody sees
+            bar.set_postfix_str(self.progress_line(), refresh=False)

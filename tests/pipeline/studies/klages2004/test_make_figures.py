@@ -54,7 +54,7 @@ def test_the_draft_of_a_target_driven_scene_keeps_a_loose_target():
     """Fig. 2 asks for 3 % with d_resolved = 9 mm²/s: its draft asks for 15 % with small
     chunks and a low cap, and d_resolved loosened by the same factor 5."""
     draft = load_scene("figure2", fast=True).accuracy
-    assert (draft.target_ci, draft.chunk_size, draft.max_particles) == (0.15, 32, 256)
+    assert (draft.target_ci, draft.chunk_size, draft.max_particles) == (0.15, 64, 256)
     assert draft.d_resolved == 45.0 and draft.t_max == 50.0
 
 
