@@ -176,6 +176,7 @@ def _draw(table: pd.DataFrame, out_dir, name: str) -> Figure:
     a.invert_xaxis()
     a.set_xlabel("resolution (Hz)")
     a.set_ylabel("significant extrema per Hz")
+    a.set_ylim(bottom=0.0, top=max(1.0, 1.2 * float(v[:, 2].max())))
     a.set_title("(a)", loc="left")
     base = subsample(f, LEVELS[0], origin)
     b.fill_between(f, lo, hi, color="0.8", lw=0)
