@@ -200,7 +200,7 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
                                                    verdict.eb.get(name, math.nan))})
         row["verdict"] = "; ".join(verdict.reasons)
         row.update(_stationarity_columns(x, times, an, acc, seed))
-        if {"tilt", "throw"} & study.base_params.keys():  # a conveyor: it drifts
+        if {"tilt", "throw"} & study.overrides.keys():  # a conveyor (even at tilt = 0)
             row.update(_transport_columns(x, times, study, seed, fit))
         rows.append(row)
     df = pd.DataFrame(rows)
