@@ -29,7 +29,13 @@ from numpy.typing import ArrayLike
 
 from . import stats
 
-__all__ = ["TransportEstimate", "per_particle_drift", "drift_velocity", "transport"]
+__all__ = ["TransportEstimate", "per_particle_drift", "drift_velocity", "transport",
+           "STEADY_REL", "STEADY_ABS"]
+
+#: a drift is steady when the CI of v(second half) − v(first half) lies within
+#: ±(STEADY_REL |v| + STEADY_ABS) -- the tolerance bbb.stationarity uses for D
+STEADY_REL = 0.05
+STEADY_ABS = 1e-6  # mm/s
 
 
 @dataclass(frozen=True)
@@ -40,6 +46,10 @@ class TransportEstimate:
     D, D_lo, D_hi  -- D of x − v t and its bootstrap CI, mm²/s
     Pe             -- Péclet number v S / D (S the scatterer spacing), dimensionless
     fit_from, fit_to -- lag window of both fits, s
+    dv, dv_lo, dv_hi -- v of the analysed run's second half minus its first half (each fitted
+                      over the same fractions of a half), paired bootstrap CI, mm/s
+    steady         -- the CI of dv lies within ±(STEADY_REL |v| + STEADY_ABS): a drift, not an
+                      acceleration (a particle running away downhill has dv ~ a T / 2)
     """
 
     v: float
@@ -51,6 +61,10 @@ class TransportEstimate:
     Pe: float
     fit_from: float
     fit_to: float
+    dv: float = math.nan
+    dv_lo: float = math.nan
+    dv_hi: float = math.nan
+    steady: bool = True
 
 
 def _window(xs: np.ndarray, times: np.ndarray, fit: dict) -> tuple[int, int, int, float]:
@@ -104,5 +118,28 @@ def transport(x: ArrayLike, sample_times: ArrayLike, S: float, *, n_resamples: i
                           seed=s_d, method=method, **fit)
     est = stats.diffusion_coefficient(xs[:1], times, **fit)
     pe = v[0] * S / d.D if d.D > 0 else math.nan
+    dv = drift_change(xs, times, n_resamples=n_resamples, ci=ci, seed=ss.spawn(1)[0],
+                      method=method, **fit)
+    tol = STEADY_REL * abs(v[0]) + STEADY_ABS
     return TransportEstimate(v=v[0], v_lo=v[1], v_hi=v[2], D=d.D, D_lo=d.lo, D_hi=d.hi, Pe=pe,
-                             fit_from=est.fit_from, fit_to=est.fit_to)
+                             fit_from=est.fit_from, fit_to=est.fit_to, dv=dv[0], dv_lo=dv[1],
+                             dv_hi=dv[2], steady=bool(-tol <= dv[1] and dv[2] <= tol))
+
+
+def drift_change(x: ArrayLike, sample_times: ArrayLike, *, n_resamples: int, ci: float = 0.95,
+                 seed: int | np.random.SeedSequence, method: str = "percentile",
+                 discard: float = stats.DEFAULT_DISCARD, fit_from: float | None = None,
+                 fit_to: float | None = None) -> stats.BootstrapCI:
+    """v(second half) − v(first half) of the analysed run, mm/s, with a paired bootstrap CI
+    over particles; the lag window of each half is the given one halved (fit_from, fit_to in
+    s; None: the default fractions of a half)."""
+    xs = np.atleast_2d(np.asarray(x, dtype=np.float64))
+    times = np.asarray(sample_times, dtype=np.float64)
+    start, _, _, _ = _window(xs, times, dict(discard=discard, fit_from=fit_from, fit_to=fit_to))
+    mid = start + (xs.shape[1] - 1 - start) // 2
+    half = {"discard": 0.0, "fit_from": None if fit_from is None else fit_from / 2.0,
+            "fit_to": None if fit_to is None else fit_to / 2.0}
+    v1 = per_particle_drift(xs[:, start : mid + 1], times[start : mid + 1] - times[start], **half)
+    v2 = per_particle_drift(xs[:, mid:], times[mid:] - times[mid], **half)
+    return stats.bootstrap_mean(v2 - v1, n_resamples=n_resamples, ci=ci, seed=seed,
+                                method=method)

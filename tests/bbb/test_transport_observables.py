@@ -39,3 +39,13 @@ def test_zero_drift_walks_give_a_drift_CI_containing_zero():
 def test_a_pure_drift_gives_every_particle_exactly_that_drift():
     x = 1.5 * TIMES[None, :] + np.arange(3.0)[:, None]  # no noise: m_i(L) = v L dt exactly
     assert np.allclose(per_particle_drift(x, TIMES), 1.5, rtol=1e-12)
+
+
+def test_a_constant_drift_is_steady_and_an_accelerating_ensemble_is_not():
+    est = transport(_walks(3.0, 2.0, 5), TIMES, 2.0, n_resamples=1000, seed=1)
+    assert est.steady and est.dv_lo <= 0.0 <= est.dv_hi
+    # running away downhill at a = 50 mm/s²: the halves' drifts differ by a T/2 ≈ 1100 mm/s
+    x = _walks(0.0, 2.0, 6) - 25.0 * TIMES[None, :] ** 2
+    acc = transport(x, TIMES, 2.0, n_resamples=1000, seed=1)
+    assert not acc.steady
+    assert acc.dv == pytest.approx(-50.0 * 22.5, rel=0.02)

@@ -7,15 +7,21 @@ tests/pipeline/studies/transport/test_claims.py):
 significant v   v(f) ≠ 0 at a frequency when |v| exceeds z_n standard errors (read off its CI
                 side towards 0, as bbb.extrema does), z_n = Φ⁻¹(1 − α / (2 n)) Bonferroni over
                 the n frequencies of the curve, α = 0.05: on a curve with v ≡ 0 the chance of
-                calling any frequency significant is ≤ 5 %.
+                calling any frequency significant is ≤ 5 %; and |v| > V_MIN = 1e-6 mm/s (a
+                particle at rest has |v| ~ 1e-16 mm/s with a CI of rounding size).
+steady only     every rule uses the frequencies whose drift is steady (bbb.transport: v of the
+                second half of the run equals v of the first within 5 % + 1e-6 mm/s); where
+                the ensemble accelerates (runs away downhill) v and D are window means, not
+                transport coefficients.  The rows say how many frequencies were left out.
 reversal        a sign change between consecutive significant frequencies (those in between
                 not significant).  The claim counts reversals over all conveyor scenes; it
                 agrees with ≥ 1.
 extrema         bbb.extrema.find_extrema (Bonferroni over all pairs, family-wise α = 0.05)
-                on v(f) and on D_drift(f).  "Extrema of the transport rate": ≥ 1 extremum of
-                v(f) per conveyor scene.  "D irregular": ≥ 2 extrema of D_drift(f) (a curve
-                with a maximum and a minimum is not monotonic) per conveyor scene; the row
-                also gives the count at φ = 0, ψ = 90°.
+                on v(f) and on D_drift(f), min_depth = V_MIN resp. D_MIN = 1e-6 mm²/s.
+                "Extrema of the transport rate": ≥ 1 extremum of v(f) per conveyor scene.
+                "D irregular": ≥ 2 extrema of D_drift(f) (a curve with a maximum and a
+                minimum is not monotonic) per conveyor scene; the row also gives the count
+                at φ = 0, ψ = 90°.
 no current      at φ = 0, ψ = 90° (mirror symmetric): no frequency with a significant v.
 
 k = 2 v_y⁺ f / g needs post-collision states, which these positions-only scenes do not
@@ -45,6 +51,8 @@ SCENES = tuple(s for s, _, _ in GEOMETRY)
 CONVEYORS = SCENES[1:]
 LABELS = {s: f"φ = {t:g}°, ψ = {p:g}°" for s, t, p in GEOMETRY}
 ALPHA = 0.05
+V_MIN = 1e-6  # mm/s
+D_MIN = 1e-6  # mm²/s
 _Z95 = NormalDist().inv_cdf(0.975)
 
 
@@ -55,8 +63,8 @@ def significant_signs(v, lo, hi, ci: float = 0.95, alpha: float = ALPHA) -> np.n
     z_ci = NormalDist().inv_cdf(0.5 + ci / 2.0)
     z_n = NormalDist().inv_cdf(1.0 - alpha / (2.0 * max(1, v.size)))
     s_below, s_above = (v - lo) / z_ci, (hi - v) / z_ci  # standard errors, each side
-    pos = v > z_n * s_below
-    neg = -v > z_n * s_above
+    pos = (v > z_n * s_below) & (v > V_MIN)
+    neg = (-v > z_n * s_above) & (-v > V_MIN)
     return np.where(pos, 1, np.where(neg, -1, 0))
 
 
@@ -73,10 +81,20 @@ def reversals(f, signs) -> list[float]:
 
 
 def _table(ctx, scene: str) -> pd.DataFrame | None:
+    """The scene's rows with a steady drift, sorted by f (attrs["unsteady"]: the others' f)."""
     t = ctx["tables"].get(scene)
     if t is None or "v" not in t:
         return None
-    return t.dropna(subset=["v", "v_lo", "v_hi"]).sort_values("f")
+    t = t.dropna(subset=["v", "v_lo", "v_hi"]).sort_values("f")
+    ok = t["steady"].fillna(True).astype(bool) if "steady" in t else pd.Series(True, t.index)
+    out = t[ok].copy()
+    out.attrs["unsteady"] = t["f"][~ok].tolist()
+    return out
+
+
+def _left_out(t: pd.DataFrame) -> str:
+    u = t.attrs.get("unsteady", [])
+    return (f" [{len(u)} f left out, drift not steady: {min(u):g}–{max(u):g} Hz]" if u else "")
 
 
 def _extrema_text(ex) -> str:
@@ -89,7 +107,7 @@ def no_current(claim: Claim, ctx) -> Measured:
     if t is None:
         return Measured(missing=f"no transport columns for {claim.scene}")
     s = significant_signs(t["v"], t["v_lo"], t["v_hi"])
-    where = t["f"][s != 0].tolist()
+    where = t["f"][s != 0].tolist()  # steady rows only; at φ = 0, ψ = 90° all should be
     vmax = float(np.abs(t["v"]).max())
     return Measured([Part(LABELS[claim.scene], Quantity(float(len(where))),
                           f"{len(where)} of {len(t)} frequencies with a significant v "
@@ -104,10 +122,10 @@ def v_extrema(claim: Claim, ctx) -> Measured:
         t = _table(ctx, sc)
         if t is None:
             continue
-        ex = find_extrema(t["f"], t["v"], t["v_lo"], t["v_hi"])
+        ex = find_extrema(t["f"], t["v"], t["v_lo"], t["v_hi"], min_depth=V_MIN)
         parts.append(Part(LABELS[sc], Quantity(float(len(ex))),
                           f"{len(ex)} ({_extrema_text(ex)}); v from {t['v'].min():.3g} to "
-                          f"{t['v'].max():.3g} mm/s"))
+                          f"{t['v'].max():.3g} mm/s{_left_out(t)}"))
     return Measured(parts) if parts else Measured(missing="no conveyor scene reduced")
 
 
@@ -123,7 +141,8 @@ def v_reversals(claim: Claim, ctx) -> Measured:
         r = reversals(t["f"].to_numpy(), s)
         total += len(r)
         texts.append(f"{LABELS[sc]}: {len(r)} ({', '.join(f'~{x:g} Hz' for x in r) or 'none'}; "
-                     f"v > 0 at {int((s > 0).sum())}, < 0 at {int((s < 0).sum())} of {len(t)} f)")
+                     f"v > 0 at {int((s > 0).sum())}, < 0 at {int((s < 0).sum())} of {len(t)} f)"
+                     f"{_left_out(t)}")
     if not seen:
         return Measured(missing="no conveyor scene reduced")
     return Measured([Part("significant sign changes of v(f), all conveyor scenes",
@@ -136,14 +155,16 @@ def d_extrema(claim: Claim, ctx) -> Measured:
         t = _table(ctx, sc)
         if t is None:
             return None
-        return find_extrema(t["f"], t["D_drift"], t["D_drift_lo"], t["D_drift_hi"])
+        ex = find_extrema(t["f"], t["D_drift"], t["D_drift_lo"], t["D_drift_hi"],
+                          min_depth=D_MIN)
+        return ex, _left_out(t)
 
     ref = count(SCENES[0])
-    parts = [Part(LABELS[sc], Quantity(float(len(ex))), f"{len(ex)} ({_extrema_text(ex)})")
-             for sc in CONVEYORS if (ex := count(sc)) is not None]
+    parts = [Part(LABELS[sc], Quantity(float(len(ex))), f"{len(ex)} ({_extrema_text(ex)}){lo}")
+             for sc in CONVEYORS if (r := count(sc)) is not None for ex, lo in [r]]
     if not parts:
         return Measured(missing="no conveyor scene reduced")
-    ref_txt = ("not reduced" if ref is None else f"{len(ref)} ({_extrema_text(ref)})")
+    ref_txt = ("not reduced" if ref is None else f"{len(ref[0])} ({_extrema_text(ref[0])})")
     return Measured(parts, text=f"at {LABELS[SCENES[0]]}: {ref_txt}")
 
 

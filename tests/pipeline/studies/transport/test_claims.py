@@ -69,3 +69,19 @@ def test_the_claim_rows_turn_on_synthetic_tables_with_known_answers():
     wave = 6.0 * np.sin(2 * np.pi * (F - 50.0) / 40.0)  # changes sign at 70 Hz
     tables[CONVEYORS[0]] = _table(wave, wave - 0.3, wave + 0.3)
     assert evaluate(CLAIMS, {"tables": tables})[2].verdict == "agrees"
+
+
+def test_rounding_level_currents_of_particles_at_rest_are_not_significant():
+    v = np.full(F.size, -6e-16)  # a CI of rounding size that excludes 0
+    assert not significant_signs(v, v - 1e-16, v + 1e-16).any()
+
+
+def test_unsteady_frequencies_are_left_out_of_every_rule():
+    up = np.linspace(-20.0, 20.0, F.size)  # a significant reversal, but only where unsteady
+    t = _table(up, up - 0.3, up + 0.3)
+    t["steady"] = F < 70.0
+    tables = {s: t for s in SCENES}
+    row = evaluate(CLAIMS, {"tables": tables})[2]
+    assert row.verdict == "disagrees" and "left out" in row.measured
+    t["steady"] = True
+    assert evaluate(CLAIMS, {"tables": tables})[2].verdict == "agrees"
