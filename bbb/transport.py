@@ -32,8 +32,8 @@ from . import stats
 __all__ = ["TransportEstimate", "per_particle_drift", "drift_velocity", "transport",
            "STEADY_REL", "STEADY_ABS"]
 
-#: a drift is steady when the CI of v(second half) − v(first half) lies within
-#: ±(STEADY_REL |v| + STEADY_ABS) -- the tolerance bbb.stationarity uses for D
+#: a drift is not steady when the CI of v(second half) − v(first half) lies beyond
+#: ±(STEADY_REL |v| + STEADY_ABS) -- the rule and tolerance bbb.stationarity uses for D
 STEADY_REL = 0.05
 STEADY_ABS = 1e-6  # mm/s
 
@@ -48,8 +48,9 @@ class TransportEstimate:
     fit_from, fit_to -- lag window of both fits, s
     dv, dv_lo, dv_hi -- v of the analysed run's second half minus its first half (each fitted
                       over the same fractions of a half), paired bootstrap CI, mm/s
-    steady         -- the CI of dv lies within ±(STEADY_REL |v| + STEADY_ABS): a drift, not an
-                      acceleration (a particle running away downhill has dv ~ a T / 2)
+    steady         -- False when the CI of dv lies beyond ±(STEADY_REL |v| + STEADY_ABS): an
+                      acceleration, not a drift (a particle running away downhill has
+                      dv ~ a T / 2); a noisy dv whose CI reaches the band is not flagged
     """
 
     v: float
@@ -123,7 +124,7 @@ def transport(x: ArrayLike, sample_times: ArrayLike, S: float, *, n_resamples: i
     tol = STEADY_REL * abs(v[0]) + STEADY_ABS
     return TransportEstimate(v=v[0], v_lo=v[1], v_hi=v[2], D=d.D, D_lo=d.lo, D_hi=d.hi, Pe=pe,
                              fit_from=est.fit_from, fit_to=est.fit_to, dv=dv[0], dv_lo=dv[1],
-                             dv_hi=dv[2], steady=bool(-tol <= dv[1] and dv[2] <= tol))
+                             dv_hi=dv[2], steady=not (dv[1] > tol or dv[2] < -tol))
 
 
 def drift_change(x: ArrayLike, sample_times: ArrayLike, *, n_resamples: int, ci: float = 0.95,

@@ -37,7 +37,7 @@ D_drift, D_drift_lo, D_drift_hi  D about the drift (MSD of x - v t), mm^2/s, wit
              there the column D still holds the raw MSD's D, drift included
 Pe           Péclet number v S / D_drift
 dv, dv_lo, dv_hi  v of the analysed run's second half minus its first half, mm/s, paired CI
-steady       False where that CI leaves +-(5 % of |v| + 1e-6 mm/s): an acceleration (a
+steady       False where that CI lies beyond +-(5 % of |v| + 1e-6 mm/s): an acceleration (a
              particle running away downhill), not a drift -- v and D_drift are then window means
 
 ``mechanisms.parquet`` / ``.csv`` (stores with jumps or lyapunov): the Green–Kubo expansion

@@ -9,8 +9,9 @@ significant v   v(f) ≠ 0 at a frequency when |v| exceeds z_n standard errors (
                 the n frequencies of the curve, α = 0.05: on a curve with v ≡ 0 the chance of
                 calling any frequency significant is ≤ 5 %; and |v| > V_MIN = 1e-6 mm/s (a
                 particle at rest has |v| ~ 1e-16 mm/s with a CI of rounding size).
-steady only     every rule uses the frequencies whose drift is steady (bbb.transport: v of the
-                second half of the run equals v of the first within 5 % + 1e-6 mm/s); where
+steady only     every rule uses the frequencies whose drift is steady (bbb.transport: not
+                steady when the CI of v(second half) − v(first half) lies beyond ±(5 % of |v|
+                + 1e-6 mm/s), the rule bbb.stationarity applies to D); where
                 the ensemble accelerates (runs away downhill) v and D are window means, not
                 transport coefficients.  The rows say how many frequencies were left out.
 reversal        a sign change between consecutive significant frequencies (those in between
