@@ -70,6 +70,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
+from .adaptive import OPEN
 from .store import COUNTERS, StudyStore, package_version
 from .workflow import Study
 
@@ -101,7 +102,8 @@ def reduce_store(store_path: str | os.PathLike | StudyStore,
     out = Path(out_dir if out_dir is not None else default_out_dir(store.path, study))
     out.mkdir(parents=True, exist_ok=True)
     done = store.done()
-    if not done.all():
+    stops = store.stops()
+    if not done.all() and not (stops is not None and (stops[1] != OPEN).all()):
         echo(f"{study.name}: {int((~done).sum())} of {done.size} chunks not done; "
              "reducing the done ones (re-run `bbb run` to finish)")
     tables = {"counters": counters_table(store, done)}
@@ -111,6 +113,9 @@ def reduce_store(store_path: str | os.PathLike | StudyStore,
         from .mechanisms import mechanisms_table
 
         tables["mechanisms"] = mechanisms_table(store, done)
+    # refined frequencies are appended to the store's frequency axis: the tables go by f
+    tables = {name: df.sort_values("f", kind="stable").reset_index(drop=True)
+              if "f" in df.columns else df for name, df in tables.items()}
     provenance = _provenance(store)
     for name, df in tables.items():
         write_table(df, out / f"{name}.parquet", {**provenance, "table": name})

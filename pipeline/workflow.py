@@ -422,7 +422,8 @@ def _target_keys(r: Reader, vals: dict, raw: dict) -> None:
 
 
 def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
-    on = "[observables.positions], [observables.collisions], [observables.jumps] or [observables.lyapunov]"
+    on = ("[observables.positions] and/or [observables.collisions] (also [observables.jumps], "
+          "[observables.lyapunov])")
     if "observables" not in doc:
         r.fail(("observables",), "missing", on)
     obs = r.table(doc["observables"], ("observables",), ObservablesTable, {"t_max": acc.t_max})

@@ -57,13 +57,12 @@ def test_plan_prints_a_table_for_every_workflow(workflow, tmp_path, monkeypatch,
     out = capsys.readouterr().out
     study = load_workflow(workflow)
     total = next(line for line in out.splitlines() if line.startswith("total"))
-    cap = len(study.frequencies) * len(study.families) * study.accuracy.n_chunks
-    n_f, n_chunks = total.split()[1:3]
-    assert n_f == str(len(study.frequencies))
-    if getattr(study.accuracy, "target_ci", None) is None:
-        assert int(n_chunks) == cap
-    else:  # target-driven: at least one wave per (f, family), at most the cap
-        assert len(study.frequencies) * len(study.families) <= int(n_chunks) <= cap
+    units = len(study.frequencies) * len(study.families)
+    assert total.split()[1] == str(len(study.frequencies))
+    if study.accuracy.adaptive:  # a target-driven scene: at least one chunk each, at most the cap
+        assert units <= int(total.split()[2]) <= units * study.accuracy.n_chunks
+    else:
+        assert int(total.split()[2]) == units * study.accuracy.n_chunks
     assert "predicted:" in out and "on 2 workers" in out
 
 

@@ -47,7 +47,15 @@ def test_toml_dump_round_trips_a_workflow_document():
     text = scene_path("ergodicity").read_text()
     doc = tomllib.loads(text)
     assert tomllib.loads(_toml_dump(doc)) == doc
-    assert tomllib.loads(draft_text(text))["accuracy"] == {"preset": "draft"}
+    assert tomllib.loads(draft_text(text))["accuracy"]["preset"] == "draft"
+
+
+def test_the_draft_of_a_target_driven_scene_keeps_a_loose_target():
+    """Fig. 2 asks for 3 % with d_resolved = 9 mm²/s: its draft asks for 15 % with small
+    chunks and a low cap, and d_resolved loosened by the same factor 5."""
+    draft = load_scene("figure2", fast=True).accuracy
+    assert (draft.target_ci, draft.chunk_size, draft.max_particles) == (0.15, 64, 256)
+    assert draft.d_resolved == 45.0 and draft.t_max == 50.0
 
 
 def test_the_run_log_records_paths_relative_to_the_repository(tmp_path):
