@@ -72,6 +72,14 @@ class ParamsTable:
                               default_doc="preset")
     beta: float | None = key(None, "tangential restitution, Eq. (6)", allowed="0 <= beta <= 1",
                              default_doc="preset")
+    # the conveyor (bbb.conveyor, docs/physics.md "Transport"); omit_default and left out of
+    # Params.as_dict at 0 and 90, so every scene without them keeps its fingerprint
+    tilt: float | None = key(None, "inclination of the floor's plane (downhill towards -x)",
+                             allowed="|tilt| <= 30 (degrees)", omit_default=True,
+                             default_doc="0 (level)")
+    throw: float | None = key(None, "angle of the vibration to the floor's plane",
+                              allowed="10 <= throw <= 170 (degrees)", omit_default=True,
+                              default_doc="90 (vertical, the paper's)")
 
 
 @dataclass(frozen=True)

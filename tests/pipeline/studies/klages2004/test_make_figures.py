@@ -135,6 +135,7 @@ def test_a_wheel_ships_every_scene_and_module(installed, tmp_path):
     got = json.loads(_run_outside(installed, code, tmp_path).strip().splitlines()[-1])
     assert not Path(got["file"]).is_relative_to(ROOT)  # the installed copy, not this checkout
     assert set(SCENES) | {"smoke", "accuracy"} <= set(got["scenes"])
+    assert set(scene_names()) <= set(got["scenes"])  # every study's scenes/ is package data
     assert got["version"] == importlib.metadata.version("bbb")
     # every module of the source tree is in the wheel (pyproject lists the packages)
     site = Path(got["file"]).parent.parent
