@@ -92,6 +92,7 @@ class RunReport:
     compute_wall: float = 0.0
     workers: int = 0
     dashboard: str | None = None
+    adaptive: bool = False  # n_chunks is then the store's capacity, not a plan
 
     @property
     def collisions_per_s(self) -> float:
@@ -99,7 +100,10 @@ class RunReport:
 
     def summary(self) -> str:
         done = self.skipped + len(self.computed)
-        return (f"{self.name}: {done}/{self.n_chunks} chunks done ({len(self.computed)} computed, "
+        # an adaptive store's chunk axis is a cap: most of it is never meant to be computed
+        count = (f"{done} chunks used (of {self.n_chunks} the cap allows)" if self.adaptive
+                 else f"{done}/{self.n_chunks} chunks done")
+        return (f"{self.name}: {count} ({len(self.computed)} computed, "
                 f"{self.skipped} already done), {self.collisions:.3g} collisions in "
                 f"{self.wall:.1f} s wall ({self.compute_wall:.1f} s computing, "
                 f"{self.task_seconds:.1f} s in tasks) on {self.workers} workers = "
@@ -266,7 +270,8 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
         store = StudyStore.create_or_open(store_path, study)
         store.consolidate()  # readable by xarray.open_zarr even if the run is interrupted
         done = store.done()
-        report = RunReport(study.name, store_path, done.size, int(done.sum()))
+        report = RunReport(study.name, store_path, done.size, int(done.sum()),
+                           adaptive=study.adaptive)
         if study.adaptive:
             # waves and refinement: the chunks to compute follow from the done ones
             waves = Waves(store, echo)
@@ -308,6 +313,7 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
             else:
                 waves.execute(client, fails, report, progress, compute_chunk, _failed)
                 store = waves.store
+                report.n_chunks = store.done().size  # refinement may have grown the store
                 echo(f"{study.name}: {waves.summary()}"
                      + (f"; {waves.rounds} refinement rounds, {len(store.study.refined)} "
                         "frequencies added" if store.study.refine else ""))

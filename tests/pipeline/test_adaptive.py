@@ -175,6 +175,16 @@ def test_an_unreachable_target_stops_at_the_cap_and_says_so(tmp_path):
     assert "4/4 cap" in _status_text(StudyStore.open(store))
 
 
+def test_the_run_summary_counts_the_chunks_used_against_the_cap(tmp_path):
+    """54 Hz from rest: D = 0 is resolved by the first chunk; the summary must not call the
+    other 7 chunks of the cap undone work."""
+    text = (SCENE.replace("[54.0, 60.0, 72.0]", "[54.0]")
+            .replace('[families.launched]\ninitial = "launched"\n', ""))
+    report = run_study(parse_workflow(text, "zero.toml"), tmp_path / "zero.zarr", workers=1,
+                       **QUIET)
+    assert report.summary().startswith("adaptive: 1 chunks used (of 8 the cap allows)")
+
+
 def test_d_near_zero_is_resolved_only_with_an_absolute_half_width():
     """D = 0 exactly (no particle moves): a relative target can never be met; d_resolved
     stops it at once."""
