@@ -72,7 +72,7 @@ import pyarrow.parquet as pq
 
 from .adaptive import OPEN
 from .store import COUNTERS, StudyStore, package_version
-from .workflow import Study
+from .study import Study
 
 __all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir", "column_unit",
            "table_metadata", "write_table"]

@@ -74,7 +74,7 @@ from bbb.provenance import kernel_identity
 from bbb.record import COLLISION_FIELDS, COUNTER_NAMES
 
 from .schema import as_dict
-from .workflow import Study
+from .study import Study
 
 __all__ = ["StoreError", "StudyStore", "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
            "package_version", "read_attrs", "store_fingerprint", "JSON_ATTRS", "KERNEL_ATTRS"]

@@ -58,7 +58,7 @@ from .store import (
     store_fingerprint,
 )
 from .store import package_version as _version
-from .workflow import Study
+from .study import Study
 
 __all__ = ["Problem", "VerifyReport", "verify_store", "ON_SURFACE_MM", "REQUIRED_ATTRS"]
 

@@ -294,7 +294,7 @@ def _dead_pid() -> int:
 
 def test_fsspec_urls_are_stores_too(study, tmp_path):
     # memory:// goes through zarr's FsspecStore like s3:// would; file:// is a local path.
-    from pipeline.run import compute_chunk
+    from pipeline.task import compute_chunk
 
     for url in ("memory://bbb-test/s.zarr", f"file://{tmp_path}/s.zarr"):
         store = StudyStore.create_or_open(url, study)

@@ -39,7 +39,8 @@ import numpy as np
 import pandas as pd
 
 from ...accuracy import ACCURACY_PRESETS
-from ...workflow import Study, parse_workflow
+from ...study import Study
+from ...workflow import parse_workflow
 
 __all__ = [
     "Variant", "default_variants", "variant_study", "run_accuracy_study", "compare",
