@@ -17,7 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .store import KERNEL_ATTRS, StudyStore, n_periods
+from .store import KERNEL_ATTRS, StudyStore
+from .store_layout import n_periods
 from .study import Study
 
 __all__ = ["ChunkResult", "InjectedFailure", "KernelMismatch", "compute_chunk", "warm_numba",

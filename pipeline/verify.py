@@ -46,18 +46,17 @@ from bbb.surface import cell_of, depth
 
 from .schema import as_dict
 from .store import (
-    COUNTERS,
     JSON_ATTRS,
     KERNEL_ATTRS,
     LAYOUT_VERSION,
     SEEDING,
     StoreError,
-    _create_layout,
     normalize_path,
     read_attrs,
     store_fingerprint,
 )
 from .store import package_version as _version
+from .store_layout import COUNTERS, create_layout
 from .study import Study
 
 __all__ = ["Problem", "VerifyReport", "verify_store", "ON_SURFACE_MM", "REQUIRED_ATTRS"]
@@ -206,7 +205,7 @@ def _check_attrs(attrs: dict[str, Any], problems: list[Problem]) -> Study | None
 def _check_layout(g: zarr.Group, study: Study, problems: list[Problem]) -> bool:
     """Arrays as `bbb run` lays them out for this study; False if chunks cannot be checked."""
     ref = zarr.open_group(zarr.storage.MemoryStore(), mode="w")
-    _create_layout(ref, study)
+    create_layout(ref, study)
     want = dict(ref.arrays())
     try:
         have = dict(g.arrays())
