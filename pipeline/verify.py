@@ -26,6 +26,9 @@ frequency, family and chunk):
 
 Reading needs no lock: a done chunk is complete before its marker is written, so a store can
 be verified while a run is still filling it.
+
+Size: one idea, a store checked against its own workflow; the three passes (attributes,
+layout, done chunks) fill one list of Problems and each is short, so they stay together.
 """
 
 from __future__ import annotations
