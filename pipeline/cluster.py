@@ -292,7 +292,7 @@ class WarmNumba(WorkerPlugin):
         self.study = study
 
     def setup(self, worker=None) -> None:
-        from .run import warm_numba
+        from .task import warm_numba
 
         path = os.path.join(tempfile.gettempdir(), f"bbb-numba-warm-{os.getuid()}.lock")
         with open(path, "a") as fh:

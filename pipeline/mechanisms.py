@@ -32,7 +32,8 @@ import zlib
 import numpy as np
 import pandas as pd
 
-from .store import StudyStore, n_periods
+from .store import StudyStore
+from .store_layout import n_periods
 
 __all__ = ["mechanisms_table", "MECHANISM_ORDERS"]
 

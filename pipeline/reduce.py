@@ -71,8 +71,9 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from .adaptive import OPEN
-from .store import COUNTERS, StudyStore, package_version
-from .workflow import Study
+from .store import StudyStore, package_version
+from .store_layout import COUNTERS
+from .study import Study
 
 __all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir", "column_unit",
            "table_metadata", "write_table"]

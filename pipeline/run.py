@@ -4,7 +4,8 @@ The cluster is a ``LocalCluster`` (processes, one thread each, ``workers`` of th
 the number of cores) or an existing scheduler given by address.  Every chunk's result depends
 only on (parameters, frequency, family, chunk) through its SeedSequence, so the store is the
 same bit for bit whatever the worker count or task order.  Chunks already marked done are
-skipped, so re-running the same workflow on the same store resumes it.
+skipped, so re-running the same workflow on the same store resumes it.  This module is the
+client side; what a task computes on a worker is :mod:`pipeline.task`.
 
 Fault injection (for tests): the environment variable ``BBB_FAIL_CHUNKS`` lists chunks, as
 ``F:FAMILY:CHUNK`` separated by commas (F in Hz), whose task writes its data and then fails
@@ -13,10 +14,8 @@ before marking the chunk done.  It is read by the client, not the workers.
 
 from __future__ import annotations
 
-import dataclasses
 import logging
 import os
-import socket
 import sys
 import time
 import traceback
@@ -24,12 +23,18 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from .lock import run_lock
-from .store import KERNEL_ATTRS, StudyStore, _is_local, n_periods, normalize_path
+from .store import StudyStore, _is_local, normalize_path
+from .study import Study
+from .task import (  # the task and what it reports, importable from here as before the split
+    FAIL_ENV,
+    ChunkKey,
+    ChunkResult,
+    KernelMismatch,
+    compute_chunk,
+    warm_numba,
+)
 from .waves import Waves
-from .workflow import Study
 
 __all__ = [
     "RunFailed",
@@ -43,32 +48,12 @@ __all__ = [
     "KernelMismatch",
 ]
 
-FAIL_ENV = "BBB_FAIL_CHUNKS"
-ChunkKey = tuple[float, str, int]  # (f in Hz, family name, chunk index)
-
-
 class RunFailed(RuntimeError):
     """A task failed; the message names the frequency, family, chunk and cause."""
 
 
 class SchedulerUnreachable(ValueError):
     """--scheduler names no reachable Dask scheduler (a usage error: nothing ran)."""
-
-
-class InjectedFailure(RuntimeError):
-    """The failure asked for by BBB_FAIL_CHUNKS."""
-
-
-@dataclass(frozen=True)
-class ChunkResult:
-    """What a task reports back: its key, collisions simulated, the wall time of the
-    simulation and of the store writes (s), and the worker's host."""
-
-    key: ChunkKey
-    collisions: int
-    seconds: float
-    write_seconds: float
-    host: str
 
 
 @dataclass
@@ -108,113 +93,6 @@ class RunReport:
                 f"{self.wall:.1f} s wall ({self.compute_wall:.1f} s computing, "
                 f"{self.task_seconds:.1f} s in tasks) on {self.workers} workers = "
                 f"{self.collisions_per_s:.3g} collisions/s -> {self.store}")
-
-
-# -------------------------------------------------------------------------------------------
-def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = False
-                  ) -> ChunkResult:
-    """The Dask task: simulate one chunk of particles and write it to its own store chunk."""
-    from bbb.simulate import simulate
-
-    t0 = time.perf_counter()
-    study = store.study
-    f, fam = study.frequencies[fi], study.families[mi]
-    _check_kernel(store)
-    acc, obs = study.accuracy, study.observables
-    times, pick, period_cols = _sample_grid(study, f)
-    run = simulate(
-        study.params(f), acc.chunk_size, acc.t_max, study.seed_sequence(f, fam, ci),
-        sample_times=times,
-        record_collisions=obs.collisions_record or 0, record_from=obs.collisions_from,
-        numerics=acc.numerics(), **fam.simulate_kwargs(),
-    )
-    extra = {}
-    if obs.jumps:
-        extra["jumps"] = np.diff(run.positions[:, period_cols], axis=1).astype(np.float32)
-    if pick is not None:
-        run = dataclasses.replace(run, positions=run.positions[:, pick])
-    if obs.lyapunov:
-        extra.update(_lyapunov_chunk(study, f, fam, ci))
-    seconds = time.perf_counter() - t0
-    store.write_chunk(fi, mi, ci, run, seconds, mark_done=not fail, extra=extra)
-    if fail:
-        raise InjectedFailure(f"{FAIL_ENV} asked this chunk to fail after writing its data")
-    return ChunkResult((f, fam.name, ci), int(run.counters["collisions"].sum()), seconds,
-                       time.perf_counter() - t0 - seconds, socket.gethostname())
-
-
-def _sample_grid(study: Study, f: float) -> tuple[np.ndarray | None, np.ndarray | None,
-                                                  np.ndarray | None]:
-    """The sample times of one chunk's simulation: the positions' grid and, with jumps, the
-    floor periods n/f, n = 0 … floor(t_max f).  Returns (times, columns of the positions
-    grid or None when it is all of them, columns of the period grid or None)."""
-    obs = study.observables
-    pos = study.sample_times() if obs.positions else None
-    if not obs.jumps:
-        return pos, None, None
-    periods = np.minimum(np.arange(n_periods(study.accuracy.t_max, f) + 1) / f,
-                         study.accuracy.t_max)
-    times = periods if pos is None else np.union1d(pos, periods)
-    pick = np.searchsorted(times, pos) if pos is not None else None
-    return times, pick, np.searchsorted(times, periods)
-
-
-def _lyapunov_chunk(study: Study, f: float, fam, ci: int) -> dict[str, np.ndarray]:
-    """λ (1/s, per collision) of this chunk's particles among the first
-    ``lyapunov_particles`` of the ensemble, from the same initial states as the chunk."""
-    from bbb.ensemble import InitialState, initial_state
-    from bbb.lyapunov import lyapunov
-
-    obs, acc = study.observables, study.accuracy
-    first = ci * acc.chunk_size
-    k = min(acc.chunk_size, obs.lyapunov_particles - first)
-    if k <= 0:
-        return {}
-    kw = fam.simulate_kwargs()
-    p = study.params(f)
-    st = initial_state(p, acc.chunk_size, study.seed_sequence(f, fam, ci), kw.pop("initial"), **kw)
-    sub = InitialState(**{fd.name: getattr(st, fd.name)[:k] for fd in dataclasses.fields(st)})
-    lam = lyapunov(p, k, acc.t_max, 0, sub, discard=obs.lyapunov_discard, d0=obs.lyapunov_d0,
-                   numerics=acc.numerics(), n_resamples=10)
-    return {"lyapunov": lam.lam_i, "lyapunov_per_collision": lam.per_coll_i}
-
-
-class KernelMismatch(RuntimeError):
-    """This worker's kernel (bbb sources, numba, numpy) is not the one that made the store."""
-
-
-def _check_kernel(store: StudyStore) -> None:
-    # The client checked the store against its own kernel; a worker of a remote cluster may
-    # run another installation of bbb.  Checked before anything is written.
-    from bbb.provenance import kernel_identity
-
-    attrs, mine = store.attrs(), kernel_identity()
-    for key in KERNEL_ATTRS:
-        if attrs.get(key) != mine[key]:
-            raise KernelMismatch(f"worker {socket.gethostname()} runs another kernel ({key}: "
-                                 f"worker {mine[key]}, store {attrs.get(key)}); allowed: workers "
-                                 "with the same bbb, numba and numpy as the store's")
-
-
-def warm_numba(study: Study) -> float:
-    """Compile (or load from numba's on-disk cache) everything a task runs; returns seconds.
-
-    One tiny simulate call per family with the study's observables, so that no task compiles
-    and no two processes write the same cache entry at once (numba issue #4807).
-    """
-    import numpy as np
-
-    from bbb.simulate import simulate
-
-    t0 = time.perf_counter()
-    obs = study.observables
-    t = min(0.05, study.accuracy.t_max)
-    for fam in study.families:
-        simulate(study.params(study.frequencies[0]), 2, t, 0,
-                 sample_times=np.array([0.0, t]) if obs.positions else None,
-                 record_collisions=2 if obs.collisions else 0, record_from=0.0,
-                 numerics=study.accuracy.numerics(), **fam.simulate_kwargs())
-    return time.perf_counter() - t0
 
 
 def parse_fail_chunks(spec: str | None) -> set[tuple[int, str, int]]:

@@ -20,7 +20,7 @@ import numpy as np
 
 from .adaptive import OPEN, STOP_LEGEND, StoppingRule, UnitState, advance, refine_frequencies, remaining
 from .store import StudyStore
-from .workflow import Study
+from .study import Study
 
 __all__ = ["Waves", "rule_of", "stop_seed", "unit_ci", "pooled_ci"]
 

@@ -6,9 +6,9 @@ import pandas as pd
 import pytest
 
 from pipeline.reduce import reduce_store
-from pipeline.run import compute_chunk
 from pipeline.scenes import load_scene
 from pipeline.store import StudyStore
+from pipeline.task import compute_chunk
 from pipeline.workflow import WorkflowError, parse_workflow
 
 from .helpers import TINY

@@ -152,20 +152,20 @@ def figure_finescale(table: pd.DataFrame, out_dir: str | os.PathLike | None,
     CIs, the base grid's points, and the extrema of the finest level with their intervals."""
     from matplotlib import rc_context
 
-    from .figures import STYLE
+    from ..figure_style import STYLE
 
     with rc_context(STYLE):
         return _draw(table, out_dir, name)
 
 
 def _draw(table: pd.DataFrame, out_dir, name: str) -> Figure:
-    from .figures import _new_figure, _save
+    from ..figure_style import new_figure, save_figure
 
     f, D, lo, hi = table_arrays(table)
     origin = float(f.min())
     counts = extrema_per_hz(f, D, lo, hi, origin=origin)
     located = located_extrema(f, D, lo, hi)
-    fig = _new_figure(name, (7.0, 2.8))
+    fig = new_figure(name, (7.0, 2.8))
     a, b = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1, 2.2]})
     h = np.array([c.h for c in counts])
     v = np.array([c.per_hz for c in counts])
@@ -191,7 +191,7 @@ def _draw(table: pd.DataFrame, out_dir, name: str) -> Figure:
     b.set_ylabel("D (mm²/s)")
     b.set_title("(b)", loc="left")
     b.legend(loc="best", fontsize="small", frameon=False)
-    return _save(fig, out_dir)
+    return save_figure(fig, out_dir)
 
 
 def finescale_summary(table: pd.DataFrame) -> tuple[list[LevelCount], list[Located]]:

@@ -27,7 +27,8 @@ from ... import claims as _claims
 from ...claim_measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
 from ...claims import Row
 from ...collisions import as_store
-from .claims import CLAIMS, MAIN, families, period1_limit, spiral_closeness
+from .claims import CLAIMS, period1_limit
+from .measures import MAIN, families, spiral_closeness
 
 __all__ = ["Row", "CLAIMS", "curve_extrema", "onset", "evaluate", "write_report",
            "spiral_closeness", "period1_limit"]

@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 from matplotlib import rc_context
 
-from ..klages2004.figures import STYLE, _new_figure, _save, figure_files
+from ..figure_style import STYLE, figure_files, new_figure, save_figure
 
 __all__ = ["draw", "figure_mechanisms"]
 
@@ -27,7 +27,7 @@ def figure_mechanisms(tables: Mapping[str, pd.DataFrame], out_dir: str | os.Path
     diff = tables.get("diffusion")
     f = mech["f"].to_numpy()
     with rc_context(STYLE):
-        fig = _new_figure(name, (7.0, 6.2))
+        fig = new_figure(name, (7.0, 6.2))
         ax_d, ax_l, ax_c = fig.subplots(3, 1, sharex=True)
         if diff is not None and "D" in diff:
             d = diff.sort_values("f")
@@ -58,7 +58,7 @@ def figure_mechanisms(tables: Mapping[str, pd.DataFrame], out_dir: str | os.Path
         for ax in (ax_d, ax_l, ax_c):
             for x in np.unique(f[np.isin(f, (54.0, 58.0, 60.0, 62.0, 80.0))]):
                 ax.axvline(x, color="0.85", lw=0.8, zorder=0)
-        return _save(fig, out_dir)
+        return save_figure(fig, out_dir)
 
 
 def draw(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str],

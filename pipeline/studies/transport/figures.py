@@ -11,7 +11,7 @@ from pathlib import Path
 import pandas as pd
 from matplotlib import rc_context
 
-from ..klages2004.figures import STYLE, _new_figure, _save, figure_files
+from ..figure_style import STYLE, figure_files, new_figure, save_figure
 from .claims import LABELS, SCENES
 
 __all__ = ["draw", "figure_transport"]
@@ -22,7 +22,7 @@ def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathL
     """Two panels from ``tables[scene]`` (diffusion tables with v, D_drift); returns the Figure
     (writes PNG + PDF given ``out_dir``)."""
     with rc_context(STYLE):
-        fig = _new_figure(name, (7.0, 5.6))
+        fig = new_figure(name, (7.0, 5.6))
         ax_v, ax_d = fig.subplots(2, 1, sharex=True)
         for i, sc in enumerate(SCENES):
             t = tables.get(sc)
@@ -51,7 +51,7 @@ def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathL
         ax_d.set_ylabel("D about the drift (mm²/s)")
         ax_d.set_xlabel("f (Hz)")
         ax_d.text(0.01, 0.92, "(b)", transform=ax_d.transAxes)
-        return _save(fig, out_dir)
+        return save_figure(fig, out_dir)
 
 
 def draw(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str],
