@@ -17,6 +17,9 @@ stays certified without splitting the flight at cusps: the depth of the nearest 
 concave kinks at cusps, so chord bounds that need an upper bound on G'' stay valid across
 them, and the bounds that need a lower bound are used only on intervals that cannot reach a
 cusp (|d''| ≤ Dx = |gx| + |Ax| ω² bounds where d can go).
+
+Size: one idea, the conveyor's certified map; its gap bounds, search and step rest on the one
+derivation above and are read together (split, each part would need the others' docstring).
 """
 
 from __future__ import annotations
