@@ -563,8 +563,10 @@ def every_particle_goes_downhill(p: Params, st: InitialState, run: SimRun) -> No
 
 
 def drifts_downhill_on_average(p: Params, st: InitialState, run: SimRun) -> None:
-    """R = S/2 tilted by −30°: a particle may sit in a cusp for good (its walls are vertical,
-    steeper than any tilt), but those that move go downhill, so the mean displacement does."""
+    """R = S/2 tilted by −30°: a particle caught in a cusp may stay there (the conveyor's
+    lift-off rule sees one arc's horizontal normal there, so with ψ = 90° it never lifts off:
+    see benchmarks/results/soak-transport-2026-11-23-small.txt), but those that move go
+    downhill, so the mean displacement does."""
     assert p.tilt < 0
     assert np.mean(run.positions[:, -1] - start_x(p, st)) > 10 * p.S
 
