@@ -2,6 +2,7 @@
 of tests/bbb/test_extremes.py, with zero particles below the surface and zero non-finite values.
 
     .venv/bin/python benchmarks/soak.py [--target 1e9] [--workers 2] [--sample 1000] [--check 4]
+    .venv/bin/python benchmarks/soak.py --mix transport [--case KEY=VAL[,KEY=VAL...]] ...
 
 Not part of CI (10–20 min on 2 cores).  Commit the output under benchmarks/results/.
 
@@ -28,12 +29,22 @@ v_t²/R > (g + a_floor) n_y > 0, away from the cusps (|d| < S/2 - 0.01 mm, where
 would catch it), yet the sticking rule set it to zero (see the xfail'd tangent-touch case of
 the test).  In a chattering cascade Eq. (6) multiplies v_t by β at each of infinitely many
 collisions, so zeroing it there is the model's own limit; an arrest is where it is not.
-Only collisions after a recorded flight are classified.
+Only collisions after a recorded flight are classified, and only on the paper's floor
+(a tilted or thrown one shows '-': the classification assumes vertical vibration).
+
+Parameter sets other than the table's: each ``--case KEY=VAL[,KEY=VAL...]`` (repeatable) is
+one row, ``bbb.Params(**(BASE | overrides))`` with BASE the table's base parameters (the
+paper's, f = 60 Hz) and every KEY passed on as it is (a value that parses as a float is one,
+e.g. ``R=inf``; any other stays a string), particles of the 'launched' family.  ``--mix
+transport`` adds the conveyor's preset rows (TRANSPORT_MIX).  Given any, the soak runs those
+rows instead of the table, shares the target evenly among them and hands their tasks out
+round-robin; the checks and the table are the same.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import datetime
 import math
 import os
@@ -50,12 +61,68 @@ sys.path.insert(0, str(ROOT))
 import numba  # noqa: E402
 import numpy as np  # noqa: E402
 
+from bbb import Params  # noqa: E402
 from bbb.surface import cell_of  # noqa: E402
 from benchmarks.kernel import cpu_name  # noqa: E402
-from tests.bbb.test_extremes import CASES, impacts, invariant_violations, rows_of, run_case  # noqa: E402
+from tests.bbb.test_extremes import BASE, CASES, Case, impacts, invariant_violations, rows_of, run_case  # noqa: E402
 
 T_SOAK = 30.0  # s, the shortest soak run of a case
 TASK_COLLISIONS = 2e7  # ~10-15 s of kernel time per task
+#: --mix transport: the conveyor (issue 14) on flat (R=inf) and curved floors, R=S/2 included,
+#: tilt ±30°, throw 10°-90°, Γ = 1.4 (A=0.1), 4.3 (A=0.3), 7.2 (A=0.5)
+TRANSPORT_MIX = (
+    "tilt=-30,throw=60",
+    "tilt=30,throw=10,A=0.5,R=inf",
+    "tilt=-30,throw=10,A=0.5",
+    "tilt=15,throw=45,A=0.3",
+    "tilt=-5,throw=30,A=0.3,R=inf",
+    "tilt=30,throw=90",
+    "tilt=-30,throw=45,R=1",
+)
+MIXES = {"transport": TRANSPORT_MIX}
+
+_specs: tuple[str, ...] = ()  # the --case rows of this process (empty: the extremes table)
+
+
+def overrides(spec: str) -> dict[str, float | str]:
+    """``KEY=VAL[,KEY=VAL...]`` as a dict; VAL a float where it parses as one, else a string."""
+    out: dict[str, float | str] = {}
+    for item in spec.split(","):
+        key, eq, val = (part.strip() for part in item.partition("="))
+        if not (eq and key and val):
+            raise ValueError(f"{item!r} is not KEY=VAL; expected KEY=VAL[,KEY=VAL...]")
+        try:
+            out[key] = float(val)
+        except ValueError:
+            out[key] = val
+    return out
+
+
+def no_claim(p, st, run) -> None:
+    """A --case row claims nothing beyond the invariants every row is held to."""
+
+
+def case_of(spec: str) -> Case:
+    """The soak row of one ``--case``: the table's base parameters with the overrides."""
+    try:
+        p = Params(**(BASE | overrides(spec)))
+    except TypeError:
+        allowed = ", ".join(f.name for f in dataclasses.fields(Params))
+        keys = sorted(overrides(spec))
+        raise ValueError(f"--case {spec!r}: unknown key in {keys}; allowed: {allowed}") from None
+    except ValueError as e:
+        raise ValueError(f"--case {spec!r}: {e}") from None
+    return Case(spec, p, "launched", no_claim)
+
+
+def set_cases(specs: tuple[str, ...]) -> None:
+    global _specs
+    _specs = specs
+
+
+def cases() -> list[Case]:
+    """The soak's rows: the extremes table, or the --case rows if any were given."""
+    return [case_of(s) for s in _specs] if _specs else CASES
 
 
 @dataclass(frozen=True)
@@ -69,7 +136,7 @@ class Task:
 
 def plan_case(index: int, share: float, per_particle: float, max_particles: int, sample: int) -> list[Task]:
     """Tasks of ``index`` that drive about ``share`` collisions (fewer when particles rest)."""
-    case = CASES[index]
+    case = cases()[index]
     t_max = max(case.t_max, T_SOAK)
     per_particle = max(per_particle, 1.0)
     particles = int(min(max_particles, math.ceil(share / per_particle)))
@@ -83,14 +150,14 @@ def plan_case(index: int, share: float, per_particle: float, max_particles: int,
 
 
 def pilot(index: int) -> float:
-    """Collisions per particle over a soak run of ``CASES[index]`` (4 particles)."""
-    case = CASES[index]
+    """Collisions per particle over a soak run of ``cases()[index]`` (4 particles)."""
+    case = cases()[index]
     _, run = run_case(case, 4, max(case.t_max, T_SOAK), seed=999, record=0, n_samples=2)
     return float(run.counters["collisions"].mean())
 
 
 def run_task(task: Task, sample: int, check: int) -> dict:
-    case = CASES[task.case]
+    case = cases()[task.case]
     p = case.params
     t0 = time.process_time()
     st, run = run_case(case, task.n, task.t_max, task.seed, record=sample, record_from=task.record_from,
@@ -99,7 +166,8 @@ def run_task(task: Task, sample: int, check: int) -> dict:
     v = invariant_violations(p, run, per_period=case.per_period, flights=sample,
                              brute_force_particles=check, start=st if task.record_from == 0 else None)
     arrested = sticks = 0
-    for i in range(run.n_particles):
+    classified = not p.transport
+    for i in range(run.n_particles if classified else 0):
         rows = rows_of(run, i)
         if rows.shape[0] > 1 and np.all(np.isfinite(rows)):
             m = impacts(p, rows)
@@ -112,7 +180,8 @@ def run_task(task: Task, sample: int, check: int) -> dict:
     for m in v.pop("messages"):
         print(f"  case {task.case} seed {task.seed}: {m}", file=sys.stderr, flush=True)
     v.update(case=task.case, particles=task.n, collisions=int(run.counters["collisions"].sum()),
-             kernel_s=kernel, check_s=time.process_time() - t0 - kernel, sticks=sticks, arrested=arrested)
+             kernel_s=kernel, check_s=time.process_time() - t0 - kernel, sticks=sticks, arrested=arrested,
+             classified=int(classified))
     return v
 
 
@@ -124,7 +193,22 @@ def main() -> None:
     ap.add_argument("--check", type=int, default=4,
                     help="particles per task through the trajectory checker and the brute force")
     ap.add_argument("--max-particles", type=int, default=100_000, help="per case")
+    ap.add_argument("--case", action="append", default=[], metavar="KEY=VAL[,KEY=VAL...]",
+                    help="a parameter set to soak instead of the extremes table (repeatable): bbb.Params "
+                         "fields over the table's base, e.g. tilt=-30,throw=60,R=inf")
+    ap.add_argument("--mix", choices=sorted(MIXES), action="append", default=[],
+                    help="add a preset of --case rows (transport: tilt and throw, issue 14)")
     args = ap.parse_args()
+    specs = tuple(s for m in args.mix for s in MIXES[m]) + tuple(args.case)
+    try:
+        for spec in specs:
+            case_of(spec)
+    except ValueError as e:
+        ap.exit(2, f"{ap.prog}: error: {e}\n")
+    if len(set(specs)) != len(specs):
+        ap.exit(2, f"{ap.prog}: error: a --case is given twice: {sorted(specs)}\n")
+    set_cases(specs)
+    rows = cases()
     wall0 = time.perf_counter()
     print(f"# bbb soak (invariant budget, issue 6)  {datetime.datetime.now().isoformat(timespec='seconds')}")
     print(f"# CPU: {cpu_name()}  ({os.cpu_count()} cores)  python {platform.python_version()}  "
@@ -132,20 +216,28 @@ def main() -> None:
     print(f"# target {args.target:.3g} collisions, {args.workers} worker processes, sample {args.sample} "
           f"events/particle, trajectory checker and brute force on {args.check} particles/task, "
           "default Numerics")
+    if specs:
+        print(f"# {len(specs)} parameter sets (--case): bbb.Params over the base "
+              f"{', '.join(f'{k}={v:g}' for k, v in BASE.items())}, 'launched' particles; tasks round-robin")
     sys.stdout.flush()
 
-    with ProcessPoolExecutor(max_workers=args.workers) as pool:
-        per_particle = list(pool.map(pilot, range(len(CASES))))
+    with ProcessPoolExecutor(max_workers=args.workers, initializer=set_cases, initargs=(specs,)) as pool:
+        per_particle = list(pool.map(pilot, range(len(rows))))
         # share the target evenly; cases that cannot reach their share give the rest to the others
         caps = [c * args.max_particles for c in per_particle]
         share = {}
-        left, todo = args.target * 1.03, sorted(range(len(CASES)), key=lambda i: caps[i])
+        left, todo = args.target * 1.03, sorted(range(len(rows)), key=lambda i: caps[i])
         for k, i in enumerate(todo):
             share[i] = min(caps[i], left / (len(todo) - k))
             left -= share[i]
-        tasks = [t for i in range(len(CASES))
-                 for t in plan_case(i, share[i], per_particle[i], args.max_particles, args.sample)]
-        tasks.sort(key=lambda t: -t.n * per_particle[t.case])  # largest first: both workers busy to the end
+        planned = [plan_case(i, share[i], per_particle[i], args.max_particles, args.sample)
+                   for i in range(len(rows))]
+        if specs:  # round-robin: the k-th task of every row before the (k+1)-th of any
+            tasks = [ts[k] for k in range(max(map(len, planned))) for ts in planned if k < len(ts)]
+        else:
+            tasks = [t for ts in planned for t in ts]
+            # largest first: both workers busy to the end
+            tasks.sort(key=lambda t: -t.n * per_particle[t.case])
         print(f"# {len(tasks)} tasks; pilot took {time.perf_counter() - wall0:.1f} s")
         print()
         sys.stdout.flush()
@@ -159,8 +251,8 @@ def main() -> None:
     wall = time.perf_counter() - wall0
 
     keys = ("particles", "collisions", "rows", "checked", "off_surface", "rule", "liftoff", "gap", "flights",
-            "below", "anomalies", "nonfinite", "sticks", "arrested", "kernel_s", "check_s")
-    per_case = {i: dict.fromkeys(keys, 0) | {"worst_gap": math.inf} for i in range(len(CASES))}
+            "below", "anomalies", "nonfinite", "sticks", "arrested", "classified", "kernel_s", "check_s")
+    per_case = {i: dict.fromkeys(keys, 0) | {"worst_gap": math.inf} for i in range(len(rows))}
     for d in done:
         agg = per_case[d["case"]]
         for k in keys:
@@ -176,12 +268,13 @@ def main() -> None:
                 f"{a['checked']:9d} {a['off_surface']:8d} {a['rule']:5d} {a['liftoff']:7d} {a['gap']:5d} "
                 f"{a['flights']:10d} "
                 f"{a['worst_gap']:10.2e} {a['below']:5d} {a['anomalies']:6d} {a['nonfinite']:6d} "
-                f"{a['sticks']:7d} {a['arrested']:8d} {rate:11.3e}")
+                + (f"{a['sticks']:7d} {a['arrested']:8d}" if a["classified"] else f"{'-':>7} {'-':>8}")
+                + f" {rate:11.3e}")
 
     print(head)
     print("-" * len(head))
     tot = dict.fromkeys(keys, 0) | {"worst_gap": math.inf}
-    for i, case in enumerate(CASES):
+    for i, case in enumerate(rows):
         a = per_case[i]
         for k in keys:
             tot[k] += a[k]

@@ -29,7 +29,7 @@ from bbb.numerics import Numerics
 from bbb.record import COLLISION_FIELDS, COUNTER_NAMES
 from bbb.surface import cell_of, depth, surface_normal
 from tests.bbb.flight_check import gap_along_flights, on_surface_tolerance
-from tests.bbb.trajectory_check import Report, check_particle, start_event
+from tests.bbb.trajectory_check import Floor, Report, check_particle, start_event
 
 G = 9800.0
 BASE = dict(g=G, A=0.1, f=60.0, R=15.0, S=2.0, alpha=0.7, beta=0.99)
@@ -496,6 +496,107 @@ CASES: list[Case] = [
          moves_as_if_started_at_rest),
     Case("1e6 floor periods at 60 Hz: phase follows the clock", params(), "launched",
          phase_follows_the_clock, n=1, t_max=1e6 / 60.0, record=1_500_000),
+]
+
+# ---- the conveyor (issue 14): tilt φ up to ±30°, throw ψ from 10° to 90° --------------------
+# Kinematics from the independent checker's Floor (x along the floor's plane, y normal to it;
+# gravity (−g sin φ, −g cos φ); the floor displaced by A (cos ψ, sin ψ)(−sin 2πft)).
+
+
+def start_x(p: Params, st: InitialState) -> np.ndarray:
+    """Initial lab x (mm): d is the offset relative to the moving floor."""
+    fl = Floor(p)
+    return st.cell * p.S + st.d + fl.xf(fl.w * st.s)
+
+
+def energy_is_kept_on_the_tilted_floor(p: Params, st: InitialState, run: SimRun) -> None:
+    """α = β = 1 on a motionless tilted floor: E = |v|²/2 + g sin φ x + g cos φ y is kept
+    (mm²/s²), while the particle speeds up downhill to ~g sin φ t."""
+    fl = Floor(p)
+    e0 = 0.5 * (st.vx**2 + st.vy**2) + fl.gx * start_x(p, st) + fl.gy * st.y
+    for i in range(run.n_particles):
+        rows = rows_of(run, i)
+        assert rows.shape[0] > 10
+        kinetic = 0.5 * (rows[:, 3] ** 2 + rows[:, 4] ** 2)
+        e = kinetic + fl.gx * rows[:, 1] + fl.gy * rows[:, 2]
+        scale = abs(e0[i]) + kinetic + np.abs(fl.gx * rows[:, 1])
+        assert np.all(np.abs(e - e0[i]) <= 1e-9 * scale)
+        assert kinetic[-1] > 10.0 * kinetic[0]  # the tilt did drive it
+
+
+def vx_is_the_floors_along_plane_velocity(p: Params, st: InitialState, run: SimRun) -> None:
+    """β = 0 on a flat thrown floor: Eq. (6) on the velocity relative to the floor leaves
+    vₓ = the floor's along-plane velocity −A cos ψ ω cos 2πft after every collision, whatever
+    gravity's along-plane pull did in flight."""
+    fl = Floor(p)
+    n_rows = 0
+    for i in range(run.n_particles):
+        rows = rows_of(run, i)
+        vxf = fl.vxf(2 * np.pi * rows[:, 5])
+        assert np.all(np.abs(rows[:, 3] - vxf) <= 1e-9 * (1.0 + np.hypot(rows[:, 3], rows[:, 4])))
+        n_rows += int(np.count_nonzero(np.abs(vxf) > 1.0))
+    assert n_rows > 100  # the floor was moving sideways at those collisions
+
+
+def rides_with_the_floor_once_stuck(p: Params, st: InitialState, run: SimRun) -> None:
+    """A sin ψ ω² < g cos φ (and on the arcs the normal contact force stays positive): the
+    bounce cascade ends in sticking and the floor never lets go; a stuck particle keeps its
+    place relative to the floor, so x(t) − X_f(t) is constant, X_f = −A cos ψ sin 2πft."""
+    fl = Floor(p)
+    assert np.all(run.counters["sticks"] == 1) and np.all(run.counters["liftoffs"] == 0)
+    t = np.linspace(0.0, run.t_max, run.positions.shape[1])
+    rel = run.positions - fl.xf(fl.w * (st.s[:, None] + t[None, :]))
+    t_stuck = np.array([rows_of(run, i)[-1, 0] for i in range(run.n_particles)])
+    late = t > t_stuck.max()
+    assert np.count_nonzero(late) > 10
+    assert np.all(np.abs(rel[:, late] - rel[:, -1:]) <= 1e-9)
+    assert np.ptp(run.positions[:, late], axis=1).min() > fl.Ax  # it did move with the floor
+
+
+def every_particle_goes_downhill(p: Params, st: InitialState, run: SimRun) -> None:
+    """φ = −30° against arcs no steeper than asin(S/2R) ≈ 4°, thrown at ψ ≤ 90°: gravity's
+    along-plane pull g sin|φ| and the throw's along-plane push (cos ψ ≥ 0) both point to +x,
+    so every particle ends more than 10 S downhill of where it started.  (Thrown forward
+    against an uphill pull, particles may be conveyed uphill instead: not claimed here.)"""
+    assert p.tilt < 0 and p.throw <= 90
+    assert np.all(run.positions[:, -1] - start_x(p, st) > 10 * p.S)
+
+
+def drifts_downhill_on_average(p: Params, st: InitialState, run: SimRun) -> None:
+    """R = S/2 tilted by −30°: a particle caught in a cusp may stay there (the conveyor's
+    lift-off rule sees one arc's horizontal normal there, so with ψ = 90° it never lifts off:
+    see benchmarks/results/soak-transport-2026-11-23-small.txt), but those that move go
+    downhill, so the mean displacement does."""
+    assert p.tilt < 0
+    assert np.mean(run.positions[:, -1] - start_x(p, st)) > 10 * p.S
+
+
+CASES += [
+    Case("tilt=30 A=0 alpha=beta=1 flat: energy kept, speeds up downhill",
+         params(A=0.0, R=FLAT, alpha=1.0, beta=1.0, tilt=30.0), "dropped",
+         energy_is_kept_on_the_tilted_floor,
+         n=3, t_max=5.0, family_kw=dict(drop_height=(1.0, 3.0))),
+    Case("tilt=-30 A=0 alpha=beta=1 arcs: energy kept, speeds up downhill",
+         params(A=0.0, alpha=1.0, beta=1.0, tilt=-30.0), "dropped", energy_is_kept_on_the_tilted_floor,
+         n=3, t_max=2.0, family_kw=dict(drop_height=(1.0, 3.0))),
+    Case("throw=10 tilt=30 Gamma=29 flat beta=0: vx = floor's after every collision",
+         params(A=2.0, R=FLAT, beta=0.0, tilt=30.0, throw=10.0), "launched",
+         vx_is_the_floors_along_plane_velocity),
+    Case("throw=10 tilt=-30 Gamma=1.4 flat: stuck particles ride with the floor",
+         params(R=FLAT, tilt=-30.0, throw=10.0), "dropped", rides_with_the_floor_once_stuck,
+         family_kw=dict(drop_height=(0.1, 1.0))),
+    Case("throw=45 tilt=-30 Gamma=1.4 flat: every particle goes downhill",
+         params(R=FLAT, tilt=-30.0, throw=45.0), "launched", every_particle_goes_downhill),
+    Case("throw=10 tilt=-30 Gamma=29 (A=2) arcs: every particle goes downhill",
+         params(A=2.0, tilt=-30.0, throw=10.0), "launched", every_particle_goes_downhill),
+    Case("throw=60 tilt=-30 Gamma=5.8 (A=0.4) arcs: every particle goes downhill",
+         params(A=0.4, tilt=-30.0, throw=60.0), "launched", every_particle_goes_downhill),
+    Case("throw=90 tilt=-30 R=S/2 driven: the mean drift is downhill",
+         params(R=1.0, tilt=-30.0), "launched", drifts_downhill_on_average),
+    Case("f=1000 Hz Gamma=3 throw=30 tilt=15: many periods per flight, none missed",
+         params(f=1000.0, A=A_1000HZ, tilt=15.0, throw=30.0), "launched",
+         many_floor_periods_pass_during_a_flight,
+         n=4, t_max=1.0, record=800, family_kw=dict(launch_speed=(50.0, 200.0)), per_period=400),
 ]
 IDS = [c.name for c in CASES]
 assert len(set(IDS)) == len(IDS)

@@ -26,9 +26,11 @@ A (cos ψ, sin ψ)(−sin 2πft), so the arcs sit at x = kS − A cos ψ sin 2π
 −A sin ψ sin 2πft; Eqs. (5)-(6) act on the velocity relative to the floor's (both components);
 a carried particle keeps its place relative to the floor and has the floor's velocity; it
 lifts off when the normal contact force, n·(a_floor + g(sin φ, cos φ)), first turns negative.
-Flights on the conveyor are certified by the range bounds only (bounds 1-2 of _check_gap,
-with the offset's range from the parabola and the floor's sideways sine), which need no
-split at cusps.
+Flights on the conveyor are certified by the range bounds (bounds 1-2 of _check_gap, with the
+offset's range from the parabola and the floor's sideways sine), which need no split at
+cusps, and, on sub-intervals whose offset range holds no cusp, by the Taylor bounds 3-4 with
+−G'' ≤ g cos φ + A sin ψ ω² max sin + |c'|max |d''|max (d'' = −g sin φ − A cos ψ ω² sin θ);
+without these the range bounds alone leave near-grazing flights on arcs uncertified.
 
 Tolerances (all derived, none tuned): the kernel finds a collision time to ``tol_t``
 (bbb.Numerics) and puts the particle on the surface at that time, so a collision point may lie
@@ -435,12 +437,30 @@ def _check_gap(fl: Floor, numerics, rep: Report, index, x0, y0, vx, vy0, th0, ta
                 fl.depth(fl.offset(x0[fi] + vx[fi] * v - 0.5 * gx * v * v, th0[fi] + w * v))
             gu = gu - fl.depth(du) + cu  # the gap to the nearest arc, not to arc k
             gv = gv - fl.depth(dv) + cv
+            one_arc = fl.cell(lo) == fl.cell(hi)  # no cusp where the offset can go
         # bound 1, term by term: the parabola is concave (min at an end), sin exact, c ≥ cmin
         pu, pv = gu - A * np.sin(th0[fi] + w * u) - cu, gv - A * np.sin(th0[fi] + w * v) - cv
         lb = np.minimum(pu, pv) + A * smin + cmin
         # bound 2, chord of H = G − c (H'' = −g − Aω² sin ≤ −g − Aω² smin) plus c ≥ cmin
         hmax = np.maximum(-g - A * w * w * smin, 0.0)
         lb = np.maximum(lb, np.minimum(gu - cu, gv - cv) - hmax * h * h / 8 + cmin)
+        if fl.conveyor and not fl.flat:
+            # bounds 3, 4 on one arc: G'' = −g − Aω² sin θ + c''(d) d'² + c'(d) d'' with
+            # d'' = −gₓ − Aₓω² sin θ and c'' ≥ 0, so −G'' ≤ K = g + Aω² smax + |c'|max |d''|max
+            amax = np.maximum(np.abs(dl), np.abs(dh))
+            d2 = np.maximum(np.abs(gx + Ax * w * w * smin), np.abs(gx + Ax * w * w * smax))
+            with np.errstate(invalid="ignore"):
+                K = np.maximum(g + A * w * w * smax + fl.slope(amax) * d2, 0.0)
+
+            # G' at either end on the nearest arc: vy − g s + Aω cos θ + c'(d) d'
+            th_uv = th0[fi] + w * np.stack([u, v])
+            d_uv = fl.offset(x0[fi] + vx[fi] * np.stack([u, v]) - 0.5 * gx * np.stack([u, v]) ** 2, th_uv)
+            d1_uv = vx[fi] - gx * np.stack([u, v]) + Ax * w * np.cos(th_uv)
+            g1 = vy0[fi] - g * np.stack([u, v]) + A * w * np.cos(th_uv) + fl.slope(d_uv) * d1_uv
+            with np.errstate(invalid="ignore"):
+                t_u = np.minimum(gu, gu + g1[0] * h - 0.5 * K * h * h)
+                t_v = np.minimum(gv, gv - g1[1] * h - 0.5 * K * h * h)
+            lb = np.where(one_arc & np.isfinite(K), np.fmax(lb, np.fmax(t_u, t_v)), lb)
         if not fl.conveyor:
             # bounds 3, 4: Taylor from either end with −G'' ≤ K = g + Aω² smax − vₓ² c''(min |d|)
             dmin = np.where(du * dv <= 0, 0.0, np.minimum(np.abs(du), np.abs(dv)))
