@@ -8,7 +8,12 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, fields, replace
 
-__all__ = ["Params", "PRESETS"]
+__all__ = ["CONTACT_MODELS", "Params", "PRESETS"]
+
+#: what a particle does in sustained contact with an arc (docs/physics.md, "Contact models"):
+#: carried with the floor at fixed x (the default, today's model), frictionless sliding, or
+#: sliding with Coulomb friction μ; the kernel receives the index
+CONTACT_MODELS = ("stick", "slide", "coulomb")
 
 # The paper prints A = 0.01; with g = 9800 that gives Γ < 0.41 for f ≤ 100 Hz and
 # nothing ever lifts off.  A = 0.1 puts Γ = 1 at f ≈ 49.8 Hz, where the paper sees
@@ -30,6 +35,11 @@ class Params:
     S     -- distance between scatterer centres, mm (> 0)
     alpha -- normal restitution coefficient, Eq. (5) (0 < alpha ≤ 1)
     beta  -- tangential restitution coefficient, Eq. (6) (0 ≤ beta ≤ 1)
+    contact -- sustained-contact model: "stick" (default), "slide" or "coulomb"
+    mu    -- Coulomb friction coefficient (≥ 0; only with contact = "coulomb", else 0)
+
+    ``contact`` and ``mu`` are left out of :meth:`as_dict` at their defaults, so every
+    store and fingerprint made before they existed is unchanged.
     """
 
     g: float
@@ -39,9 +49,16 @@ class Params:
     S: float
     alpha: float
     beta: float
+    contact: str = "stick"
+    mu: float = 0.0
 
     def __post_init__(self) -> None:
+        if self.contact not in CONTACT_MODELS:
+            raise ValueError(f"Params.contact = {self.contact!r} is not a contact model; "
+                             f"allowed: {', '.join(CONTACT_MODELS)}")
         for fl in fields(self):
+            if fl.name == "contact":
+                continue
             value = getattr(self, fl.name)
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 raise ValueError(f"Params.{fl.name} must be a real number, got {value!r}")
@@ -56,9 +73,11 @@ class Params:
                f"R ≥ S/2 = {self.S / 2:g} (arcs must close the floor), or inf")
         _check("alpha", self.alpha, 0 < self.alpha <= 1, "0 < alpha ≤ 1")
         _check("beta", self.beta, 0 <= self.beta <= 1, "0 ≤ beta ≤ 1")
+        _check("mu", self.mu, self.mu >= 0 and (self.mu == 0 or self.contact == "coulomb"),
+               "mu ≥ 0, and mu = 0 unless contact = 'coulomb'")
 
     @classmethod
-    def preset(cls, name: str, **overrides: float) -> Params:
+    def preset(cls, name: str, **overrides: float | str) -> Params:
         """A named parameter set (``klages2004``, ``matyas2004``) with ``f`` and any overrides."""
         if name not in PRESETS:
             raise ValueError(f"unknown preset {name!r}; allowed: {', '.join(sorted(PRESETS))}")
@@ -66,14 +85,15 @@ class Params:
         unknown = set(overrides) - {fl.name for fl in fields(cls)}
         if unknown:
             raise ValueError(
-                f"unknown Params field(s) {sorted(unknown)}; allowed: g, A, f, R, S, alpha, beta"
+                f"unknown Params field(s) {sorted(unknown)}; "
+                "allowed: g, A, f, R, S, alpha, beta, contact, mu"
             )
         values.update(overrides)
         if "f" not in values:
             raise ValueError("Params.f (floor frequency, Hz) must be given, e.g. preset(name, f=60.0)")
         return cls(**values)
 
-    def with_(self, **changes: float) -> Params:
+    def with_(self, **changes: float | str) -> Params:
         """A copy with some fields changed (validated again)."""
         return replace(self, **changes)
 
@@ -91,8 +111,19 @@ class Params:
     def flat(self) -> bool:
         return math.isinf(self.R)
 
-    def as_dict(self) -> dict[str, float]:
-        return asdict(self)
+    @property
+    def contact_index(self) -> int:
+        """The contact model as the kernel's index into CONTACT_MODELS."""
+        return CONTACT_MODELS.index(self.contact)
+
+    def as_dict(self) -> dict[str, float | str]:
+        """The fields, without ``contact``/``mu`` at their defaults (stick, 0)."""
+        d = asdict(self)
+        if self.contact == "stick":
+            del d["contact"]
+        if self.mu == 0.0:
+            del d["mu"]
+        return d
 
 
 def _check(name: str, value: float, ok: bool, allowed: str) -> None:
