@@ -16,7 +16,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import literally, njit
+from numba import njit
 
 from .contact import CUSP, END, LIFT, enter_contact, holds_at_rest, slide
 from .surface import arc_curvature, arc_depth, arc_normal, arc_slope, floor_a, floor_v, floor_y
@@ -314,7 +314,7 @@ def wrap_period(s, tp, T):
 @njit(cache=True)
 def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta,
            t_max, sample_times, pos, rec_from, rec, tol_t, v_stick, h_max_periods,
-           stack, counters, contact, mu, times):
+           stack, counters, friction, times):
     """Run one particle from its initial state to t_max (s, from its own start).
 
     Writes x at ``sample_times`` into ``pos`` and post-collision (t, x, y, vx, vy, floor phase) at
@@ -323,8 +323,9 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
     column 6 = 1 for a lift-off, 0 for a collision; under the contact models also the
     contact events (bbb.record.EVENT_CODES).  ``counters`` receives collisions, sticking
     episodes, lift-offs, recorded rows, anomalies; ``times`` the time (s) held at rest and
-    the time sliding.  ``contact`` (0 stick, 1 slide, 2 coulomb) is a compile-time literal:
-    the stick kernel has no contact-model code in it."""
+    the time sliding.  ``friction`` is None for the stick model, else μ (0 for slide): its
+    type selects the compiled kernel and numba prunes the branches ``friction is None``
+    decides, so the stick kernel has no contact-model code in it."""
     T = 2.0 * math.pi / w
     h_max = h_max_periods * T
     s0 = s
@@ -350,7 +351,8 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
         t_now = tp * T + (s - s0)
         if t_now >= t_max:
             break
-        if contact != 0:
+        if friction is not None:
+            mu = friction
             if stuck and not holds_at_rest(d, R, S, mu, flat):
                 # at rest where the contact model cannot hold it (an initial state): slide
                 stuck = False
@@ -508,7 +510,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
             un_out = 0.0
         code = EV_COLLISION
         if un_out < v_stick:
-            if contact == 0:
+            if friction is None:
                 # creeping cascade cut short: the particle rides with the floor
                 stuck = True
                 vx = 0.0
@@ -516,7 +518,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
                 n_stick += 1
             else:
                 # sustained contact: slide on the arc with the tangential speed (or held)
-                vt, q, sliding = enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat)
+                vt, q, sliding = enter_contact(vx, vy, d, s, g, A, w, R, S, friction, flat)
                 vf = floor_v(s, A, w)
                 if sliding:
                     nx, ny = arc_normal(d, R)
@@ -574,11 +576,11 @@ def put_row(rec, n_rec, rec_from, t, t_max, x, y, vx, vy, phase, code, event_onl
 @njit(cache=True)
 def evolve_ensemble(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta,
                     t_max, sample_times, pos, rec_from, rec, tol_t, v_stick, h_max_periods,
-                    counters, contact, mu, times):
+                    counters, friction, times):
     """Run every particle of an ensemble (arrays of initial states) independently;
-    ``contact`` (int, the index into bbb.params.CONTACT_MODELS) compiles a kernel per model."""
+    ``friction``: None (stick) or μ (slide: 0, coulomb), see :func:`evolve`."""
     stack = np.empty(STACK_DEPTH)
     for i in range(cell.shape[0]):
         evolve(cell[i], d[i], y[i], vx[i], vy[i], s[i], stuck[i], from_surface[i], g, A, w,
                R, S, alpha, beta, t_max, sample_times, pos[i], rec_from, rec[i], tol_t,
-               v_stick, h_max_periods, stack, counters[i], literally(contact), mu, times[i])
+               v_stick, h_max_periods, stack, counters[i], friction, times[i])

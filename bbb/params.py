@@ -12,7 +12,7 @@ __all__ = ["CONTACT_MODELS", "Params", "PRESETS"]
 
 #: what a particle does in sustained contact with an arc (docs/physics.md, "Contact models"):
 #: carried with the floor at fixed x (the default, today's model), frictionless sliding, or
-#: sliding with Coulomb friction μ; the kernel receives the index
+#: sliding with Coulomb friction μ
 CONTACT_MODELS = ("stick", "slide", "coulomb")
 
 # The paper prints A = 0.01; with g = 9800 that gives Γ < 0.41 for f ≤ 100 Hz and
@@ -110,11 +110,6 @@ class Params:
     @property
     def flat(self) -> bool:
         return math.isinf(self.R)
-
-    @property
-    def contact_index(self) -> int:
-        """The contact model as the kernel's index into CONTACT_MODELS."""
-        return CONTACT_MODELS.index(self.contact)
 
     def as_dict(self) -> dict[str, float | str]:
         """The fields, without ``contact``/``mu`` at their defaults (stick, 0)."""

@@ -88,7 +88,7 @@ def simulate(
     evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
                     p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, float(t_max), times, pos,
                     float(record_from), rec, numerics.tol_t, numerics.v_stick,
-                    numerics.max_step, counters, p.contact_index, p.mu, held)
+                    numerics.max_step, counters, None if p.contact == "stick" else p.mu, held)
     return SimRun(
         params=params,
         numerics=numerics,

@@ -599,7 +599,7 @@ def test_clock_started_a_million_periods_later_gives_the_same_first_collision():
         counters = np.zeros((n, len(COUNTER_NAMES)), np.int64)
         evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, s, st.stuck, st.from_surface, p.g, p.A,
                         p.omega, p.R, p.S, p.alpha, p.beta, 1.0, np.zeros(0), np.zeros((n, 0)), 0.0,
-                        rec, 1e-12, 1e-3, 0.25, counters, 0, 0.0, np.zeros((n, 2)))
+                        rec, 1e-12, 1e-3, 0.25, counters, None, np.zeros((n, 2)))
         return rec
 
     a, b = run(st.s), run(st.s + 1_000_000 * T)
