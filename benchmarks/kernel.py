@@ -136,7 +136,8 @@ def compare(ref: str, n: int, t_max: float, repeats: int) -> None:
                 b, t = float(np.median(rates["baseline"])), float(np.median(rates["this"]))
                 print(f"{f:7.1f} {family:>9} {colls['this']:11d} {b:13.3e} {t:12.3e} {t / b:10.3f}")
         print()
-        print("contact models (this checkout only; from rest)")
+        n, t_max = min(n, 100), min(t_max, 5.0)
+        print(f"contact models (this checkout only; from rest; {n} particles x {t_max:g} s)")
         print(f"{'f (Hz)':>7} {'contact':>13} {'collisions':>11} {'wall (s)':>9} {'coll/s':>10}")
         for f in (54.0, 60.0, 80.0):
             for model in (("stick", 0.0), ("slide", 0.0), ("coulomb", 0.05), ("coulomb", 0.3)):
