@@ -39,7 +39,9 @@ def gap_along_flights(p: Params, rows: np.ndarray, n_grid: int = 400,
         t0, x0, y0, vx, vy, ph = rows[k, :6]
         duration = rows[k + 1, 0] - t0
         vf = -p.A * w * math.cos(2 * math.pi * ph)
-        if events and rows[k + 1, 6] == 1.0:
+        # a flight ends at a collision (0, or 4: one starting sliding contact) and never
+        # starts at a contact start or stop (those begin sliding, checked by trajectory_check)
+        if events and (rows[k + 1, 6] not in (0.0, 4.0) or rows[k, 6] in (4.0, 6.0)):
             continue
         if not events and vx == 0.0 and abs(vy - vf) < 1e-9:
             continue
