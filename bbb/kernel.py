@@ -229,7 +229,9 @@ def next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, tau_li
         elif vx < 0.0:
             j = math.ceil(xr / S - 0.5)
         else:
-            j = math.floor(xr / S + 0.5)
+            # a vertical flight stays over its own arc (|d| ≤ S/2): at a cusp, d = ±S/2 keeps
+            # the arc it is on, so mirrored states hit mirrored arcs (floor(d/S + ½) would not)
+            j = 0
         pa = wa
         while True:
             if vx > 0.0:

@@ -518,7 +518,10 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     n_end = _contact_rates(fl, mu, q, v, th, sgn)[2]
     ev_bad = np.zeros(k.size, bool)
     lift = kind_b == CONTACT_LIFT
-    ev_bad |= lift & ((n_end > n_tol) | (np.abs(un_b - numerics.v_stick) > 64 * EPS * scale_v + 1e-12))
+    dd_b = 4.0 * np.spacing(np.abs(x_b) + fl.S)
+    dn_b = 0.0 if fl.flat else dd_b / fl.R + np.sqrt(2.0 * fl.R * dd_b) / fl.R
+    un_tol = 64 * EPS * scale_v + 2.0 * np.hypot(vx_b, vy_b - fl.v(th_b)) * dn_b
+    ev_bad |= lift & ((n_end > n_tol) | (np.abs(un_b - numerics.v_stick) > un_tol))
     ev_bad |= (kind_b == CUSP) & (np.abs(np.abs(q) - q_c) > q_tol)
     ev_bad |= rest_b & ((mu == 0) | (np.abs(v) > v_tol) | (vx_b != 0.0))
     rep.flag("contact_event", ev_bad, idx[k], n_end, n_tol)
