@@ -40,7 +40,7 @@ sys.path.insert(0, str(ROOT))
 
 from benchmarks.kernel import cpu_name  # noqa: E402
 from pipeline.accuracy import ACCURACY_PRESETS  # noqa: E402
-from pipeline.make_figures import _toml_dump  # noqa: E402
+from pipeline.scenes import toml_dump as _toml_dump  # noqa: E402
 from pipeline.workflow import parse_workflow  # noqa: E402
 
 FIG2 = ROOT / "workflows" / "figure2.toml"

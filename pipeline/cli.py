@@ -1,5 +1,5 @@
 """The ``bbb`` command line: ``bbb run``, ``bbb reduce``, ``bbb status``, ``bbb verify``,
-``bbb accuracy``, ``bbb --version``.
+``bbb accuracy``, ``bbb plan``, ``bbb --version``.
 
 ``bbb run WORKFLOW --frequencies 60,72`` runs only those frequencies of the workflow, into a
 store of their own (default ``runs/<name>-60Hz-72Hz.zarr``); chunk seeds are keyed by the
@@ -89,6 +89,17 @@ def _build_parser() -> argparse.ArgumentParser:
                    help="LocalCluster worker processes (default: number of cores)")
     a.add_argument("--quick", action="store_true", help="draft and two knobs only")
 
+    pl = sub.add_parser("plan", help="predict CPU and wall time of a workflow before it runs "
+                                     "(a cached pilot of a few particles; pipeline/plan.py)")
+    pl.add_argument("workflow", metavar="WORKFLOW", help="workflow TOML file")
+    pl.add_argument("--workers", metavar="N", type=_positive_int,
+                    help="worker processes to plan for (default: number of cores)")
+    pl.add_argument("--pilot-particles", metavar="N", type=_positive_int, default=8,
+                    help="pilot particles per (frequency, family) (default: 8)")
+    pl.add_argument("--kernel-rate", metavar="FILE",
+                    help="take the kernel rate (collisions/s/core) from a kernel benchmark table "
+                         "(benchmarks/results/kernel-*.txt) instead of the pilot's CPU time")
+
     s = sub.add_parser("status", help="done/total chunks per frequency and family")
     s.add_argument("store", metavar="STORE")
 
@@ -162,6 +173,8 @@ def _main(argv: list[str] | None) -> int:
             return _cmd_accuracy(args)
         if args.command == "verify":
             return _cmd_verify(args)
+        if args.command == "plan":
+            return _cmd_plan(args)
         return _cmd_status(args)
     except (WorkflowError, StoreError) as e:
         raise UsageError(str(e)) from None
@@ -261,11 +274,11 @@ def _store_with_analysis_of(path: str, workflow: str):
     refuse = (f"{workflow}: simulation settings differ from the store {store.path} "
               "({}); allowed: a workflow that differs from the store's only in [analysis] "
               "and accuracy.n_resamples")
-    extra = sorted(set(old.f_mhz) - set(new.f_mhz))
+    extra = sorted({round(f * 1000) for f in old.base_frequencies} - set(new.f_mhz))
     if extra:
         raise UsageError(refuse.format(f"frequencies: store has {extra[0] / 1000:g} Hz, "
                                        "the workflow does not"))
-    new_here = new.with_frequencies(old.frequencies)  # a store of a --frequencies subset
+    new_here = new.with_frequencies(old.base_frequencies)  # a store of a --frequencies subset
     if new_here.fingerprint() != old.fingerprint():
         raise UsageError(refuse.format(_difference(old, new_here)))
     acc = replace(old.accuracy, n_resamples=new.accuracy.n_resamples)
@@ -273,7 +286,7 @@ def _store_with_analysis_of(path: str, workflow: str):
 
 
 def _cmd_accuracy(args) -> int:
-    from .accuracy_study import run_accuracy_study
+    from .studies.accuracy.study import run_accuracy_study
 
     if args.scheduler and args.workers:
         raise UsageError("--workers sizes a LocalCluster; with --scheduler the cluster's own "
@@ -282,6 +295,28 @@ def _cmd_accuracy(args) -> int:
         raise UsageError(f"{args.workflow}: no such workflow file")
     run_accuracy_study(args.workflow, args.out, quick=args.quick, workers=args.workers,
                        scheduler=args.scheduler, figure=args.figure)
+    return 0
+
+
+def _cmd_plan(args) -> int:
+    from .plan import benchmark_rate, pilot_rates, plan_table, predict
+    from .workflow import load_workflow
+
+    study = load_workflow(args.workflow)
+    rate = None
+    if args.kernel_rate:
+        try:
+            rate = benchmark_rate(args.kernel_rate)
+        except OSError as e:
+            raise UsageError(f"--kernel-rate {args.kernel_rate}: {e.strerror}; allowed: a "
+                             "kernel benchmark table, e.g. benchmarks/results/kernel-*.txt") from None
+        except ValueError as e:
+            raise UsageError(f"--kernel-rate {e}") from None
+    rates = pilot_rates(study, particles=args.pilot_particles,
+                        echo=lambda m: print(m, file=sys.stderr))
+    if rate is not None:
+        rates = rates.with_rate(rate, Path(args.kernel_rate).name)
+    print(plan_table(predict(study, rates, args.workers or os.cpu_count() or 1)))
     return 0
 
 
@@ -314,11 +349,23 @@ def _status_text(store) -> str:
              f"{study.accuracy.n_chunks} chunks of {study.accuracy.chunk_size} particles)"]
     names = [fam.name for fam in study.families]
     width = max(len(n) for n in names)
+    stops = store.stops()  # target_ci: chunks used and why each (f, family) stopped
+    if stops is not None:
+        from .adaptive import STOP_LEGEND
+
+        width = max(width, 22)
+        lines[0] += f"; target CI half-width {study.accuracy.target_ci:g} of D"
+    refined = {round(f * 1000) for f in study.refined}
     lines.append("f (Hz)    " + "  ".join(n.rjust(max(width, 5)) for n in names))
     for fi, f in enumerate(study.frequencies):
-        cells = [f"{int(done[fi, mi].sum())}/{done.shape[2]}".rjust(max(width, 5))
-                 for mi in range(len(names))]
-        lines.append(f"{f:<9g} " + "  ".join(cells))
+        cells = [f"{int(done[fi, mi].sum())}/{done.shape[2]}" for mi in range(len(names))]
+        if stops is not None:
+            cells = [c + f" {STOP_LEGEND[int(stops[1][fi, mi])]}" for mi, c in enumerate(cells)]
+        mark = "*" if round(f * 1000) in refined else " "
+        lines.append(f"{f:<8g}{mark} " + "  ".join(c.rjust(max(width, 5)) for c in cells))
+    if refined:
+        lines.append(f"* added by refinement ({len(refined)} frequencies, to "
+                     f"{study.refine.to:g} Hz)")
     return "\n".join(lines)
 
 

@@ -24,6 +24,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from .store import KERNEL_ATTRS, StudyStore, _is_local, normalize_path, run_lock
+from .waves import Waves
 from .workflow import Study
 
 __all__ = [
@@ -212,18 +213,30 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
     # An existing scheduler is reached first, so that a wrong address leaves no store behind;
     # a LocalCluster starts only once the store is known to need work.
     client, cluster = _connect(scheduler, None, dashboard) if scheduler else (None, None)
+    waves = None
     try:
         store = StudyStore.create_or_open(store_path, study)
         store.consolidate()  # readable by xarray.open_zarr even if the run is interrupted
         done = store.done()
-        todo = [(fi, mi, ci)
-                for fi in range(len(study.frequencies))
-                for mi in range(len(study.families))
-                for ci in range(study.accuracy.n_chunks)
-                if not done[fi, mi, ci]]
         report = RunReport(study.name, store_path, done.size, int(done.sum()))
+        if study.adaptive:
+            # waves and refinement: the chunks to compute follow from the done ones
+            waves = Waves(store, echo)
+            todo = waves.prepare()
+            store, study = waves.store, waves.store.study
+        else:
+            todo = [(fi, mi, ci)
+                    for fi in range(len(study.frequencies))
+                    for mi in range(len(study.families))
+                    for ci in range(study.accuracy.n_chunks)
+                    if not done[fi, mi, ci]]
         if not todo:
-            echo(f"{study.name}: all {done.size} chunks already done in {store_path}")
+            if waves is None:
+                echo(f"{study.name}: all {done.size} chunks already done in {store_path}")
+            else:
+                store.consolidate()
+                echo(f"{study.name}: nothing left to compute in {store_path} "
+                     f"({int(store.done().sum())} chunks used; {waves.summary()})")
             report.wall = time.perf_counter() - t_start
             return report
         if report.skipped:
@@ -242,7 +255,14 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
         _warm_workers(client, study)
         t_compute = time.perf_counter()
         try:
-            _execute(client, store, todo, fails, report, progress)
+            if waves is None:
+                _execute(client, store, todo, fails, report, progress)
+            else:
+                waves.execute(client, fails, report, progress, compute_chunk, _failed)
+                store = waves.store
+                echo(f"{study.name}: {waves.summary()}"
+                     + (f"; {waves.rounds} refinement rounds, {len(store.study.refined)} "
+                        "frequencies added" if store.study.refine else ""))
         finally:
             report.compute_wall = time.perf_counter() - t_compute
     finally:
@@ -350,10 +370,9 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
             try:
                 res: ChunkResult = fut.result()
             except Exception as e:
-                where = _where(fut)
-                client.cancel(list(futures))
-                raise RunFailed(f"chunk f = {f:g} Hz, family {fam}, chunk {ci} failed: "
-                                f"{type(e).__name__}: {e}{where}") from e
+                _failed(fut, study, study.f_mhz.index(round(f * 1000)),
+                        [m.name for m in study.families].index(fam), ci, e,
+                        lambda: client.cancel(list(futures)))
             report.computed.append(res.key)
             report.collisions += res.collisions
             report.task_seconds += res.seconds
@@ -361,6 +380,16 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
             bar.update(1)
     finally:
         bar.close()
+
+
+def _failed(fut, study: Study, fi: int, mi: int, ci: int, e: Exception, cancel) -> None:
+    """Cancel the other tasks (``cancel()``) and raise RunFailed naming the chunk of a failed
+    task, its cause and where it was raised (read first: cancelling drops the traceback)."""
+    where = _where(fut)
+    cancel()
+    f, fam = study.frequencies[fi], study.families[mi].name
+    raise RunFailed(f"chunk f = {f:g} Hz, family {fam}, chunk {ci} failed: "
+                    f"{type(e).__name__}: {e}{where}") from e
 
 
 def _where(fut) -> str:

@@ -20,7 +20,17 @@ n_recorded     (frequency, family, particle)  valid rows   i8      (1, 1, chunk_
 n_<counter>    (frequency, family, particle)  bbb counters  i8  (1, 1, chunk_size)
 done           (frequency, family, chunk)   bool           b1      (1, 1, 1)
 chunk_seconds  (frequency, family, chunk)   simulate, s    f8      (1, 1, 1)   not reproducible
+n_chunks_used  (frequency, family)          chunks         i8      (1, 1)      [target_ci]
+stop_reason    (frequency, family)          STOP_LEGEND    i1      (1, 1)      [target_ci]
+refined        (frequency,)                 added by refine b1     like frequency  [refine]
 =============  ==========================================  ======  ===========================
+
+With ``target_ci`` the chunk axis is sized by the cap (max_particles); a (frequency, family)
+uses the first ``n_chunks_used`` chunks, and ``stop_reason`` says why it stopped
+(:data:`pipeline.adaptive.STOP_LEGEND`, also the array's ``legend`` attribute; 0 = not decided
+yet).  With ``refine`` the store grows along the frequency axis (:meth:`StudyStore.
+add_frequencies`): refined frequencies follow the workflow's own, ``refined`` marks them, and
+no chunk written before is rewritten.
 
 One Dask task computes one (frequency, family, chunk) and writes exactly one chunk of every
 data array, so concurrent writers never share a chunk.  ``done`` is set only after the data:
@@ -48,7 +58,7 @@ import socket
 import warnings
 from collections.abc import Iterator
 from contextlib import contextmanager
-from dataclasses import asdict, dataclass
+from dataclasses import dataclass
 from importlib import metadata
 from typing import Any
 
@@ -58,6 +68,7 @@ import zarr
 from bbb.provenance import kernel_identity
 from bbb.record import COLLISION_FIELDS, COUNTER_NAMES
 
+from .schema import as_dict
 from .workflow import Study
 
 __all__ = ["StoreError", "StudyStore", "run_lock", "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
@@ -144,6 +155,9 @@ class StudyStore:
             if attrs["fingerprint"] != store_fingerprint(study.fingerprint(), kernel):
                 raise StoreError(f"{path}: its fingerprint does not match its own workflow and "
                                  "kernel attributes (altered?); run `bbb verify` on it")
+            stored = Study.from_dict(attrs["workflow"])
+            if stored.refined:  # frequencies an earlier run added by refinement
+                study = study.with_refined(stored.refined)
             store = cls(path, study)
             store._update_reduce_settings(existing, study)
             return store
@@ -251,6 +265,41 @@ class StudyStore:
         # Only now, after every data array: the chunk is complete.
         if mark_done:
             g["done"][fi, mi, ci] = True
+
+    def write_stop(self, fi: int, mi: int, n_chunks: int, reason: int) -> None:
+        """Record that (frequency fi, family mi) stopped after ``n_chunks`` chunks, and why
+        (pipeline.adaptive.STOP_LEGEND).  The reason goes last: it marks the record final."""
+        g = self.group("r+")
+        g["n_chunks_used"][fi, mi] = n_chunks
+        g["stop_reason"][fi, mi] = reason
+
+    def stops(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """(n_chunks_used, stop_reason), each (frequency, family), of a target_ci store."""
+        g = self.group()
+        if "stop_reason" not in g:
+            return None
+        return (np.asarray(g["n_chunks_used"][...]), np.asarray(g["stop_reason"][...]))
+
+    def add_frequencies(self, new: tuple[float, ...]) -> StudyStore:
+        """Grow the store along the frequency axis by ``new`` (Hz, refined frequencies);
+        returns the handle on the grown store.  Arrays are resized (Zarr writes no chunk for
+        the new, empty rows), the coordinates extended, and the stored workflow updated last,
+        so an interruption leaves a store that a re-run grows the same way again."""
+        study = self.study.with_refined(self.study.refined + tuple(new))
+        F = len(study.frequencies)
+        g = self.group("r+")
+        for _, arr in g.arrays():
+            dims = arr.metadata.dimension_names
+            if dims and dims[0] == "frequency" and arr.shape[0] != F:
+                arr.resize((F, *arr.shape[1:]))
+        old = len(self.study.frequencies)
+        g = zarr.open_group(self.path, mode="r+", use_consolidated=False)  # the new shapes
+        g["frequency"][old:] = np.asarray(study.frequencies[old:], dtype=np.float64)
+        g["refined"][old:] = True
+        g.attrs.update({"workflow": _json_attr(study.to_dict())})
+        grown = StudyStore(self.path, study)
+        grown.consolidate()
+        return grown
 
     def consolidate(self) -> None:
         with warnings.catch_warnings():  # consolidated metadata is not yet in the v3 spec
@@ -366,23 +415,32 @@ def _create_layout(g: zarr.Group, study: Study) -> None:
     acc, obs = study.accuracy, study.observables
     F, M, N, C = len(study.frequencies), len(study.families), acc.n_particles, acc.n_chunks
     cs = acc.chunk_size
+    # chunked by the workflow's own grid, so that refinement (which appends) keeps the chunks
+    n_base = max(1, len(study.base_frequencies))
 
-    def coord(name, values, dtype, units, long_name):
-        arr = g.create_array(name, shape=(len(values),), dtype=dtype, chunks=(max(1, len(values)),),
-                             dimension_names=[name if name != "initial" else "family"],
+    def coord(name, values, dtype, units, long_name, dim=None, chunk=None):
+        arr = g.create_array(name, shape=(len(values),), dtype=dtype,
+                             chunks=(chunk or max(1, len(values)),),
+                             dimension_names=[dim or name],
                              attributes={"units": units, "long_name": long_name})
         arr[:] = np.asarray(values, dtype=dtype if dtype is not str else None)
 
-    def data(name, dims, shape, chunks, dtype, fill, units, long_name):
-        attrs = {"units": units, "long_name": long_name}
+    def data(name, dims, shape, chunks, dtype, fill, units, long_name, **extra):
+        attrs = {"units": units, "long_name": long_name, **extra}
         if "family" in dims:  # CF convention: xarray then shows `initial` as a coordinate
             attrs["coordinates"] = "initial"
         g.create_array(name, shape=shape, chunks=chunks, dtype=dtype, fill_value=fill,
                        dimension_names=list(dims), attributes=attrs)
 
-    coord("frequency", list(study.frequencies), "float64", "Hz", "floor frequency f")
+    coord("frequency", list(study.frequencies), "float64", "Hz", "floor frequency f",
+          chunk=n_base)
+    if study.refine is not None:
+        added = {round(f * 1000) for f in study.refined}
+        coord("refined", [round(f * 1000) in added for f in study.frequencies], "bool", "",
+              "frequency added by adaptive refinement", dim="frequency", chunk=n_base)
     coord("family", [f.name for f in study.families], str, "", "initial-condition family")
-    coord("initial", [f.initial for f in study.families], str, "", "initial condition kind")
+    coord("initial", [f.initial for f in study.families], str, "", "initial condition kind",
+          dim="family")
     coord("particle", np.arange(N), "int64", "", "particle index within the family")
     coord("chunk", np.arange(C), "int64", "", f"ensemble chunk of {cs} particles")
     if obs.positions:
@@ -408,6 +466,14 @@ def _create_layout(g: zarr.Group, study: Study) -> None:
          "chunk completely written")
     data("chunk_seconds", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "float64",
          np.nan, "s", "wall time of the chunk's simulation (not reproducible)")
+    if acc.adaptive:
+        from .adaptive import STOP_LEGEND
+
+        legend = "; ".join(f"{k} {v}" for k, v in STOP_LEGEND.items())
+        data("n_chunks_used", ("frequency", "family"), (F, M), (1, 1), "int64", 0, "",
+             "chunks used: the first n_chunks_used chunks (0: not decided yet)")
+        data("stop_reason", ("frequency", "family"), (F, M), (1, 1), "int8", 0, "",
+             f"why sampling stopped ({legend})", legend=legend)
 
 
 #: units of the recorded collision fields (bbb.record.COLLISION_FIELDS), "1": dimensionless
@@ -430,7 +496,7 @@ def _root_attrs(study: Study) -> dict[str, Any]:
         "workflow_toml": study.text,
         "params": _json_attr(study.base_params),
         "numerics": _json_attr(study.accuracy.numerics().as_dict()),
-        "accuracy": _json_attr(asdict(study.accuracy)),
+        "accuracy": _json_attr(as_dict(study.accuracy)),
         "seeding": SEEDING,
         **kernel,
         "workflow_fingerprint": study.fingerprint(),

@@ -34,7 +34,7 @@ import json
 import math
 import os
 from collections.abc import Callable, Iterator
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -44,6 +44,7 @@ from bbb.params import Params
 from bbb.provenance import kernel_identity
 from bbb.surface import cell_of, depth
 
+from .schema import as_dict
 from .store import (
     COUNTERS,
     JSON_ATTRS,
@@ -179,7 +180,7 @@ def _check_attrs(attrs: dict[str, Any], problems: list[Problem]) -> Study | None
     expected = {
         "params": resolved,
         "numerics": study.accuracy.numerics().as_dict(),
-        "accuracy": asdict(study.accuracy),
+        "accuracy": as_dict(study.accuracy),  # keys added later (target_ci) only when set
         "seeding": SEEDING,
     }
     for key in _REPRODUCED:

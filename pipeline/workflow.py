@@ -69,6 +69,7 @@ from .workflow_keys import (
     Observables,
     ObservablesTable,
     ParamsTable,
+    RefineTable,
     StudyTable,
     readme_with_reference,
     reference_markdown,
@@ -108,6 +109,11 @@ class Study:
     accuracy: Accuracy
     observables: Observables
     analysis: Analysis
+    #: adaptive frequency refinement ([frequencies] refine), or None
+    refine: RefineTable | None = None
+    #: frequencies added by refinement, Hz, in the order they joined the store; they follow
+    #: the workflow's own grid in ``frequencies``
+    refined: tuple[float, ...] = ()
     text: str = field(default="", compare=False, repr=False)
 
     # -- derived quantities -------------------------------------------------------------------
@@ -125,6 +131,23 @@ class Study:
     def f_mhz(self) -> tuple[int, ...]:
         return tuple(round(f * 1000) for f in self.frequencies)
 
+    @property
+    def base_frequencies(self) -> tuple[float, ...]:
+        """The workflow's own frequencies, Hz (``frequencies`` without the refined ones)."""
+        added = {round(f * 1000) for f in self.refined}
+        return tuple(f for f in self.frequencies if round(f * 1000) not in added)
+
+    @property
+    def adaptive(self) -> bool:
+        """Whether chunks are computed in waves (target_ci) or frequencies added (refine)."""
+        return self.accuracy.adaptive or self.refine is not None
+
+    def with_refined(self, added: tuple[float, ...]) -> Study:
+        """The study whose store also holds the refined frequencies ``added`` (Hz, in store
+        order), appended after the workflow's own."""
+        base = self.base_frequencies
+        return replace(self, frequencies=base + tuple(added), refined=tuple(added))
+
     def sample_times(self) -> np.ndarray:
         """Position sample times, s: 0, dt, ..., t_max."""
         n = round(self.accuracy.t_max / self.accuracy.sample_dt)
@@ -139,13 +162,13 @@ class Study:
         """The same study at some of its frequencies (Hz): every chunk keeps its seed, so it
         computes the same numbers as in the whole sweep."""
         mhz = {round(f * 1000) for f in frequencies}
-        return replace(self, frequencies=tuple(f for f in self.frequencies
-                                               if round(f * 1000) in mhz))
+        return replace(self, frequencies=tuple(f for f in self.base_frequencies
+                                               if round(f * 1000) in mhz), refined=())
 
     # -- serialisation ------------------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
         """Everything resolved (preset numbers written out), JSON-able."""
-        return {
+        d = {
             "name": self.name,
             "source": self.source,
             "seed": self.seed,
@@ -157,6 +180,12 @@ class Study:
             "observables": as_dict(self.observables),
             "analysis": as_dict(self.analysis),
         }
+        # only when used, so that the stored workflow of every older scene stays as it was
+        if self.refine is not None:
+            d["refine"] = as_dict(self.refine)
+        if self.refined:
+            d["refined"] = list(self.refined)
+        return d
 
     @classmethod
     def from_dict(cls, d: dict[str, Any], text: str = "") -> Study:
@@ -183,6 +212,8 @@ class Study:
             accuracy=Accuracy(**d["accuracy"]),
             observables=Observables(**d["observables"]),
             analysis=Analysis(**d["analysis"]),
+            refine=RefineTable(**d["refine"]) if d.get("refine") is not None else None,
+            refined=tuple(float(f) for f in d.get("refined", ())),
             text=text,
         )
 
@@ -190,14 +221,24 @@ class Study:
         """The parts that determine the stored numbers (not the name, not reduce settings)."""
         acc = as_dict(self.accuracy, identity=True)
         del acc["preset"], acc["n_resamples"]
-        return {
+        d = {
             "seed": self.seed,
             "params": self.base_params,
-            "f_mhz": list(self.f_mhz),
+            "f_mhz": [round(f * 1000) for f in self.base_frequencies],
             "families": [_drop_none(as_dict(fam, identity=True)) for fam in self.families],
             "accuracy": acc,
             "observables": as_dict(self.observables, identity=True),
         }
+        if self.adaptive:
+            # Which chunks and frequencies get computed depends on the CI of D, so on the
+            # settings of that CI too (absent for fixed-N scenes: their fingerprints stay).
+            an = self.analysis
+            d["stopping"] = {"n_resamples": self.accuracy.n_resamples, "ci": an.ci,
+                             "ci_method": an.ci_method, "discard": an.discard,
+                             "fit_from": an.fit_from, "fit_to": an.fit_to}
+        if self.refine is not None:
+            d["refine"] = as_dict(self.refine)
+        return d
 
     def fingerprint(self) -> str:
         blob = json.dumps(self.data_identity(), sort_keys=True, default=_json_default)
@@ -230,7 +271,7 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
         stem = Path(source).stem if source and not source.startswith("<") else "study"
         name = r.check(stem, ("study", "name"), _key(StudyTable, "name"), {})
     preset, overrides = _params(r, doc)
-    freqs = _frequencies(r, doc)
+    freqs, refine = _frequencies(r, doc)
     for f in freqs:  # every frequency must give valid Params
         try:
             Params.preset(preset, f=f, **overrides)
@@ -243,7 +284,8 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
     acc = _accuracy(r, doc)
     return Study(name=name, source=source, seed=st["seed"], preset=preset, overrides=overrides,
                  frequencies=freqs, families=_families(r, doc), accuracy=acc,
-                 observables=_observables(r, doc, acc), analysis=_analysis(r, doc), text=text)
+                 observables=_observables(r, doc, acc), analysis=_analysis(r, doc),
+                 refine=refine, text=text)
 
 
 def _params(r: Reader, doc: dict) -> tuple[str, dict[str, float]]:
@@ -257,13 +299,14 @@ def _params(r: Reader, doc: dict) -> tuple[str, dict[str, float]]:
     return tbl["preset"], overrides
 
 
-def _frequencies(r: Reader, doc: dict) -> tuple[float, ...]:
+def _frequencies(r: Reader, doc: dict) -> tuple[tuple[float, ...], RefineTable | None]:
     if "frequencies" not in doc:
         r.fail(("frequencies",), "missing", "[frequencies] values = [...] or start/stop/step")
     raw = doc["frequencies"]
     if isinstance(raw, list):  # frequencies = [...]
         path = ("frequencies",)
-        tbl = {"values": r.check(raw, path, _key(FrequenciesTable, "values"), {}), "start": None}
+        tbl = {"values": r.check(raw, path, _key(FrequenciesTable, "values"), {}), "start": None,
+               "refine": None}
     else:
         path = ("frequencies", "values")
         tbl = r.table(raw, ("frequencies",), FrequenciesTable)
@@ -288,7 +331,15 @@ def _frequencies(r: Reader, doc: dict) -> tuple[float, ...]:
         dup = sorted({m for m in mhz if mhz.count(m) > 1})
         r.fail(path, f"repeated frequencies {[m / 1000 for m in dup]} (after mHz rounding)",
                "distinct frequencies")
-    return tuple(m / 1000 for m in mhz)
+    refine = tbl["refine"]
+    if refine is not None:
+        if not refine.extrema and not refine.jumps:
+            r.fail(("frequencies", "refine"), "refines nothing (extrema = false, jumps = false)",
+                   "extrema = true and/or jumps = true, or no refine")
+        if len(mhz) < 3:
+            r.fail(("frequencies", "refine"), f"needs at least 3 frequencies to find an "
+                   f"extremum, got {len(mhz)}", "a grid of 3 or more frequencies")
+    return tuple(m / 1000 for m in mhz), refine
 
 
 def _mhz(r: Reader, v: float, path: tuple[str, ...], allowed: str) -> int:
@@ -330,10 +381,12 @@ def _accuracy(r: Reader, doc: dict) -> Accuracy:
     else:
         vals = r.table(raw, ("accuracy",), Accuracy)
     preset = ACCURACY_PRESETS[vals["preset"]]
+    _target_keys(r, vals, raw if isinstance(raw, dict) else {})
     for k in declared(Accuracy):
         if vals[k.name] is None:
-            vals[k.name] = preset[k.name]
-        vals[k.name] = {"int": int, "float": float}.get(k.kind, str)(vals[k.name])
+            vals[k.name] = preset.get(k.name)
+        if vals[k.name] is not None:
+            vals[k.name] = {"int": int, "float": float}.get(k.kind, str)(vals[k.name])
     try:
         Numerics(**{k: vals[k] for k in NUMERICS_KNOBS})
     except ValueError as e:
@@ -352,6 +405,22 @@ def _accuracy(r: Reader, doc: dict) -> Accuracy:
     return Accuracy(**vals)
 
 
+def _target_keys(r: Reader, vals: dict, raw: dict) -> None:
+    """target_ci, d_resolved, max_particles: the cap becomes n_particles (the store's size)."""
+    if vals["target_ci"] is None:
+        for k in ("d_resolved", "max_particles"):
+            if vals[k] is not None:
+                r.fail(("accuracy", k), "only with target_ci",
+                       "target_ci = 0.03 (say) beside it, or no " + k)
+        return
+    if "n_particles" in raw:
+        r.fail(("accuracy", "n_particles"), "with target_ci the number of particles is chosen "
+               "per (frequency, family)", "max_particles = N for the cap, instead of n_particles")
+    if vals["max_particles"] is None:  # the preset's n_particles caps it
+        vals["max_particles"] = ACCURACY_PRESETS[vals["preset"]]["n_particles"]
+    vals["n_particles"] = vals["max_particles"]
+
+
 def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
     on = "[observables.positions] and/or [observables.collisions]"
     if "observables" not in doc:
@@ -359,6 +428,10 @@ def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
     obs = r.table(doc["observables"], ("observables",), ObservablesTable, {"t_max": acc.t_max})
     if all(v is None for v in obs.values()):
         r.fail(("observables",), "nothing to record", on)
+    adaptive = "target_ci" if acc.adaptive else "frequencies.refine" if _has_refine(doc) else None
+    if adaptive and obs["positions"] is None:
+        r.fail(("observables", "positions"), f"{adaptive} needs D, so positions",
+               "[observables.positions] beside " + adaptive)
     coll = obs["collisions"]
     return Observables(positions=obs["positions"] is not None,
                        collisions_record=coll.record if coll else None,
@@ -400,6 +473,11 @@ def _field_of(e: ValueError, cls: str) -> str | None:
     """'Params.alpha = ... is out of range' -> 'alpha'."""
     m = re.search(rf"{cls}\.(\w+)", str(e))
     return m.group(1) if m else None
+
+
+def _has_refine(doc: dict) -> bool:
+    fr = doc.get("frequencies")
+    return isinstance(fr, dict) and fr.get("refine") not in (None, False)
 
 
 def _drop_none(d: dict) -> dict:

@@ -34,7 +34,7 @@ from bbb.params import PRESETS as PARAM_PRESETS
 from .accuracy import ACCURACY_PRESETS, DEFAULT_ACCURACY, NUMERICS_KNOBS
 from .schema import REQUIRED, declared, key, reference
 
-__all__ = ["Family", "Accuracy", "Observables", "Analysis", "SECTIONS", "DEFAULT_ANALYSIS",
+__all__ = ["Family", "Accuracy", "RefineTable", "Observables", "Analysis", "SECTIONS", "DEFAULT_ANALYSIS",
            "INITIAL_KINDS", "CI_METHODS", "PARAM_FIELDS", "reference_markdown",
            "readme_with_reference", "README"]
 
@@ -85,6 +85,20 @@ class FrequenciesTable:
                              allowed=ALLOWED_F)
     step: float | None = key(None, "grid spacing; stop - start must be a multiple of it", gt=0,
                              allowed="a multiple of 0.001 Hz > 0")
+    refine: RefineTable | None = key(None, "after the grid, add frequencies around the "
+                                     "significant extrema of D(f) (pipeline/adaptive.py)",
+                                     omit_default=True)
+
+
+@dataclass(frozen=True)
+class RefineTable:
+    """Adaptive frequency refinement: ``refine = { extrema = true, to = 0.1 }``."""
+
+    to: float = key(REQUIRED, "until its neighbours are at most this far from each extremum",
+                    units="Hz", ge=0.002, note="(new frequencies sit on the 1 mHz grid)")
+    extrema: bool = key(True, "bracket every significant extremum of D(f) (bbb.extrema)")
+    jumps: bool = key(False, "also split gaps wider than `to` between neighbours whose D "
+                      "differ beyond their CIs", omit_default=True)
 
 
 @dataclass(frozen=True)
@@ -137,10 +151,27 @@ class Accuracy:
                           default_doc="preset")
     n_resamples: int = key(None, "bootstrap resamples per diffusion coefficient", ge=10,
                            allowed=">= 10 (an integer)", default_doc="preset")
+    # Target-driven sampling (pipeline/adaptive.py); off (None) = a fixed n_particles.
+    target_ci: float | None = key(None, "CI half-width of D to reach per (frequency, family), "
+                                  "relative to D; chunks are added in waves until it is met",
+                                  units="fraction of D", gt=0, lt=1, omit_default=True,
+                                  default_doc="off: n_particles everywhere")
+    d_resolved: float | None = key(None, "with target_ci: a CI half-width (absolute) at which "
+                                   "a D near 0 counts as resolved", units="mm²/s", gt=0,
+                                   omit_default=True, default_doc="off")
+    max_particles: int | None = key(None, "with target_ci: at most this many particles per "
+                                    "(frequency, family); sizes the store (n_particles = it)",
+                                    gt=0, omit_default=True, default_doc="n_particles")
 
     @property
     def n_chunks(self) -> int:
+        """Chunks per (frequency, family) in the store (with target_ci: the cap)."""
         return self.n_particles // self.chunk_size
+
+    @property
+    def adaptive(self) -> bool:
+        """Whether the ensemble size is chosen per (frequency, family) by target_ci."""
+        return self.target_ci is not None
 
     def numerics(self) -> Numerics:
         return Numerics(**{k: getattr(self, k) for k in NUMERICS_KNOBS})
@@ -214,6 +245,8 @@ SECTIONS: list[tuple[str, type, str]] = [
     ("[params]", ParamsTable, "bbb.Params, mm and s; `f` comes from [frequencies]"),
     ("[frequencies]", FrequenciesTable, "Hz, multiples of 1 mHz: `values`, or `start, stop, "
      "step`; required"),
+    ("[frequencies.refine]", RefineTable, "an inline table, e.g. `refine = { extrema = true, "
+     "to = 0.1 }`"),
     ("[families.NAME]", Family, "NAME: a letter, then letters, digits, _ -; default: one "
      "family `rest`"),
     ("[accuracy]", Accuracy, '`accuracy = "NAME"` for a preset as it is'),

@@ -48,8 +48,8 @@ from .fit import (
     DEFAULT_FIT_FROM,
     DEFAULT_FIT_TO,
     DiffusionEstimate,
-    _per_particle_fit,  # noqa: F401  (used by pipeline.accuracy_study)
-    _regime,  # noqa: F401  (used by pipeline.accuracy_study)
+    _per_particle_fit,  # noqa: F401  (used by pipeline.studies.accuracy)
+    _regime,  # noqa: F401  (used by pipeline.studies.accuracy)
     diffusion_coefficient,
     fit_diffusion,
     per_particle_D,

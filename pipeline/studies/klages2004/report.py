@@ -3,7 +3,7 @@
 Every number in the report is computed from the reduce tables (D(f) with bootstrap CIs,
 stationarity and ergodicity columns), the locking tables (:mod:`pipeline.collisions`, with
 bootstrap CIs of k) and the stores' attributes; nothing measured is typed in.  The claims are
-data (:data:`pipeline.klages2004_claims.CLAIMS`), judged by :mod:`pipeline.claims` with the
+data (:data:`pipeline.studies.klages2004.claims.CLAIMS`), judged by :mod:`pipeline.claims` with the
 CI of each measured number against the tolerance the claim declares (rule in that module,
 restated in the report).  Significant extrema: :func:`bbb.extrema.find_extrema`
 (Bonferroni-corrected, differences below 1 % of the curve's largest D ignored).
@@ -23,11 +23,11 @@ import pandas as pd
 from bbb.extrema import Extremum, find_extrema
 from bbb.locking import CREEP_MARGIN, FLIGHT_TOL, MAX_QUANTILE, TMAX_QUANTILE
 
-from . import claims as _claims
-from .claim_measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
-from .claims import Row
-from .collisions import as_store
-from .klages2004_claims import CLAIMS, MAIN, families, period1_limit, spiral_closeness
+from ... import claims as _claims
+from ...claim_measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
+from ...claims import Row
+from ...collisions import as_store
+from .claims import CLAIMS, MAIN, families, period1_limit, spiral_closeness
 
 __all__ = ["Row", "CLAIMS", "curve_extrema", "onset", "evaluate", "write_report",
            "spiral_closeness", "period1_limit"]

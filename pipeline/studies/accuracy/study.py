@@ -38,12 +38,12 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .accuracy import ACCURACY_PRESETS
-from .workflow import Study, parse_workflow
+from ...accuracy import ACCURACY_PRESETS
+from ...workflow import Study, parse_workflow
 
 __all__ = [
     "Variant", "default_variants", "variant_study", "run_accuracy_study", "compare",
-    "summarize", "scaling_table", "per_particle_D", "pareto_front", "plot_accuracy",
+    "summarize", "scaling_table", "per_particle_D", "pareto_front", "plot_accuracy", "accuracy_figure",
     "ROW_COLUMNS", "SUMMARY_COLUMNS", "SCALING_COLUMNS", "KNOB_N", "KNOB_T",
 ]
 
@@ -128,7 +128,7 @@ def _acc_table(study: Study) -> dict:
 
 def variant_study(ref_text: str, variant: Variant, source: str = "<accuracy>") -> Study:
     """The reference workflow with its [accuracy] table replaced by the variant's."""
-    from .make_figures import _toml_dump  # the workflow-shaped TOML writer
+    from ...scenes import toml_dump as _toml_dump  # the workflow-shaped TOML writer
 
     doc = tomllib.loads(ref_text)
     doc["accuracy"] = dict(variant.accuracy)
@@ -154,9 +154,9 @@ def run_accuracy_study(
 
     Returns {"rows", "summary", "scaling"} (columns: ROW_/SUMMARY_/SCALING_COLUMNS).
     """
-    from .reduce import counters_table, diffusion_table
-    from .run import _connect, run_study
-    from .store import StudyStore
+    from ...reduce import counters_table, diffusion_table
+    from ...run import _connect, run_study
+    from ...store import StudyStore
 
     text = Path(workflow).read_text(encoding="utf-8")
     ref = parse_workflow(text, source=str(workflow))
@@ -427,22 +427,32 @@ def _hw(stats, x, times, study, n_resamples, seed) -> float:
 
 # -------------------------------------------------------------------------------------------
 def plot_accuracy(summary: pd.DataFrame, path: str | os.PathLike) -> Path:
-    """Error (RMS of |D - D_ref| / CI_ref half-width) versus CPU time, one point per variant,
-    the Pareto front joined; presets as large markers, knob variants small."""
-    import matplotlib
+    """Draw :func:`accuracy_figure` and write it to ``path`` (PNG, 130 dpi)."""
+    fig = accuracy_figure(summary)
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(p, dpi=130)
+    return p
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+
+def accuracy_figure(summary: pd.DataFrame):
+    """Error (RMS of |D - D_ref| / CI_ref half-width) versus CPU time, one point per variant,
+    the Pareto front joined; presets as large markers, knob variants small.  A Figure made
+    without pyplot; each variant's name goes to the first free spot around its marker."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
 
     s = summary[summary.variant != "reference"].copy()
-    fig, ax = plt.subplots(figsize=(7.5, 5))
+    fig = Figure(figsize=(7.5, 5))
+    FigureCanvasAgg(fig)
+    fig.set_label("accuracy")
+    ax = fig.subplots()
+    labels = []
     for kind, mk, size in (("preset", "o", 80), ("knob", "s", 35)):
         k = s[s.kind == kind]
         ax.scatter(k.cpu_s, k.err_rms, marker=mk, s=size, label=kind + "s",
                    c=np.where(k.pareto, "tab:red", "tab:blue"), zorder=3)
-        for _, r in k.iterrows():
-            ax.annotate(r.variant, (r.cpu_s, r.err_rms), xytext=(4, 4),
-                        textcoords="offset points", fontsize=8)
+        labels += [(r.variant, r.cpu_s, r.err_rms) for _, r in k.iterrows()]
     front = s[s.pareto].sort_values("cpu_s")
     ax.plot(front.cpu_s, front.err_rms, "-", color="tab:red", lw=1.2, label="Pareto front",
             zorder=2)
@@ -457,8 +467,29 @@ def plot_accuracy(summary: pd.DataFrame, path: str | os.PathLike) -> Path:
                  fontsize=10)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(p, dpi=130)
-    plt.close(fig)
-    return p
+    _place_labels(fig, ax, labels)
+    return fig
+
+
+def _place_labels(fig, ax, labels) -> None:
+    """Annotate (text, x, y) points, each at the first of a few offsets around its marker
+    where it overlaps no label placed before it (points of labels that share a spot, such as
+    two variants of equal cost and error, would otherwise be printed over each other)."""
+    renderer = fig.canvas.get_renderer()
+    offsets = [((4, 4), "left", "bottom"), ((4, -4), "left", "top"),
+               ((-4, 4), "right", "bottom"), ((-4, -4), "right", "top"),
+               ((4, 12), "left", "bottom"), ((4, -12), "left", "top")]
+    placed = []
+    for text, x, y in labels:
+        for (dx, dy), ha, va in offsets:
+            a = ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset points",
+                            fontsize=8, ha=ha, va=va)
+            box = a.get_window_extent(renderer)
+            if not any(box.overlaps(b) for b in placed):
+                break
+            a.remove()
+        else:
+            a = ax.annotate(text, (x, y), xytext=offsets[0][0], textcoords="offset points",
+                            fontsize=8)
+            box = a.get_window_extent(renderer)
+        placed.append(box)

@@ -8,9 +8,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.report import CLAIMS, evaluate, onset, period1_limit, write_report
+from pipeline.studies.klages2004.report import CLAIMS, evaluate, onset, period1_limit, write_report
 
-from .figure_store import tiny_store
+from ...figure_store import tiny_store
 
 F = np.round(np.arange(50.0, 99.2001, 0.4), 3)
 
@@ -171,14 +171,14 @@ def test_an_extremum_location_carries_a_ci_of_half_the_grid_spacing():
 
 
 def test_adding_a_claim_is_one_record_and_it_appears_in_the_report(tmp_path):
-    from pipeline.klages2004_claims import CLAIMS as PAPER
+    from pipeline.studies.klages2004.claims import CLAIMS as PAPER
 
     extra = Claim("Local maximum near f = 80 (a claim added by a test)", "extremum", "figure2",
                   Band.around(80.0, 1.0, "added for the test", "Hz"), f0=80.0, window=1.0,
                   options={"kind": "max"})
     rows, _ = evaluate({"figure2": _paper_like()}, claims=[*PAPER, extra])
     assert rows[-1].claim == extra.text and rows[-1].verdict in ("agrees", "agrees within the CI")
-    import pipeline.klages2004_claims as k
+    import pipeline.studies.klages2004.claims as k
 
     k.CLAIMS.append(extra)
     try:

@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 from pipeline.accuracy import ACCURACY_KNOBS, ACCURACY_PRESETS
-from pipeline.accuracy_study import (
+from pipeline.studies.accuracy.study import (
     ROW_COLUMNS,
     SCALING_COLUMNS,
     SUMMARY_COLUMNS,

@@ -16,9 +16,9 @@ import pandas as pd
 from bbb.approx import spiral
 from bbb.locking import creep_speed, flight_time_max, flight_times
 
-from .claim_measures import row_at
-from .claims import Band, Claim, Measured, Part, Quantity, combine, judge, measure
-from .collisions import as_store, states
+from ...claim_measures import row_at
+from ...claims import Band, Claim, Measured, Part, Quantity, combine, judge, measure
+from ...collisions import as_store, states
 
 __all__ = ["CLAIMS", "MAIN", "K_TOL", "period1_limit", "spiral_closeness", "families"]
 

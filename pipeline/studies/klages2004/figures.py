@@ -1,8 +1,11 @@
-"""The paper's figures, drawn from study stores and reduce tables only (matplotlib, Agg).
+"""The paper's figures, drawn from study stores and reduce tables only (matplotlib).
 
-Every function takes ``(store, tables, out_dir)`` -- a store path or :class:`StudyStore`
+Every function takes ``(store, tables, out_dir=None)`` -- a store path or :class:`StudyStore`
 (for Fig. 3 also a list of them), a mapping of table name to pandas DataFrame, and the output
-folder -- writes ``<name>.png`` and ``<name>.pdf`` and returns their paths.
+folder -- and returns the :class:`matplotlib.figure.Figure` (labelled ``name``); given an
+``out_dir`` it also writes ``<name>.png`` and ``<name>.pdf`` there (:func:`figure_files`).
+Figures are made without pyplot, so importing this module selects no backend and leaves a
+notebook's inline plotting alone; a returned Figure shows itself in Jupyter.
 
 Tables used (all made by ``pipeline.reduce`` or ``pipeline.collisions``):
 
@@ -21,21 +24,20 @@ import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-import matplotlib
+import numpy as np
+import pandas as pd
+from matplotlib import rc_context
+from matplotlib.figure import Figure
+from matplotlib.ticker import MultipleLocator
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import pandas as pd  # noqa: E402
+from bbb.approx import spiral
+from bbb.locking import creep_speed, flight_time_max, flight_times
 
-from bbb.approx import spiral  # noqa: E402
-from bbb.locking import creep_speed, flight_time_max, flight_times  # noqa: E402
-
-from .collisions import as_store, states  # noqa: E402
-from .store import StudyStore  # noqa: E402
+from ...collisions import as_store, states
+from ...store import StudyStore
 
 __all__ = ["PANELS", "PAPER_K", "STYLE", "figure1", "figure2", "figure3", "figure_locking",
-           "main_columns"]
+           "figure_files", "main_columns"]
 
 #: Fig. 3's panels: letter -> frequency (Hz)
 PANELS = {"a": 54.0, "b": 58.0, "c": 60.0, "d": 66.0, "e": 72.0, "f": 78.0}
@@ -77,15 +79,28 @@ def _color(family: str, i: int = 0) -> str:
     return FAMILY_COLORS.get(family, _OTHER_COLORS[i % len(_OTHER_COLORS)])
 
 
-def _save(fig, out_dir: str | os.PathLike, name: str, dpi: int | None = None) -> list[Path]:
-    """Write <name>.png and <name>.pdf (``dpi``: of the PNG and of rasterized PDF layers)."""
+def figure_files(out_dir: str | os.PathLike, name: str) -> list[Path]:
+    """The files a figure function given ``out_dir`` writes: ``<name>.png``, ``<name>.pdf``."""
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    paths = [out / f"{name}.png", out / f"{name}.pdf"]
-    for p in paths:
-        fig.savefig(p, **({"dpi": dpi} if dpi else {}))
-    plt.close(fig)
-    return paths
+    return [out / f"{name}.png", out / f"{name}.pdf"]
+
+
+def _new_figure(name: str, figsize: tuple[float, float]) -> Figure:
+    """A Figure outside pyplot (no backend, no global figure list), labelled ``name``."""
+    fig = Figure(figsize=figsize)
+    fig.set_label(name)
+    return fig
+
+
+def _save(fig: Figure, out_dir: str | os.PathLike | None, dpi: int | None = None) -> Figure:
+    """Write <label>.png and <label>.pdf to ``out_dir`` unless it is None (``dpi``: of the
+    PNG and of rasterized PDF layers); returns the figure.  Call inside ``rc_context(STYLE)``:
+    the savefig settings (tight bounding box, dpi, fonts) are read from it."""
+    if out_dir is not None:
+        Path(out_dir).mkdir(parents=True, exist_ok=True)
+        for p in figure_files(out_dir, fig.get_label()):
+            fig.savefig(p, **({"dpi": dpi} if dpi else {}))
+    return fig
 
 
 def main_columns(table: pd.DataFrame, family: str = "rest") -> tuple[str, str, str]:
@@ -139,8 +154,8 @@ def _trajectory(p, seed: int = 2004):
 
 
 def figure1(store: str | os.PathLike | StudyStore, tables: Mapping[str, pd.DataFrame] | None,
-            out_dir: str | os.PathLike, *, f: float = 60.0, name: str = "fig1_geometry"
-            ) -> list[Path]:
+            out_dir: str | os.PathLike | None = None, *, f: float = 60.0,
+            name: str = "fig1_geometry") -> Figure:
     """Fig. 1: arcs of radius R on spacing S from bbb.surface, the floor at one phase, one
     particle's real trajectory over four bounces (bbb.simulate with the store's parameters at
     ``f`` Hz), and the v_perp / v_par frame at one collision (panel b, true scale).
@@ -152,9 +167,9 @@ def figure1(store: str | os.PathLike | StudyStore, tables: Mapping[str, pd.DataF
     st = as_store(store)
     p = st.study.params(f)
     c, j0, j1, jm = _trajectory(p)
-    with plt.rc_context(STYLE):
-        fig, (ax, bx) = plt.subplots(1, 2, figsize=(PAGE, 2.3),
-                                     gridspec_kw={"width_ratios": [2.3, 1.0], "wspace": 0.25})
+    with rc_context(STYLE):
+        fig = _new_figure(name, (PAGE, 2.3))
+        ax, bx = fig.subplots(1, 2, gridspec_kw={"width_ratios": [2.3, 1.0], "wspace": 0.25})
         # the flights
         xs, ys = [], []
         for j in range(j0, j1):
@@ -183,7 +198,6 @@ def figure1(store: str | os.PathLike | StudyStore, tables: Mapping[str, pd.DataF
         ax.set_xlim(x_lo, x_hi)
         ax.set_ylim(y_lo, y_hi)
         # vertical exaggeration: 1 mm of y drawn this many times longer than 1 mm of x
-        fig.canvas.draw()
         bbox = ax.get_window_extent()
         exag = (bbox.height / (y_hi - y_lo)) / (bbox.width / (x_hi - x_lo))
         # amplitude marker
@@ -233,7 +247,7 @@ def figure1(store: str | os.PathLike | StudyStore, tables: Mapping[str, pd.DataF
         bx.set_xlabel("x (mm)")
         bx.set_ylabel("y (mm)")
         bx.set_title(r"(b) collision $\star$, true scale", loc="left")
-        return _save(fig, out_dir, name)
+        return _save(fig, out_dir)
 
 
 # -------------------------------------------------------------------------------------------
@@ -313,10 +327,10 @@ def _letters(ax, tops: list[tuple[float, float]], letters: Mapping[str, float],
 
 
 def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, pd.DataFrame],
-            out_dir: str | os.PathLike, *, name: str = "fig2_diffusion",
+            out_dir: str | os.PathLike | None = None, *, name: str = "fig2_diffusion",
             letters: Mapping[str, float] | None = PANELS, main_family: str = "rest",
             inset: tuple[float, float] | None = (50.0, 67.0), legend_loc: str = "lower right"
-            ) -> list[Path]:
+            ) -> Figure:
     """Fig. 2: D(f) with its bootstrap 95 % CI on every point.
 
     tables["diffusion"]   -- the main curve (the ``main_family`` columns if it has several)
@@ -342,13 +356,14 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
                  f"{st.study.accuracy.t_max:g} s)")
     lock = tables.get("locking")
     f = main["f"].to_numpy(float)
-    with plt.rc_context(STYLE):
+    with rc_context(STYLE):
         if lock is not None:
-            fig, (ax, kx) = plt.subplots(2, 1, figsize=(COLUMN, 3.6), sharex=True,
-                                         gridspec_kw={"height_ratios": [2.0, 1.2], "hspace": 0.08})
+            fig = _new_figure(name, (COLUMN, 3.6))
+            ax, kx = fig.subplots(2, 1, sharex=True,
+                                  gridspec_kw={"height_ratios": [2.0, 1.2], "hspace": 0.08})
         else:
-            fig, ax = plt.subplots(figsize=(COLUMN, 2.6))
-            kx = None
+            fig = _new_figure(name, (COLUMN, 2.6))
+            ax, kx = fig.subplots(), None
         tops = _draw_D(ax, main, cols, ergo, main_family, legend=True)
         top = max((t[1] for t in tops if np.isfinite(t[1])), default=1.0)
         lo_all = main[cols[1]].to_numpy(float)
@@ -357,7 +372,9 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
         if letters:
             _letters(ax, tops, letters, f, lim=None if inset is None else (inset[1], np.inf))
         if inset is not None and np.any((f >= inset[0]) & (f <= inset[1])):
-            ix = ax.inset_axes([0.07, 0.53, 0.36, 0.43])
+            # x0 leaves room for the inset's tick labels inside the main axes, clear of its
+            # y axis and tick labels
+            ix = ax.inset_axes([0.14, 0.57, 0.31, 0.40])
             sel = (main["f"] >= inset[0] - 0.5) & (main["f"] <= inset[1] + 0.5)
             esel = None if ergo is None else ergo[(ergo["f"] >= inset[0]) & (ergo["f"] <= inset[1])]
             itops = _draw_D(ix, main[sel], cols, esel, main_family, legend=False, small=True)
@@ -365,6 +382,7 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
             ix.set_xlim(inset[0] - 0.5, inset[1] + 0.5)
             ix.set_ylim(bottom, 1.18 * itop)
             ix.tick_params(labelsize=5.5, length=2)
+            ix.xaxis.set_major_locator(MultipleLocator(5.0))
             if letters:
                 _letters(ix, itops, letters, f, lim=inset)
         ax.set_ylabel(r"$D$ (mm$^2$/s)")
@@ -376,7 +394,7 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
             kx.set_xlabel(r"$f$ (Hz)")
         else:
             ax.set_xlabel(r"$f$ (Hz)")
-        return _save(fig, out_dir, name)
+        return _save(fig, out_dir)
 
 
 def _k_panel(ax, lock: pd.DataFrame, *, half: bool = True, paper: bool = True) -> None:
@@ -405,9 +423,10 @@ def _k_panel(ax, lock: pd.DataFrame, *, half: bool = True, paper: bool = True) -
 # Fig. 3: phase-space projections with the spiral approximation
 # -------------------------------------------------------------------------------------------
 def figure3(store: str | os.PathLike | StudyStore | Sequence[str | os.PathLike | StudyStore],
-            tables: Mapping[str, pd.DataFrame] | None, out_dir: str | os.PathLike, *,
+            tables: Mapping[str, pd.DataFrame] | None,
+            out_dir: str | os.PathLike | None = None, *,
             name: str = "fig3_phase_space", panels: Mapping[str, float] = PANELS,
-            spiral_panels: Sequence[str] = SPIRAL_PANELS, max_points: int = 25_000) -> list[Path]:
+            spiral_panels: Sequence[str] = SPIRAL_PANELS, max_points: int = 25_000) -> Figure:
     """Fig. 3: post-collision (y, v_y⁺) at each panel's frequency, every family of every given
     store that holds that frequency (within 1 mHz), coloured by family; the flat-floor spiral
     of Eqs. (8)-(9) on ``spiral_panels``: t_0 = 1/(2f), t_1 = t_0 + t_c with
@@ -416,9 +435,9 @@ def figure3(store: str | os.PathLike | StudyStore | Sequence[str | os.PathLike |
     (evenly thinned); t_max uses all.
     """
     stores = [as_store(s) for s in (store if isinstance(store, (list, tuple)) else [store])]
-    with plt.rc_context(STYLE):
-        fig, axes = plt.subplots(3, 2, figsize=(COLUMN, 5.0), sharex=True,
-                                 gridspec_kw={"hspace": 0.12, "wspace": 0.32})
+    with rc_context(STYLE):
+        fig = _new_figure(name, (COLUMN, 5.0))
+        axes = fig.subplots(3, 2, sharex=True, gridspec_kw={"hspace": 0.2, "wspace": 0.32})
         seen: dict[str, bool] = {}
         for ax, (letter, fp) in zip(axes.ravel(), panels.items(), strict=False):
             flights, p = [], None
@@ -461,26 +480,28 @@ def figure3(store: str | os.PathLike | StudyStore | Sequence[str | os.PathLike |
             ax.set_ylabel(r"$v_y^+$ (mm/s)")
         if seen:
             axes[0, 0].legend(loc="upper left", fontsize=5.5, markerscale=1.0, handlelength=0.8)
-        return _save(fig, out_dir, name, dpi=200)  # dense scatter: keep the file small
+        return _save(fig, out_dir, dpi=200)  # dense scatter: keep the file small
 
 
 # -------------------------------------------------------------------------------------------
 # The locking plot
 # -------------------------------------------------------------------------------------------
 def figure_locking(store: str | os.PathLike | StudyStore | None,
-                   tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLike, *,
-                   name: str = "fig_locking", paper: bool = True) -> list[Path]:
+                   tables: Mapping[str, pd.DataFrame],
+                   out_dir: str | os.PathLike | None = None, *,
+                   name: str = "fig_locking", paper: bool = True) -> Figure:
     """k = 2 v_y⁺ f / g against f from tables["locking"]: k from the maximal v_y⁺ (0.99
     quantile above the creeping band, filled circles) and from the dominant v_y⁺ peak (open
     triangles), per family; integer (solid) and half-integer (dashed) lines; the paper's
     values read off its spirals as stars (``paper``)."""
     lock = tables["locking"]
-    with plt.rc_context(STYLE):
-        fig, ax = plt.subplots(figsize=(COLUMN, 2.5))
+    with rc_context(STYLE):
+        fig = _new_figure(name, (COLUMN, 2.5))
+        ax = fig.subplots()
         _k_panel(ax, lock, half=True, paper=paper)
         ax.set_xlabel(r"$f$ (Hz)")
         if store is not None:
             st = as_store(store)
             prm = st.study.params(float(lock["f"].iloc[0]))
             ax.set_title(f"R = {prm.R:g} mm, α = {prm.alpha:g}, A = {prm.A:g} mm", fontsize=6.5)
-        return _save(fig, out_dir, name)
+        return _save(fig, out_dir)

@@ -1,0 +1,231 @@
+"""Run an adaptive study on a Dask client: waves of chunks per (frequency, family) and
+refinement rounds, every decision taken on the client by the rules of :mod:`pipeline.adaptive`.
+
+While one (frequency, family) waits for its wave, the others keep the workers busy: the next
+wave of a (frequency, family) is submitted as soon as its current wave is complete.  A
+decision reads the first n chunks of the store (never the ones that happened to finish first)
+and computes D's CI with the bootstrap of `bbb reduce` (same estimator, fit range, level,
+method and resamples), seeded by (f in mHz, family, "stop", n): the store is the same whatever
+the worker count, and a re-run replays the decisions from the done chunks (:meth:`Waves.plan`).
+"""
+
+from __future__ import annotations
+
+import sys
+import uuid
+import zlib
+from collections.abc import Callable
+
+import numpy as np
+
+from .adaptive import OPEN, STOP_LEGEND, StoppingRule, UnitState, advance, refine_frequencies
+from .store import StudyStore
+from .workflow import Study
+
+__all__ = ["Waves", "rule_of", "stop_seed", "unit_ci", "pooled_ci"]
+
+Unit = tuple[int, int]  # (frequency index, family index)
+
+
+def rule_of(study: Study) -> StoppingRule:
+    acc = study.accuracy
+    if not acc.adaptive:
+        return StoppingRule.fixed(acc.n_chunks)
+    return StoppingRule(acc.target_ci, acc.d_resolved, acc.n_chunks, 1)
+
+
+def stop_seed(study: Study, f: float, family, n: int) -> np.random.SeedSequence:
+    """The bootstrap seed of the decision after the first n chunks: keyed by values, apart
+    from the chunk seeds and the reduction's by the extra key crc32("stop")."""
+    return np.random.SeedSequence(study.seed, spawn_key=(round(f * 1000), family.key,
+                                                         zlib.crc32(b"stop"), n))
+
+
+def _ci(study: Study, x: np.ndarray, seed) -> tuple[float, float, float]:
+    from bbb import stats
+
+    if x.shape[0] < 2:
+        return (np.nan, np.nan, np.nan)
+    an = study.analysis
+    T = an.duration(study.accuracy.t_max)
+    r = stats.bootstrap_D(x, study.sample_times(), n_resamples=study.accuracy.n_resamples,
+                          ci=an.ci, seed=seed, method=an.ci_method, fit_from=an.fit_from * T,
+                          fit_to=an.fit_to * T, discard=an.discard)
+    return (r.D, r.lo, r.hi)
+
+
+def unit_ci(store: StudyStore, fi: int, mi: int, n: int) -> tuple[float, float, float]:
+    """(D, lo, hi), mm²/s, of (frequency fi, family mi) from its first n chunks."""
+    study = store.study
+    first = np.arange(study.accuracy.n_chunks) < n
+    x = store.read_done("positions", fi, mi, first)
+    return _ci(study, x, stop_seed(study, study.frequencies[fi], study.families[mi], n))
+
+
+def pooled_ci(store: StudyStore, fi: int, done: np.ndarray) -> tuple[float, float, float]:
+    """(D, lo, hi) of all families pooled at frequency fi, as `bbb reduce` computes its D."""
+    from .reduce import _reduce_seed
+
+    study = store.study
+    parts = [store.read_done("positions", fi, mi, done[fi, mi])
+             for mi in range(len(study.families))]
+    parts = [p for p in parts if p.shape[0] >= 2]
+    if not parts:
+        return (np.nan, np.nan, np.nan)
+    return _ci(study, np.concatenate(parts), _reduce_seed(study, study.frequencies[fi]))
+
+
+def _prefix(done_fm: np.ndarray) -> int:
+    """How many leading chunks are done."""
+    return int(np.argmin(done_fm)) if not done_fm.all() else done_fm.size
+
+
+class Waves:
+    """The state of an adaptive run: one :class:`UnitState` per (frequency, family)."""
+
+    def __init__(self, store: StudyStore, echo: Callable[[str], None] = print):
+        self.store, self.echo = store, echo
+        self.rule = rule_of(store.study)
+        self.states: dict[Unit, UnitState] = {}
+        self.rounds = 0
+
+    # -- deciding ----------------------------------------------------------------------------
+    def plan(self, fis) -> None:
+        """(Re-)derive the state of every unit at the frequency indices ``fis`` from the done
+        chunks, replaying the rule from wave 1; records the stops it finds."""
+        store, study = self.store, self.store.study
+        done, stops = store.done(), store.stops()
+        for fi in fis:
+            for mi in range(len(study.families)):
+                if stops is not None and stops[1][fi, mi] != OPEN:  # decided and recorded
+                    n = int(stops[0][fi, mi])
+                    state = UnitState(n, [n], int(stops[1][fi, mi]))
+                else:
+                    state = self._advance(None, fi, mi, _prefix(done[fi, mi]))
+                self.states[(fi, mi)] = state
+                self._drop_beyond(fi, mi, done[fi, mi])
+
+    def _advance(self, state, fi, mi, prefix) -> UnitState:
+        state = advance(self.rule, state, prefix,
+                        lambda n: unit_ci(self.store, fi, mi, n))
+        if state.reason != OPEN and self.store.study.accuracy.adaptive:
+            self.store.write_stop(fi, mi, state.n, state.reason)
+        return state
+
+    def _drop_beyond(self, fi, mi, done_fm) -> None:
+        # A done chunk the rule never asked for would change D if reduced: it is unmarked.
+        n = self.states[(fi, mi)].n
+        beyond = np.flatnonzero(done_fm[n:]) + n
+        if beyond.size:
+            g = self.store.group("r+")
+            for ci in beyond:
+                g["done"][fi, mi, int(ci)] = False
+            f, fam = self.store.study.frequencies[fi], self.store.study.families[mi].name
+            self.echo(f"{self.store.study.name}: f = {f:g} Hz, {fam}: chunks "
+                      f"{beyond.tolist()} lie beyond what the rule asks for (first {n}); "
+                      "unmarked as done")
+
+    def missing(self) -> list[tuple[int, int, int]]:
+        """(fi, mi, ci) of the chunks the open units want and do not have, fi-major."""
+        done = self.store.done()
+        return [(fi, mi, ci) for (fi, mi), s in sorted(self.states.items()) if s.reason == OPEN
+                for ci in range(s.n) if not done[fi, mi, ci]]
+
+    def refine(self) -> bool:
+        """One refinement round, once every unit has stopped: grow the store by the
+        frequencies the rule adds and plan them.  False if the grid is fine enough."""
+        study = self.store.study
+        if study.refine is None or any(s.reason == OPEN for s in self.states.values()):
+            return False
+        done = self.store.done()
+        table = np.array([pooled_ci(self.store, fi, done) for fi in range(len(study.frequencies))])
+        rf = study.refine
+        new = refine_frequencies(study.f_mhz, table[:, 0], table[:, 1], table[:, 2], to=rf.to,
+                                 ci=study.analysis.ci, extrema=rf.extrema, jumps=rf.jumps)
+        new = [m for m in new if m not in set(study.f_mhz)]
+        if not new:
+            return False
+        self.rounds += 1
+        old = len(study.frequencies)
+        self.store = self.store.add_frequencies(tuple(m / 1000 for m in new))
+        self.echo(f"{study.name}: refinement round {self.rounds}: {len(new)} frequencies added "
+                  f"({', '.join(f'{m / 1000:g}' for m in new[:8])}{' ...' if len(new) > 8 else ''} Hz)")
+        self.plan(range(old, len(self.store.study.frequencies)))
+        return True
+
+    def prepare(self) -> list[tuple[int, int, int]]:
+        """Plan every unit, refine while nothing is missing; the chunks to compute."""
+        self.plan(range(len(self.store.study.frequencies)))
+        while not (todo := self.missing()) and self.refine():
+            pass
+        return todo
+
+    def summary(self) -> str:
+        counts: dict[int, int] = {}
+        for s in self.states.values():
+            counts[s.reason] = counts.get(s.reason, 0) + 1
+        return ", ".join(f"{counts[k]} {STOP_LEGEND[k]}" for k in sorted(counts))
+
+    # -- computing ---------------------------------------------------------------------------
+    def execute(self, client, fails, report, progress: bool, compute_chunk, on_failure) -> None:
+        """Compute until every unit has stopped and refinement adds nothing."""
+        from distributed import as_completed
+        from tqdm import tqdm
+
+        token = uuid.uuid4().hex[:8]
+        bar = tqdm(total=0, unit="chunk", disable=not progress, file=sys.stderr,
+                   desc=self.store.study.name, smoothing=0.1)
+        pending: dict = {}
+        outstanding: dict[Unit, set[int]] = {}
+        ac = as_completed()
+
+        def submit(chunks) -> None:
+            study = self.store.study
+            for fi, mi, ci in chunks:
+                f, fam = study.frequencies[fi], study.families[mi]
+                fail = (round(f * 1000), fam.name, ci) in fails
+                fut = client.submit(compute_chunk, self.store, fi, mi, ci, fail,
+                                    key=f"bbb-{round(f * 1000)}mHz-{fam.name}-{ci}-{token}",
+                                    priority=-fi, retries=0, pure=False)
+                pending[fut] = (fi, mi, ci)
+                outstanding.setdefault((fi, mi), set()).add(ci)
+                ac.add(fut)
+            bar.total += len(chunks)
+            self._postfix(bar, outstanding)
+            bar.refresh()
+
+        try:
+            submit(self.missing())
+            while True:
+                for fut in ac:
+                    fi, mi, ci = pending.pop(fut)
+                    try:
+                        res = fut.result()
+                    except Exception as e:
+                        on_failure(fut, self.store.study, fi, mi, ci, e,
+                                   lambda: client.cancel(list(pending)))
+                    report.computed.append(res.key)
+                    report.collisions += res.collisions
+                    report.task_seconds += res.seconds
+                    report.write_seconds += res.write_seconds
+                    bar.update(1)
+                    outstanding[(fi, mi)].discard(ci)
+                    if not outstanding[(fi, mi)]:  # its wave is complete: decide
+                        state = self.states[(fi, mi)]
+                        self._advance(state, fi, mi, _prefix(self._done(fi, mi)))
+                        if state.reason == OPEN:
+                            done = self._done(fi, mi)
+                            submit([(fi, mi, c) for c in range(state.n) if not done[c]])
+                        self._postfix(bar, outstanding)
+                if not self.refine():
+                    break
+                submit(self.missing())
+        finally:
+            bar.close()
+
+    def _done(self, fi: int, mi: int) -> np.ndarray:
+        return np.asarray(self.store.group()["done"][fi, mi], dtype=bool)
+
+    def _postfix(self, bar, outstanding) -> None:
+        waiting = sum(1 for s in outstanding.values() if s)
+        bar.set_postfix_str(f"{waiting} (f, family) in a wave; {self.summary()}", refresh=False)
