@@ -103,7 +103,7 @@ class Study:
     source: str
     seed: int
     preset: str
-    overrides: dict[str, float]
+    overrides: dict[str, float | str]
     frequencies: tuple[float, ...]
     families: tuple[Family, ...]
     accuracy: Accuracy
@@ -206,7 +206,7 @@ class Study:
             source=d["source"],
             seed=int(d["seed"]),
             preset=preset,
-            overrides={k: float(v) for k, v in params.items()},
+            overrides={k: v if k == "contact" else float(v) for k, v in params.items()},
             frequencies=tuple(float(f) for f in d["frequencies"]),
             families=fams,
             accuracy=Accuracy(**d["accuracy"]),
@@ -288,9 +288,13 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
                  refine=refine, text=text)
 
 
-def _params(r: Reader, doc: dict) -> tuple[str, dict[str, float]]:
+def _params(r: Reader, doc: dict) -> tuple[str, dict[str, float | str]]:
     tbl = r.table(doc.get("params"), ("params",), ParamsTable)
-    overrides = {k: float(tbl[k]) for k in PARAM_FIELDS if tbl[k] is not None}
+    overrides: dict[str, float | str] = {k: float(tbl[k]) for k in PARAM_FIELDS
+                                         if tbl[k] is not None}
+    if tbl["contact"] != "stick":
+        # only a non-default model is an override: stick scenes keep their fingerprints
+        overrides["contact"] = tbl["contact"]
     try:
         Params.preset(tbl["preset"], f=1.0, **overrides)
     except ValueError as e:

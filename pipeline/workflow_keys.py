@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any
 
 from bbb.numerics import Numerics
+from bbb.params import CONTACT_MODELS
 from bbb.params import PRESETS as PARAM_PRESETS
 
 from .accuracy import ACCURACY_PRESETS, DEFAULT_ACCURACY, NUMERICS_KNOBS
@@ -72,6 +73,10 @@ class ParamsTable:
                               default_doc="preset")
     beta: float | None = key(None, "tangential restitution, Eq. (6)", allowed="0 <= beta <= 1",
                              default_doc="preset")
+    contact: str = key("stick", "sustained-contact model (docs/physics.md, Contact models)",
+                       choices=CONTACT_MODELS)
+    mu: float | None = key(None, "Coulomb friction coefficient", allowed="mu >= 0",
+                           when=("contact", "coulomb"), default_doc="0")
 
 
 @dataclass(frozen=True)
