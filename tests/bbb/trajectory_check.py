@@ -45,7 +45,8 @@ CHECKS = ("clock", "carried", "liftoff_state", "liftoff_time", "stuck_flight", "
 #: 6 Coulomb stop, 7 cusp reached while sliding
 CONTACT, CONTACT_LIFT, STOP, CUSP = 4.0, 5.0, 6.0, 7.0
 #: accuracy asked of the kernel's contact integration (RK4, ≤ T/256 per step) per stretch,
-#: relative to the scales sqrt(g R) (speed) and 1 rad (angle), per floor period of the stretch;
+#: relative to the scales sqrt(g R) (speed) and 1 rad (angle), per period of the stretch (the
+#: floor's or the arc's pendulum period, the shorter);
 #: measured: rows at 50.5-58 Hz under slide and coulomb pass at 1e-10 (2026-11-23)
 CONTACT_RTOL = 1e-8
 
@@ -436,10 +437,11 @@ def _contact_rates(fl: Floor, mu, q, v, th, sgn):
 
 def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> None:
     """Sliding stretches, by this checker's own RK4 (all stretches at once, ≥ 1024 steps per
-    floor period): the stretch starts on the surface with relative normal speed 0 (or at
-    rest), N ≥ 0 at every step before the recorded end, no event (N = 0, a cusp, v = 0 under
-    friction) before it, the recorded end state is the integrated one, and the end is the
-    event it claims: N = 0 (and leaving with normal speed v_stick), |d| = S/2, or v = 0."""
+    floor period or 1/8 of the pendulum period 2π√(R/g_max), whichever is shorter): the
+    stretch starts on the surface with relative normal speed 0 (or at rest), N ≥ 0 at every
+    step before the recorded end, no event (N = 0, a cusp, v = 0 under friction) before it,
+    the recorded end state is the integrated one, and the end is the event it claims: N = 0
+    (and leaving with normal speed v_stick), |d| = S/2, or v = 0."""
     mu = float(getattr(fl, "mu", 0.0))
     k = np.nonzero(slid)[0]
     t_a, x_a, y_a, vx_a, vy_a, ph_a, kind_a = a[k].T
@@ -466,7 +468,10 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     rep.flag("contact_start", bad, idx[k], np.abs(un), start_tol)
     # friction's sign is fixed over a stretch (the kernel ends one at every stop)
     sgn = np.where(v > 0, 1.0, np.where(v < 0, -1.0, np.where(np.sin(q) > 0, 1.0, -1.0)))
-    periods = tf * fl.f
+    # the faster of the floor's period and the arc's pendulum period 2π√(R/g_max)
+    swing = math.inf if fl.flat else 2 * math.pi * math.sqrt(fl.R / (fl.g + fl.A * fl.w**2))
+    fast = min(1.0 / fl.f, swing / 8)
+    periods = tf / fast
     n = int(np.clip(np.ceil(1024 * np.max(periods, initial=0.0)), 256, 50_000))
     h = tf / n
     n_min = np.full(k.size, np.inf)
@@ -504,8 +509,11 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     grow = CONTACT_RTOL * (1.0 + periods)
     dt = numerics.tol_t + 16.0 * EPS * (1.0 + tf * fl.f) / fl.f
     v_tol = grow * scale_v + gmax * (1.0 + mu) * dt + 64 * EPS * scale_v
+    # θ from d = R sin θ is ill-conditioned at a vertical cusp: δθ ≤ √(2 δd/R)
+    dd_x = 4.0 * np.spacing(np.abs(x_b) + fl.S)
     q_tol = grow + (np.abs(v) + scale_v) * dt / (1.0 if fl.flat else fl.R) \
-        + (16 * EPS * (np.abs(x_b) + fl.S) if fl.flat else 0.0)
+        + (16 * EPS * (np.abs(x_b) + fl.S) if fl.flat
+           else np.sqrt(2.0 * dd_x / fl.R) + dd_x / fl.R)
     miss = np.abs(q - q_b) > q_tol
     rep.flag("contact_path", miss | (np.abs(v - v_b) > v_tol), idx[k], np.abs(v - v_b), v_tol)
     # no event before the recorded end: N > 0, inside the arc, still moving (friction)
