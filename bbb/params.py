@@ -14,6 +14,9 @@ __all__ = ["CONTACT_MODELS", "Params", "PRESETS"]
 #: carried with the floor at fixed x (the default, today's model), frictionless sliding, or
 #: sliding with Coulomb friction μ
 CONTACT_MODELS = ("stick", "slide", "coulomb")
+#: slide/coulomb need R ≥ S/2 · this: at R = S/2 the cusp walls are vertical, where
+#: sliding contact ping-pongs between the walls without end (docs/physics.md, "Contact models")
+VERTICAL_CUSP_R = 1.0 + 1e-9
 
 # The paper prints A = 0.01; with g = 9800 that gives Γ < 0.41 for f ≤ 100 Hz and
 # nothing ever lifts off.  A = 0.1 puts Γ = 1 at f ≈ 49.8 Hz, where the paper sees
@@ -41,7 +44,8 @@ class Params:
              default 90, the paper's vertical vibration): the floor moves by
              A·(cos ψ, sin ψ)·(−sin 2πft)
     contact -- sustained-contact model: "stick" (default), "slide" or "coulomb"; only "stick"
-             on a tilted or thrown floor (bbb.conveyor has no sliding contact)
+             on a tilted or thrown floor (bbb.conveyor has no sliding contact) and with
+             vertical cusp walls, R < S/2 · (1 + 1e-9) (sliding there never ends: Zeno)
     mu    -- Coulomb friction coefficient (≥ 0; only with contact = "coulomb", else 0)
 
     ``tilt``, ``throw``, ``contact`` and ``mu`` are left out of :meth:`as_dict` at their
@@ -90,6 +94,14 @@ class Params:
                              f"throw = {self.throw:g}: the conveyor (tilt ≠ 0 or throw ≠ 90) has "
                              "only contact = 'stick'; allowed: contact = 'stick' with tilt/throw, "
                              "or slide/coulomb with tilt = 0 and throw = 90")
+        if self.contact != "stick" and self.R < VERTICAL_CUSP_R * self.S / 2:
+            # a particle sliding down a (near-)vertical cusp wall lifts off at once (N = g cos θ
+            # − v²/R ≤ 0 at θ → 90°), hits the other wall and slides again: an endless
+            # ping-pong of ever shorter events (Zeno) that never settles in the cusp
+            raise ValueError(f"Params.contact = {self.contact!r} with R = {self.R!r}, S = {self.S:g}: "
+                             "R ≈ S/2 makes vertical cusp walls, where sliding contact is a "
+                             "Zeno ping-pong between the walls; allowed: contact = 'stick' there, "
+                             "or slide/coulomb with R ≥ S/2 · (1 + 1e-9) (or inf)")
 
     @classmethod
     def preset(cls, name: str, **overrides: float | str) -> Params:

@@ -547,7 +547,9 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     # rounding, and the normal's uncertainty from the rounding δd of d (√ at a vertical cusp)
     dd = 4.0 * np.spacing(np.abs(x_a) + fl.S)
     dn = 0.0 if fl.flat else dd / fl.R + np.sqrt(2.0 * fl.R * dd) / fl.R
-    start_tol = 64.0 * EPS * (np.hypot(ux, uy) + np.abs(fl.v(th_a))) + 2.0 * np.hypot(ux, uy) * dn
+    # the floor velocity from the recorded phase: rounding of the phase moves it by up to
+    # Aω·(a few eps), largest where v_f itself is near 0 (cos ωt ≈ 0), so scale with Aω
+    start_tol = 64.0 * EPS * (np.hypot(ux, uy) + fl.A * fl.w) + 2.0 * np.hypot(ux, uy) * dn
     good_kind = (kind_a == CONTACT) | rest_a
     at_rest_a = (vx_a == 0.0) & (np.abs(uy) <= vf_tol)
     bad = ~good_kind | ((kind_a == CONTACT) & (np.abs(un) > start_tol)) | (rest_a & ~at_rest_a)
