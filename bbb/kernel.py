@@ -18,7 +18,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .contact import CUSP, END, LIFT, enter_contact, holds_at_rest, slide
+from .contact import CUSP, END, LIFT, enter_contact, g_eff, holds_at_rest, slide
 from .surface import arc_curvature, arc_depth, arc_normal, arc_slope, floor_a, floor_v, floor_y
 
 NO_COLLISION = -1.0
@@ -355,8 +355,9 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
             break
         if friction is not None:
             mu = friction
-            if stuck and not holds_at_rest(d, R, S, mu, flat):
-                # at rest where the contact model cannot hold it (an initial state): slide
+            if stuck and not holds_at_rest(d, R, S, mu, flat) and g_eff(s, g, A, w) > 0.0:
+                # at rest where the contact model cannot hold it (an initial state, or held
+                # by N ≤ 0): slide; with g_eff ≤ 0 the floor lets go first (lift-off below)
                 stuck = False
                 sliding = True
                 q = d if flat else math.asin(max(-1.0, min(1.0, d / R)))

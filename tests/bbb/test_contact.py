@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 from scipy.integrate import quad
 
@@ -136,6 +136,10 @@ def test_mirrored_initial_conditions_give_mirrored_trajectories(contact, mu, fam
     family=st.sampled_from(["rest", "dropped", "launched"]),
     seed=st.integers(0, 2**32 - 1),
 )
+# found by hypothesis: a particle held next to a cusp with N ≤ 0 while g_eff < 0 was set
+# sliding from rest, lifted at once and hit the other wall, again and again (contact_start)
+@example(f=77.0, A=0.5, radius=1.05, alpha=0.125, beta=0.75, model=("slide", 0.0), family="rest",
+         seed=0)
 def test_no_event_is_missed_and_no_particle_goes_below_the_surface_under_the_contact_models(
         f, A, radius, alpha, beta, model, family, seed):
     """The independent trajectory checker passes every flight, collision, lift-off and sliding
