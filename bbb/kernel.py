@@ -18,10 +18,17 @@ import math
 import numpy as np
 from numba import njit
 
+from .contact import CUSP, END, LIFT, enter_contact, g_eff, holds_at_rest, slide
 from .surface import arc_curvature, arc_depth, arc_normal, arc_slope, floor_a, floor_v, floor_y
 
 NO_COLLISION = -1.0
 STACK_DEPTH = 96
+# event codes of a 7-column record (bbb.record.EVENT_CODES)
+EV_COLLISION = 0.0
+EV_CONTACT = 4.0
+EV_CONTACT_LIFT = 5.0
+EV_STOP = 6.0
+EV_CUSP = 7.0
 
 
 @njit(cache=True, inline="always")
@@ -222,7 +229,9 @@ def next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, tau_li
         elif vx < 0.0:
             j = math.ceil(xr / S - 0.5)
         else:
-            j = math.floor(xr / S + 0.5)
+            # a vertical flight stays over its own arc (|d| ≤ S/2): at a cusp, d = ±S/2 keeps
+            # the arc it is on, so mirrored states hit mirrored arcs (floor(d/S + ½) would not)
+            j = 0
         pa = wa
         while True:
             if vx > 0.0:
@@ -307,14 +316,18 @@ def wrap_period(s, tp, T):
 @njit(cache=True)
 def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta,
            t_max, sample_times, pos, rec_from, rec, tol_t, v_stick, h_max_periods,
-           stack, counters):
+           stack, counters, friction, times):
     """Run one particle from its initial state to t_max (s, from its own start).
 
     Writes x at ``sample_times`` into ``pos`` and post-collision (t, x, y, vx, vy, floor phase) at
     t ≥ ``rec_from`` into ``rec`` (rows until full).  A ``rec`` with a 7th column also gets a
     row per lift-off that starts a flight ending in a collision (the state leaving the floor),
-    column 6 = 1 for a lift-off, 0 for a collision.  ``counters`` receives
-    collisions, sticking episodes, lift-offs, recorded rows, anomalies."""
+    column 6 = 1 for a lift-off, 0 for a collision; under the contact models also the
+    contact events (bbb.record.EVENT_CODES).  ``counters`` receives collisions, sticking
+    episodes, lift-offs, recorded rows, anomalies; ``times`` the time (s) held at rest and
+    the time sliding.  ``friction`` is None for the stick model, else μ (0 for slide): its
+    type selects the compiled kernel and numba prunes the branches ``friction is None``
+    decides, so the stick kernel has no contact-model code in it."""
     T = 2.0 * math.pi / w
     h_max = h_max_periods * T
     s0 = s
@@ -331,13 +344,109 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
     retry = False
     kicked = False
     flat = math.isinf(R)
+    t_held = 0.0
+    t_slid = 0.0
+    sliding = False
+    q = 0.0
+    vt = 0.0
     while True:
         t_now = tp * T + (s - s0)
         if t_now >= t_max:
             break
+        if friction is not None:
+            mu = friction
+            if stuck and not holds_at_rest(d, R, S, mu, flat) and g_eff(s, g, A, w) > 0.0:
+                # at rest where the contact model cannot hold it (an initial state, or held
+                # by N ≤ 0): slide; with g_eff ≤ 0 the floor lets go first (lift-off below)
+                stuck = False
+                sliding = True
+                q = d if flat else math.asin(max(-1.0, min(1.0, d / R)))
+                vt = 0.0
+            if sliding:
+                q, vt, s, tp, cell, isamp, ev, el = slide(q, vt, s, tp, s0, T, g, A, w, R, S,
+                                                          mu, flat, t_max, sample_times, pos,
+                                                          isamp, cell, tol_t)
+                t_slid += el
+                if ev == END:
+                    d = q if flat else R * math.sin(q)
+                    break
+                if ev == CUSP:
+                    d = math.copysign(0.5 * S, q)
+                else:
+                    d = q if flat else R * math.sin(q)
+                nx, ny = arc_normal(d, R)
+                vf = floor_v(s, A, w)
+                y = floor_y(s, A, w) - arc_depth(d, R)
+                vx = vt * ny
+                vy = vf - vt * nx
+                t_c = tp * T + (s - s0)
+                if ev == LIFT:
+                    # leave with the normal speed v_stick, as a fly-off in collide(): the
+                    # flight's start is then certified (G' > 0); adds ≤ v_stick²/2 energy
+                    vx += v_stick * nx
+                    vy += v_stick * ny
+                    n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy,
+                                    s / T, EV_CONTACT_LIFT, True)
+                    sliding = False
+                    from_surface = True
+                    lifting = False
+                    kicked = False
+                    n_lift += 1
+                    continue
+                if ev == CUSP:
+                    n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy,
+                                    s / T, EV_CUSP, True)
+                    # the neighbouring arc's wall: Eqs. (5)-(6) with its normal
+                    side = 1 if d > 0.0 else -1
+                    cell += side
+                    d -= side * S
+                    sliding = False
+                    if el == 0.0:
+                        # straight back into the cusp: held there by both walls
+                        stuck = True
+                        vx = 0.0
+                        vy = vf
+                        n_stick += 1
+                        n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx,
+                                        vy, s / T, EV_COLLISION, False)
+                        continue
+                    vx, vy, un_out, kicked = collide(vx, vy, d, s, g, A, w, R, alpha, beta,
+                                                     v_stick, True)
+                    n_coll += 1
+                    code = EV_COLLISION
+                    if un_out < v_stick:
+                        vt, q, sliding = enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat)
+                        if abs(vt) < v_stick:
+                            sliding = False  # at rest in the cusp: held by both walls
+                        if sliding:
+                            nx, ny = arc_normal(d, R)
+                            vx = vt * ny
+                            vy = vf - vt * nx
+                            code = EV_CONTACT
+                        else:
+                            stuck = True
+                            vx = 0.0
+                            vy = vf
+                            n_stick += 1
+                    n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy,
+                                    s / T, code, False)
+                    from_surface = True
+                    lifting = False
+                    continue
+                # STOP (Coulomb): v = 0; static friction holds it or it slides back
+                vx = 0.0
+                vy = vf
+                if holds_at_rest(d, R, S, mu, flat):
+                    sliding = False
+                    stuck = True
+                    n_stick += 1
+                n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy,
+                                s / T, EV_STOP, True)
+                continue
         if stuck:
             wait = liftoff_wait(s, A, w, g, retry)
             t_lift = t_now + wait
+            t_held += min(wait, t_max - t_now)
             xpos = cell * S + d
             while isamp < ns and sample_times[isamp] < t_lift:
                 pos[isamp] = xpos
@@ -402,12 +511,28 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
             n_anom += 1
             vx = 0.0
             un_out = 0.0
+        code = EV_COLLISION
         if un_out < v_stick:
-            # creeping cascade cut short: the particle rides with the floor
-            stuck = True
-            vx = 0.0
-            vy = floor_v(s, A, w)
-            n_stick += 1
+            if friction is None:
+                # creeping cascade cut short: the particle rides with the floor
+                stuck = True
+                vx = 0.0
+                vy = floor_v(s, A, w)
+                n_stick += 1
+            else:
+                # sustained contact: slide on the arc with the tangential speed (or held)
+                vt, q, sliding = enter_contact(vx, vy, d, s, g, A, w, R, S, friction, flat)
+                vf = floor_v(s, A, w)
+                if sliding:
+                    nx, ny = arc_normal(d, R)
+                    vx = vt * ny
+                    vy = vf - vt * nx
+                    code = EV_CONTACT
+                else:
+                    stuck = True
+                    vx = 0.0
+                    vy = vf
+                    n_stick += 1
         t_c = tp * T + (s - s0)
         if t_c >= rec_from and n_rec < nrec_max and t_c < t_max:
             rec[n_rec, 0] = t_c
@@ -417,7 +542,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
             rec[n_rec, 4] = vy
             rec[n_rec, 5] = s / T
             if rec.shape[1] > 6:
-                rec[n_rec, 6] = 0.0
+                rec[n_rec, 6] = code
             n_rec += 1
         from_surface = True
         lifting = False
@@ -429,15 +554,36 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
     counters[2] = n_lift
     counters[3] = n_rec
     counters[4] = n_anom
+    times[0] = t_held
+    times[1] = t_slid
+
+
+@njit(cache=True, inline="always")
+def put_row(rec, n_rec, rec_from, t, t_max, x, y, vx, vy, phase, code, event_only):
+    # one recorded row; contact events (``event_only``) only in a 7-column record
+    if t >= rec_from and n_rec < rec.shape[0] and t < t_max:
+        if rec.shape[1] > 6:
+            rec[n_rec, 6] = code
+        elif event_only:
+            return n_rec
+        rec[n_rec, 0] = t
+        rec[n_rec, 1] = x
+        rec[n_rec, 2] = y
+        rec[n_rec, 3] = vx
+        rec[n_rec, 4] = vy
+        rec[n_rec, 5] = phase
+        return n_rec + 1
+    return n_rec
 
 
 @njit(cache=True)
 def evolve_ensemble(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta,
                     t_max, sample_times, pos, rec_from, rec, tol_t, v_stick, h_max_periods,
-                    counters):
-    """Run every particle of an ensemble (arrays of initial states) independently."""
+                    counters, friction, times):
+    """Run every particle of an ensemble (arrays of initial states) independently;
+    ``friction``: None (stick) or μ (slide: 0, coulomb), see :func:`evolve`."""
     stack = np.empty(STACK_DEPTH)
     for i in range(cell.shape[0]):
         evolve(cell[i], d[i], y[i], vx[i], vy[i], s[i], stuck[i], from_surface[i], g, A, w,
                R, S, alpha, beta, t_max, sample_times, pos[i], rec_from, rec[i], tol_t,
-               v_stick, h_max_periods, stack, counters[i])
+               v_stick, h_max_periods, stack, counters[i], friction, times[i])

@@ -8,7 +8,15 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, fields, replace
 
-__all__ = ["Params", "PRESETS"]
+__all__ = ["CONTACT_MODELS", "Params", "PRESETS"]
+
+#: what a particle does in sustained contact with an arc (docs/physics.md, "Contact models"):
+#: carried with the floor at fixed x (the default, today's model), frictionless sliding, or
+#: sliding with Coulomb friction μ
+CONTACT_MODELS = ("stick", "slide", "coulomb")
+#: slide/coulomb need R ≥ S/2 · this: at R = S/2 the cusp walls are vertical, where
+#: sliding contact ping-pongs between the walls without end (docs/physics.md, "Contact models")
+VERTICAL_CUSP_R = 1.0 + 1e-9
 
 # The paper prints A = 0.01; with g = 9800 that gives Γ < 0.41 for f ≤ 100 Hz and
 # nothing ever lifts off.  A = 0.1 puts Γ = 1 at f ≈ 49.8 Hz, where the paper sees
@@ -35,9 +43,13 @@ class Params:
     throw -- angle ψ of the vibration to the floor's plane, degrees (10 ≤ throw ≤ 170;
              default 90, the paper's vertical vibration): the floor moves by
              A·(cos ψ, sin ψ)·(−sin 2πft)
+    contact -- sustained-contact model: "stick" (default), "slide" or "coulomb"; only "stick"
+             on a tilted or thrown floor (bbb.conveyor has no sliding contact) and with
+             vertical cusp walls, R < S/2 · (1 + 1e-9) (sliding there never ends: Zeno)
+    mu    -- Coulomb friction coefficient (≥ 0; only with contact = "coulomb", else 0)
 
-    ``tilt`` and ``throw`` are left out of :meth:`as_dict` at their defaults, so every
-    fingerprint of a scene without them is what it was before they existed.
+    ``tilt``, ``throw``, ``contact`` and ``mu`` are left out of :meth:`as_dict` at their
+    defaults, so every store and fingerprint of a scene without them is what it was before they existed.
     """
 
     g: float
@@ -49,9 +61,16 @@ class Params:
     beta: float
     tilt: float = 0.0
     throw: float = 90.0
+    contact: str = "stick"
+    mu: float = 0.0
 
     def __post_init__(self) -> None:
+        if self.contact not in CONTACT_MODELS:
+            raise ValueError(f"Params.contact = {self.contact!r} is not a contact model; "
+                             f"allowed: {', '.join(CONTACT_MODELS)}")
         for fl in fields(self):
+            if fl.name == "contact":
+                continue
             value = getattr(self, fl.name)
             if isinstance(value, bool) or not isinstance(value, (int, float)):
                 raise ValueError(f"Params.{fl.name} must be a real number, got {value!r}")
@@ -68,9 +87,24 @@ class Params:
         _check("beta", self.beta, 0 <= self.beta <= 1, "0 ≤ beta ≤ 1")
         _check("tilt", self.tilt, abs(self.tilt) <= 30, "|tilt| ≤ 30 (degrees)")
         _check("throw", self.throw, 10 <= self.throw <= 170, "10 ≤ throw ≤ 170 (degrees)")
+        _check("mu", self.mu, self.mu >= 0 and (self.mu == 0 or self.contact == "coulomb"),
+               "mu ≥ 0, and mu = 0 unless contact = 'coulomb'")
+        if self.contact != "stick" and self.transport:
+            raise ValueError(f"Params.contact = {self.contact!r} with tilt = {self.tilt:g}, "
+                             f"throw = {self.throw:g}: the conveyor (tilt ≠ 0 or throw ≠ 90) has "
+                             "only contact = 'stick'; allowed: contact = 'stick' with tilt/throw, "
+                             "or slide/coulomb with tilt = 0 and throw = 90")
+        if self.contact != "stick" and self.R < VERTICAL_CUSP_R * self.S / 2:
+            # a particle sliding down a (near-)vertical cusp wall lifts off at once (N = g cos θ
+            # − v²/R ≤ 0 at θ → 90°), hits the other wall and slides again: an endless
+            # ping-pong of ever shorter events (Zeno) that never settles in the cusp
+            raise ValueError(f"Params.contact = {self.contact!r} with R = {self.R!r}, S = {self.S:g}: "
+                             "R ≈ S/2 makes vertical cusp walls, where sliding contact is a "
+                             "Zeno ping-pong between the walls; allowed: contact = 'stick' there, "
+                             "or slide/coulomb with R ≥ S/2 · (1 + 1e-9) (or inf)")
 
     @classmethod
-    def preset(cls, name: str, **overrides: float) -> Params:
+    def preset(cls, name: str, **overrides: float | str) -> Params:
         """A named parameter set (``klages2004``, ``matyas2004``) with ``f`` and any overrides."""
         if name not in PRESETS:
             raise ValueError(f"unknown preset {name!r}; allowed: {', '.join(sorted(PRESETS))}")
@@ -79,14 +113,14 @@ class Params:
         if unknown:
             raise ValueError(
                 f"unknown Params field(s) {sorted(unknown)}; allowed: "
-                "g, A, f, R, S, alpha, beta, tilt, throw"
+                "g, A, f, R, S, alpha, beta, tilt, throw, contact, mu"
             )
         values.update(overrides)
         if "f" not in values:
             raise ValueError("Params.f (floor frequency, Hz) must be given, e.g. preset(name, f=60.0)")
         return cls(**values)
 
-    def with_(self, **changes: float) -> Params:
+    def with_(self, **changes: float | str) -> Params:
         """A copy with some fields changed (validated again)."""
         return replace(self, **changes)
 
@@ -117,13 +151,18 @@ class Params:
                 self.g * math.cos(math.radians(self.tilt)),
                 -self.A * math.sin(dev), self.A * math.cos(dev))
 
-    def as_dict(self) -> dict[str, float]:
-        """The fields; ``tilt`` and ``throw`` only when they differ from 0 and 90."""
+    def as_dict(self) -> dict[str, float | str]:
+        """The fields; ``tilt``, ``throw``, ``contact``, ``mu`` only when they differ from 0, 90,
+        stick, 0."""
         d = asdict(self)
         if d["tilt"] == 0.0:
             del d["tilt"]
         if d["throw"] == 90.0:
             del d["throw"]
+        if self.contact == "stick":
+            del d["contact"]
+        if self.mu == 0.0:
+            del d["mu"]
         return d
 
 

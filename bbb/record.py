@@ -9,7 +9,8 @@ import numpy as np
 from .numerics import Numerics
 from .params import Params
 
-__all__ = ["COLLISION_FIELDS", "COUNTER_NAMES", "EVENT_FIELDS", "SimRun"]
+__all__ = ["COLLISION_FIELDS", "CONTACT_TIME_NAMES", "COUNTER_NAMES", "EVENT_CODES",
+           "EVENT_FIELDS", "SimRun"]
 
 #: columns of a recorded post-collision state: t (s, from the particle's start), x, y (mm),
 #: vx, vy (mm/s), and the floor phase f·t_floor mod 1 at the collision (the surface there
@@ -18,6 +19,18 @@ COLLISION_FIELDS = ("t", "x", "y", "vx", "vy", "phase")
 #: the same plus ``event`` (0 collision, 1 lift-off), when lift-offs are recorded too
 #: (``simulate(record_liftoffs=True)``): a lift-off row holds the state leaving the floor
 EVENT_FIELDS = COLLISION_FIELDS + ("event",)
+#: values of ``event``: 0 a collision (its post-collision state; at rest relative to the
+#: floor when it ended a cascade and the particle is held), 1 a lift-off of a held particle;
+#: under the contact models (Params.contact = slide, coulomb) also 4 a collision that starts
+#: sliding contact (the state on the arc, relative normal speed 0), 5 a lift-off from
+#: sliding (N = 0; the state leaving, with normal speed v_stick), 6 a Coulomb stop (v = 0;
+#: held there if static friction can, else it slides back), 7 arrival at a cusp while
+#: sliding (the state on the old arc; the collision with the neighbouring arc follows)
+EVENT_CODES = {"collision": 0, "liftoff": 1, "contact": 4, "contact_lift": 5, "stop": 6,
+               "cusp": 7}
+#: per-particle times (s): held at rest relative to the floor (stuck / static friction), and
+#: sliding on an arc (contact models only)
+CONTACT_TIME_NAMES = ("held", "sliding")
 #: per-particle counters of a run; 'anomalies' (non-finite velocities repaired) must stay 0
 COUNTER_NAMES = ("collisions", "sticks", "liftoffs", "recorded", "anomalies")
 
@@ -36,6 +49,8 @@ class SimRun:
     n_recorded       -- int64 (n_particles,): valid rows of ``collisions_dense``.
     liftoffs         -- whether lift-off rows were recorded.
     counters         -- int64 arrays (n_particles,) named by ``COUNTER_NAMES``.
+    contact_time     -- float64 arrays (n_particles,) named by ``CONTACT_TIME_NAMES``, s;
+                        None from the conveyor kernel (tilt/throw), which does not time them.
     """
 
     params: Params
@@ -48,6 +63,12 @@ class SimRun:
     n_recorded: np.ndarray
     counters: dict[str, np.ndarray]
     liftoffs: bool = False
+    contact_time: dict[str, np.ndarray] | None = None
+
+    def contact_fraction(self) -> np.ndarray:
+        """Per particle, the fraction of t_max spent in sustained contact (held + sliding)."""
+        assert self.contact_time is not None
+        return (self.contact_time["held"] + self.contact_time["sliding"]) / self.t_max
 
     @property
     def fields(self) -> tuple[str, ...]:

@@ -11,7 +11,7 @@ from .ensemble import InitialState, initial_state
 from .kernel import evolve_ensemble
 from .numerics import Numerics
 from .params import Params
-from .record import COLLISION_FIELDS, COUNTER_NAMES, EVENT_FIELDS, SimRun
+from .record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES, EVENT_FIELDS, SimRun
 
 __all__ = ["simulate"]
 
@@ -88,18 +88,24 @@ def simulate(
     fields = EVENT_FIELDS if record_liftoffs else COLLISION_FIELDS
     rec = np.full((n_particles, record_collisions, len(fields)), np.nan)
     counters = np.zeros((n_particles, len(COUNTER_NAMES)), dtype=np.int64)
+    held = np.zeros((n_particles, len(CONTACT_TIME_NAMES)))
     p = params
+    if _force_conveyor and p.contact != "stick":
+        raise ValueError("_force_conveyor runs bbb.conveyor, which has only contact = 'stick'")
     if p.transport or _force_conveyor:
         # tilted or thrown floor: its own compiled kernel; the paper's floor keeps bbb.kernel
         evolve_ensemble_c(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
                           p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, p.tilt, p.throw,
                           float(t_max), times, pos, float(record_from), rec, numerics.tol_t,
                           numerics.v_stick, numerics.max_step, counters)
+        contact_time = None  # the conveyor kernel does not time contact
     else:
         evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
                         p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, float(t_max), times,
                         pos, float(record_from), rec, numerics.tol_t, numerics.v_stick,
-                        numerics.max_step, counters)
+                        numerics.max_step, counters, None if p.contact == "stick" else p.mu,
+                        held)
+        contact_time = {name: held[:, i].copy() for i, name in enumerate(CONTACT_TIME_NAMES)}
     return SimRun(
         params=params,
         numerics=numerics,
@@ -111,6 +117,7 @@ def simulate(
         n_recorded=counters[:, 3].copy(),
         counters={name: counters[:, i].copy() for i, name in enumerate(COUNTER_NAMES)},
         liftoffs=record_liftoffs,
+        contact_time=contact_time,
     )
 
 

@@ -1,16 +1,19 @@
 """Kernel benchmark: collisions per second per core and numba compile time (cold, warm).
 
     .venv/bin/python benchmarks/kernel.py [--particles 400] [--t-max 20]
+    .venv/bin/python benchmarks/kernel.py --baseline REF [--repeats 3]
     .venv/bin/python benchmarks/kernel.py --reference DIR [--repeats 3]
 
 Prints a table; commit the output under benchmarks/results/ with the date and CPU.
 Single-threaded: one process runs the ensemble serially, so the rate is per core.
 
-``--reference DIR``: side by side with another bbb (DIR holds its ``bbb`` package, e.g.
-``git archive main bbb | tar -x -C DIR``): at f = 60 and 80, processes of this tree and of the
-reference alternate (``--repeats`` rounds, best of each kept), so both see the same machine
-load, and the rate is per CPU second of the process (not wall time), which a loaded machine
-disturbs far less; then the conveyor kernel's rate (tilted and thrown floors) of this tree.
+Side by side with another bbb: ``--baseline REF`` extracts the bbb package of git revision
+REF (``git archive REF bbb``) into a temporary directory; ``--reference DIR`` uses a directory
+holding a ``bbb`` package.  At f = 60 and 80, fresh processes of the reference and of this
+checkout alternate (``--repeats`` rounds, own numba caches, the same ensembles, which must give
+the same collision counts), and the rate is per CPU second of the process (not wall time),
+which a loaded machine disturbs far less; median and best of each.  Then this checkout's
+conveyor kernel (tilted and thrown floors) and its contact models (slide, coulomb).
 """
 
 from __future__ import annotations
@@ -79,66 +82,119 @@ from bbb import Params, simulate
 f, family, n, t_max, tilt, throw = (float(sys.argv[1]), sys.argv[2], int(sys.argv[3]),
                                     float(sys.argv[4]), float(sys.argv[5]), float(sys.argv[6]))
 extra = dict(tilt=tilt, throw=throw) if (tilt, throw) != (0.0, 90.0) else {}
+if len(sys.argv) > 7:
+    extra.update(contact=sys.argv[7], mu=float(sys.argv[8]))
 p = Params.preset("klages2004", f=f, **extra)
 simulate(p, 2, 0.1, seed=1, initial=family)  # compile or load the cache
 t0 = time.process_time()  # CPU time: robust against other processes sharing the cores
 run = simulate(p, n, t_max, seed=1, initial=family, sample_times=np.linspace(0, t_max, 101))
-wall = time.process_time() - t0
+cpu = time.process_time() - t0
 assert run.counters["anomalies"].sum() == 0
-print(int(run.counters["collisions"].sum()), wall)
+print(int(run.counters["collisions"].sum()), cpu)
 """
 
 
-def rate_in(tree: str, f: float, family: str, n: int, t_max: float, tilt: float = 0.0,
-            throw: float = 90.0) -> tuple[int, float]:
-    """(collisions, wall s) of one ensemble in a fresh process importing bbb from ``tree``."""
-    env = dict(os.environ, PYTHONPATH=tree)
-    res = subprocess.run([sys.executable, "-c", RATE_SNIPPET, str(f), family, str(n),
-                          str(t_max), str(tilt), str(throw)], env=env, check=True,
-                         capture_output=True, text=True, cwd=tree)
-    n_coll, wall = res.stdout.split()
-    return int(n_coll), float(wall)
+def rate_in(tree: str, cache: str, f: float, family: str, n: int, t_max: float,
+            tilt: float = 0.0, throw: float = 90.0,
+            contact: tuple[str, float] | None = None) -> tuple[int, float]:
+    """(collisions, CPU s) of one ensemble in a fresh process importing bbb from ``tree``
+    with its own numba cache directory ``cache``."""
+    env = dict(os.environ, PYTHONPATH=tree, NUMBA_CACHE_DIR=cache, PYTHONDONTWRITEBYTECODE="1")
+    argv = [sys.executable, "-c", RATE_SNIPPET, str(f), family, str(n), str(t_max), str(tilt),
+            str(throw)]
+    if contact is not None:
+        argv += [contact[0], str(contact[1])]
+    res = subprocess.run(argv, env=env, check=True, capture_output=True, text=True, cwd=tree)
+    n_coll, cpu = res.stdout.split()
+    return int(n_coll), float(cpu)
 
 
-def compare(reference: str, n: int, t_max: float, repeats: int) -> None:
+def compare(reference: str, label: str, n: int, t_max: float, repeats: int) -> None:
+    """The default kernel of this checkout against the bbb package in ``reference``, then
+    this checkout's conveyor and contact-model rates."""
     here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    print(f"# side by side, alternating processes, best of {repeats}; "
-          f"{n} particles x {t_max:g} s; collisions per CPU second")
-    print(f"{'f (Hz)':>7} {'family':>9} {'tilt':>5} {'throw':>5} {'ref coll/s':>11} "
-          f"{'this coll/s':>11} {'this/ref':>8}")
-    for f in (60.0, 80.0):
-        for family in ("rest", "launched"):
-            best = {"ref": 0.0, "this": 0.0}
-            counts = {}
-            for _ in range(repeats):
-                for name, tree in (("ref", reference), ("this", here)):
-                    c, wall = rate_in(tree, f, family, n, t_max)
-                    counts[name] = c
-                    best[name] = max(best[name], c / wall)
-            assert counts["ref"] == counts["this"], counts  # the same trajectories
-            print(f"{f:7.1f} {family:>9} {0:5g} {90:5g} {best['ref']:11.3e} {best['this']:11.3e} "
-                  f"{best['this'] / best['ref']:8.3f}")
-    for f in (60.0, 80.0):
-        for tilt, throw in ((0.0, 60.0), (5.0, 90.0), (5.0, 60.0)):
-            rates = [rate_in(here, f, "launched", n, t_max, tilt, throw) for _ in range(repeats)]
-            best = max(c / wall for c, wall in rates)
-            print(f"{f:7.1f} {'launched':>9} {tilt:5g} {throw:5g} {'':>11} {best:11.3e} "
-                  f"{'':>8}")
+    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=here, check=True,
+                          capture_output=True, text=True).stdout.strip()
+    with tempfile.TemporaryDirectory() as tmp:
+        caches = {"ref": os.path.join(tmp, "cache-ref"), "this": os.path.join(tmp, "cache-this")}
+        trees = {"ref": reference, "this": here}
+        print(f"# side by side: ref = {label}, this = HEAD ({head}); {repeats} alternating fresh "
+              "processes each (own numba caches), same ensembles")
+        print(f"# {n} particles x {t_max:g} s, default Numerics, one core; collisions per CPU "
+              "second of the process (a loaded machine disturbs it far less than wall time);")
+        print("# median and best (max) of the repeats")
+        print(f"{'f (Hz)':>7} {'family':>9} {'tilt':>5} {'throw':>5} {'collisions':>11} "
+              f"{'ref c/s':>10} {'this c/s':>10} {'this/ref':>8} {'best ref':>10} "
+              f"{'best this':>10} {'best t/r':>8}")
+        for f in (60.0, 80.0):
+            for family in ("rest", "launched"):
+                rates: dict[str, list[float]] = {"ref": [], "this": []}
+                counts = {}
+                for _ in range(repeats):
+                    for who in ("ref", "this"):
+                        c, cpu = rate_in(trees[who], caches[who], f, family, n, t_max)
+                        counts[who] = c
+                        rates[who].append(c / cpu)
+                if counts["ref"] != counts["this"]:
+                    raise SystemExit(f"f = {f}, {family}: the default kernel's collisions differ "
+                                     f"({counts['ref']} vs {counts['this']})")
+                r, t = float(np.median(rates["ref"])), float(np.median(rates["this"]))
+                br, bt = max(rates["ref"]), max(rates["this"])
+                print(f"{f:7.1f} {family:>9} {0:5g} {90:5g} {counts['this']:11d} {r:10.3e} "
+                      f"{t:10.3e} {t / r:8.3f} {br:10.3e} {bt:10.3e} {bt / br:8.3f}")
+        print()
+        print(f"conveyor (this checkout only; launched; best of {repeats})")
+        print(f"{'f (Hz)':>7} {'tilt':>5} {'throw':>5} {'collisions':>11} {'coll/s':>10}")
+        for f in (60.0, 80.0):
+            for tilt, throw in ((0.0, 60.0), (5.0, 90.0), (5.0, 60.0)):
+                runs = [rate_in(here, caches["this"], f, "launched", n, t_max, tilt, throw)
+                        for _ in range(repeats)]
+                print(f"{f:7.1f} {tilt:5g} {throw:5g} {runs[0][0]:11d} "
+                      f"{max(c / cpu for c, cpu in runs):10.3e}")
+        print()
+        n, t_max = min(n, 100), min(t_max, 5.0)
+        print(f"contact models (this checkout only; from rest; {n} particles x {t_max:g} s; one run)")
+        print(f"{'f (Hz)':>7} {'contact':>13} {'collisions':>11} {'CPU (s)':>9} {'coll/s':>10}")
+        for f in (54.0, 60.0, 80.0):
+            for model in (("stick", 0.0), ("slide", 0.0), ("coulomb", 0.05), ("coulomb", 0.3)):
+                c, cpu = rate_in(here, caches["this"], f, "rest", n, t_max, contact=model)
+                name = model[0] if model[0] != "coulomb" else f"coulomb {model[1]:g}"
+                print(f"{f:7.1f} {name:>13} {c:11d} {cpu:9.2f} {c / cpu:10.3e}")
+
+
+def baseline_tree(ref: str, tmp: str) -> tuple[str, str]:
+    """``git archive REF bbb`` into ``tmp``; returns (directory, 'REF (short hash)')."""
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    rev = subprocess.run(["git", "rev-parse", "--short", ref], cwd=here, check=True,
+                         capture_output=True, text=True).stdout.strip()
+    arch = subprocess.run(["git", "archive", ref, "bbb"], cwd=here, check=True,
+                          capture_output=True).stdout
+    subprocess.run(["tar", "-x", "-C", tmp], input=arch, check=True)
+    return tmp, f"{ref} ({rev})"
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--particles", type=int, default=400)
     ap.add_argument("--t-max", type=float, default=20.0)
-    ap.add_argument("--reference", help="directory holding the bbb package to compare with")
+    ap.add_argument("--reference", metavar="DIR",
+                    help="directory holding the bbb package to compare with")
+    ap.add_argument("--baseline", metavar="REF",
+                    help="compare with the bbb of git revision REF (git archive)")
     ap.add_argument("--repeats", type=int, default=3)
     args = ap.parse_args()
-    if args.reference:
+    if args.reference or args.baseline:
         print(f"# bbb kernel benchmark, side by side  "
               f"{datetime.datetime.now().isoformat(timespec='seconds')}")
         print(f"# CPU: {cpu_name()}  ({os.cpu_count()} cores)  python "
               f"{platform.python_version()}  numba {numba.__version__}  numpy {np.__version__}")
-        compare(os.path.abspath(args.reference), args.particles, args.t_max, args.repeats)
+        if args.reference:
+            compare(os.path.abspath(args.reference), os.path.basename(
+                os.path.abspath(args.reference)), args.particles, args.t_max, args.repeats)
+            return
+        with tempfile.TemporaryDirectory() as tmp:
+            tree, label = baseline_tree(args.baseline, tmp)
+            compare(tree, label, args.particles, args.t_max, args.repeats)
         return
     cold, warm = compile_times()
     print(f"# bbb kernel benchmark  {datetime.datetime.now().isoformat(timespec='seconds')}")

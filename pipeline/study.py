@@ -32,7 +32,7 @@ class Study:
     source: str
     seed: int
     preset: str
-    overrides: dict[str, float]
+    overrides: dict[str, float | str]
     frequencies: tuple[float, ...]
     families: tuple[Family, ...]
     accuracy: Accuracy
@@ -135,7 +135,7 @@ class Study:
             source=d["source"],
             seed=int(d["seed"]),
             preset=preset,
-            overrides={k: float(v) for k, v in params.items()},
+            overrides={k: v if k == "contact" else float(v) for k, v in params.items()},
             frequencies=tuple(float(f) for f in d["frequencies"]),
             families=fams,
             accuracy=Accuracy(**d["accuracy"]),

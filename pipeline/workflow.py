@@ -133,9 +133,13 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
                  refine=refine, text=text)
 
 
-def _params(r: Reader, doc: dict) -> tuple[str, dict[str, float]]:
+def _params(r: Reader, doc: dict) -> tuple[str, dict[str, float | str]]:
     tbl = r.table(doc.get("params"), ("params",), ParamsTable)
-    overrides = {k: float(tbl[k]) for k in PARAM_FIELDS if tbl[k] is not None}
+    overrides: dict[str, float | str] = {k: float(tbl[k]) for k in PARAM_FIELDS
+                                         if tbl[k] is not None}
+    if tbl["contact"] != "stick":
+        # only a non-default model is an override: stick scenes keep their fingerprints
+        overrides["contact"] = tbl["contact"]
     try:
         Params.preset(tbl["preset"], f=1.0, **overrides)
     except ValueError as e:

@@ -29,6 +29,7 @@ from pathlib import Path
 from typing import Any
 
 from bbb.numerics import Numerics
+from bbb.params import CONTACT_MODELS
 from bbb.params import PRESETS as PARAM_PRESETS
 
 from .accuracy import ACCURACY_PRESETS, DEFAULT_ACCURACY, NUMERICS_KNOBS
@@ -80,6 +81,10 @@ class ParamsTable:
     throw: float | None = key(None, "angle of the vibration to the floor's plane",
                               allowed="10 <= throw <= 170 (degrees)", omit_default=True,
                               default_doc="90 (vertical, the paper's)")
+    contact: str = key("stick", "sustained-contact model (docs/physics.md, Contact models)",
+                       choices=CONTACT_MODELS)
+    mu: float | None = key(None, "Coulomb friction coefficient", allowed="mu >= 0",
+                           when=("contact", "coulomb"), default_doc="0")
 
 
 @dataclass(frozen=True)

@@ -45,7 +45,9 @@ def gap_along_flights(p: Params, rows: np.ndarray, n_grid: int = 400,
         duration = rows[k + 1, 0] - t0
         vf = -ay * w * math.cos(2 * math.pi * ph)
         vfx = -ax * w * math.cos(2 * math.pi * ph)
-        if events and rows[k + 1, 6] == 1.0:
+        # a flight ends at a collision (0, or 4: one starting sliding contact) and never
+        # starts at a contact start or stop (those begin sliding, checked by trajectory_check)
+        if events and (rows[k + 1, 6] not in (0.0, 4.0) or rows[k, 6] in (4.0, 6.0)):
             continue
         if not events and abs(vx - vfx) < 1e-9 and abs(vy - vf) < 1e-9:
             continue

@@ -52,7 +52,16 @@ import numpy as np
 
 EPS = float(np.finfo(np.float64).eps)
 CHECKS = ("clock", "carried", "liftoff_state", "liftoff_time", "stuck_flight", "off_parabola",
-          "off_surface", "velocity", "below", "uncertified")
+          "off_surface", "velocity", "below", "uncertified", "contact_start", "contact_path",
+          "contact_normal", "contact_event")
+#: event codes (bbb.record.EVENT_CODES, restated): 4 contact start, 5 lift-off from sliding,
+#: 6 Coulomb stop, 7 cusp reached while sliding
+CONTACT, CONTACT_LIFT, STOP, CUSP = 4.0, 5.0, 6.0, 7.0
+#: accuracy asked of the kernel's contact integration (RK4, ≤ T/256 per step) per stretch,
+#: relative to the scales sqrt(g R) (speed) and 1 rad (angle), per period of the stretch (the
+#: floor's or the arc's pendulum period, the shorter);
+#: measured: rows at 50.5-58 Hz under slide and coulomb pass at 1e-10 (2026-11-23)
+CONTACT_RTOL = 1e-8
 
 
 @dataclass
@@ -61,6 +70,7 @@ class Report:
 
     flights: int = 0
     carried: int = 0
+    contacts: int = 0
     failures: dict[str, int] = field(default_factory=lambda: dict.fromkeys(CHECKS, 0))
     messages: list[str] = field(default_factory=list)
     worst_gap: float = math.inf  # mm, the lowest sampled gap of any flight
@@ -80,6 +90,7 @@ class Report:
     def add(self, other: Report) -> None:
         self.flights += other.flights
         self.carried += other.carried
+        self.contacts += other.contacts
         for k, v in other.failures.items():
             self.failures[k] += v
         self.messages += other.messages[: max(0, 10 - len(self.messages))]
@@ -92,6 +103,7 @@ class Floor:
     def __init__(self, p) -> None:
         self.g, self.A, self.f, self.R, self.S = p.g, p.A, p.f, p.R, p.S
         self.alpha, self.beta = p.alpha, p.beta
+        self.mu = getattr(p, "mu", 0.0)
         self.w = 2.0 * math.pi * p.f
         self.flat = math.isinf(p.R)
         phi, psi = math.radians(getattr(p, "tilt", 0.0)), math.radians(getattr(p, "throw", 90.0))
@@ -210,7 +222,7 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
     at_rest = (np.abs(vx_a - fl.vxf(th_a)) <= vf_tol) & (np.abs(vy_a - fl.v(th_a)) <= vf_tol)
     if not fl.conveyor:
         at_rest &= vx_a == 0.0
-    stuck_a = ((kind_a == 0) & at_rest) | (kind_a == START_STUCK)
+    stuck_a = ((kind_a == 0) & at_rest) | (kind_a == START_STUCK) | ((kind_a == STOP) & at_rest)
     dx_b = 2.0 * np.spacing(np.abs(x_b)) + np.spacing(fl.S * np.abs(fl.cell(x_b)) + fl.S)
 
     # ---- carried stretches: a collision that ended stuck, then its lift-off
@@ -257,10 +269,18 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
             late = window & ((inside_a & (tau > dtau_clock)) | opens)
         rep.flag("liftoff_time", lift & ((g2 < -g2_tol) | late), idx, -g2, g2_tol)
 
+    # ---- sliding stretches (contact models): from a contact start, a stop or a start at rest
+    #      to a lift-off from sliding, a stop or a cusp
+    slid = (kind_b == CONTACT_LIFT) | (kind_b == STOP) | (kind_b == CUSP)
+    rep.contacts = int(np.count_nonzero(slid))
+    if rep.contacts:
+        _check_contact(fl, numerics, rep, idx, slid, tau, a, b)
+
     # ---- flights: from a collision that did not stick, or from a lift-off, to a collision
-    fly = ~lift
-    rep.flag("stuck_flight", fly & stuck_a, idx, np.zeros_like(tau), np.zeros_like(tau))
-    fly &= ~stuck_a
+    fly = ~lift & ~slid
+    sliding_a = (kind_a == CONTACT) | ((kind_a == STOP) & ~at_rest)
+    rep.flag("stuck_flight", fly & (stuck_a | sliding_a), idx, np.zeros_like(tau), np.zeros_like(tau))
+    fly &= ~stuck_a & ~sliding_a
     rep.flights = int(np.count_nonzero(fly))
     if not rep.flights:
         return rep
@@ -294,14 +314,14 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
     K = fl.g + fl.A * fl.w**2
     graze = K * np.minimum(tau_f, np.sqrt(2.0 * rnd / K))
     _check_velocity(fl, numerics, rep, idx[k], vx_end, vy0 - fl.gy * tau_f, xb, dxb, thb, vxb, vyb,
-                    kind_a[k], dtau_clock[k], graze)
+                    kind_a[k], dtau_clock[k], graze, kind_b[k])
     _check_gap(fl, numerics, rep, idx[k], x0, y0, vx, vy0, th0, tau_f, dxb, samples, per_period,
                dtau, on_tol)
     return rep
 
 
 def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, dxb, thb, vxb, vyb,
-                    kind_a, dtau, graze) -> None:
+                    kind_a, dtau, graze, kind_b) -> None:
     """Eqs. (5)-(6) relative to the moving floor: u⊥⁺ = −α u⊥⁻, u∥⁺ = β u∥⁻, and the
     kernel's sticking rule (α|u⊥⁻| < v_stick: carried with the floor, or, once, a fly-off
     with u⊥⁺ = v_stick where the arc falls away faster than g + a_floor pull it down)."""
@@ -329,6 +349,9 @@ def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, d
         bounce = (np.abs(on - out) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) & (out >= vs - tol)
         still = (vxb == 0.0) if not fl.conveyor else (np.abs(ox) <= 16.0 * EPS * fl.A * fl.w)
         stuck = still & (np.abs(oy) <= 16.0 * EPS * fl.A * fl.w) & (out <= vs + tol)
+        # a contact model: the cascade ends in sliding, relative normal speed 0, β u∥ kept
+        slides = (kind_b == CONTACT) & (np.abs(on) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) \
+            & (out <= vs + tol)
         # the arc's pull (β u∥ n_y)² c'' = (β u∥)²/√(R² − d²), at its largest within δd of d
         q_min = fl.q(np.minimum(np.abs(dd) + dxb, fl.R)) if not fl.flat else np.inf
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -341,7 +364,7 @@ def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, d
                 g2 = g2 + np.where(sw != 0.0, fl.slope(dd) * sw, 0.0)
         flies = (np.abs(on - vs) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) & (out <= vs + tol) \
             & (np.abs(fl.beta * ut) >= vs - tol) & (g2 > -tol * 1e3)
-        ok |= near & approach & (bounce | stuck | flies)
+        ok |= near & approach & ((bounce | stuck | flies) & (kind_b != CONTACT) | slides)
         kick |= near & approach & flies & ~bounce & ~stuck
     # a fly-off never follows a fly-off (kick after kick would be an endless Zeno sequence)
     twice = kick & np.concatenate([[False], kick[:-1]]) & (kind_a == 0)
@@ -490,6 +513,143 @@ def _check_gap(fl: Floor, numerics, rep: Report, index, x0, y0, vx, vy0, th0, ta
         uncert[fi] = True
     rep.flag("below", below, index, -low, np.zeros(n))
     rep.flag("uncertified", uncert & ~below, index, np.zeros(n), np.zeros(n))
+
+
+def _contact_state(fl: Floor, x, vx, vy, th, at_rest):
+    """(q, v, d, uₙ): the angle θ of the contact point on its arc (on a flat floor: x), the
+    tangential and normal speeds relative to the floor, and the offset d on that arc.  At a
+    cusp the arc is the one the velocity is tangent to (the one it slides on)."""
+    d = x - fl.cell(x) * fl.S
+    ux, uy = vx, vy - fl.v(th)
+    nx, ny = fl.normal(d)
+    un = ux * nx + uy * ny
+    if not fl.flat:
+        dx = 4.0 * np.spacing(np.abs(x) + fl.S)
+        alt = d - np.sign(d) * fl.S
+        anx, any_ = fl.normal(alt)
+        aun = ux * anx + uy * any_
+        use = (np.abs(np.abs(d) - 0.5 * fl.S) <= dx) & (np.abs(aun) < np.abs(un)) & ~at_rest
+        d, nx, ny, un = (np.where(use, alt, d), np.where(use, anx, nx), np.where(use, any_, ny),
+                         np.where(use, aun, un))
+    v = np.where(at_rest, 0.0, ux * ny - uy * nx)
+    q = x if fl.flat else np.arcsin(np.clip(d / fl.R, -1.0, 1.0))
+    return q, v, d, un
+
+
+def _contact_rates(fl: Floor, mu, q, v, th, sgn):
+    # R θ̈ = g_eff sin θ − μ N sgn(v), N = g_eff cos θ − v²/R, g_eff = g + Aω² sin(ωt)
+    ge = fl.g + fl.A * fl.w**2 * np.sin(th)
+    if fl.flat:
+        return v, -mu * ge * sgn, ge
+    n = ge * np.cos(q) - v * v / fl.R
+    return v / fl.R, ge * np.sin(q) - mu * n * sgn, n
+
+
+def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> None:
+    """Sliding stretches, by this checker's own RK4 (all stretches at once, ≥ 1024 steps per
+    floor period or 1/8 of the pendulum period 2π√(R/g_max), whichever is shorter): the
+    stretch starts on the surface with relative normal speed 0 (or at rest), N ≥ 0 at every
+    step before the recorded end, no event (N = 0, a cusp, v = 0 under friction) before it,
+    the recorded end state is the integrated one, and the end is the event it claims: N = 0
+    (and leaving with normal speed v_stick), |d| = S/2, or v = 0."""
+    mu = float(getattr(fl, "mu", 0.0))
+    k = np.nonzero(slid)[0]
+    t_a, x_a, y_a, vx_a, vy_a, ph_a, kind_a = a[k].T
+    t_b, x_b, y_b, vx_b, vy_b, ph_b, kind_b = b[k].T
+    th_a, th_b = 2 * math.pi * ph_a, 2 * math.pi * ph_b
+    tf = tau[k]
+    vf_tol = 16.0 * EPS * fl.A * fl.w
+    rest_a = (kind_a == STOP) | (kind_a == START_STUCK)
+    q, v, d_a, un = _contact_state(fl, x_a, vx_a, vy_a, th_a, rest_a)
+    # the start: a contact start, a stop or a start at rest, on the surface
+    ux, uy = vx_a, vy_a - fl.v(th_a)
+    scale_v = math.sqrt(fl.g * (1.0 if fl.flat else fl.R)) + np.abs(v)
+    # rounding, and the normal's uncertainty from the rounding δd of d (√ at a vertical cusp)
+    dd = 4.0 * np.spacing(np.abs(x_a) + fl.S)
+    dn = 0.0 if fl.flat else dd / fl.R + np.sqrt(2.0 * fl.R * dd) / fl.R
+    # the floor velocity from the recorded phase: rounding of the phase moves it by up to
+    # Aω·(a few eps), largest where v_f itself is near 0 (cos ωt ≈ 0), so scale with Aω
+    start_tol = 64.0 * EPS * (np.hypot(ux, uy) + fl.A * fl.w) + 2.0 * np.hypot(ux, uy) * dn
+    good_kind = (kind_a == CONTACT) | rest_a
+    at_rest_a = (vx_a == 0.0) & (np.abs(uy) <= vf_tol)
+    bad = ~good_kind | ((kind_a == CONTACT) & (np.abs(un) > start_tol)) | (rest_a & ~at_rest_a)
+    off = np.abs(y_a - fl.surface(x_a, th_a))
+    y_tol = 16.0 * EPS * (np.abs(y_a) + fl.A + (0 if fl.flat else fl.R)) \
+        + fl.height_error(d_a, 4 * np.spacing(np.abs(x_a) + fl.S))
+    bad |= off > y_tol
+    rep.flag("contact_start", bad, idx[k], np.abs(un), start_tol)
+    # friction's sign is fixed over a stretch (the kernel ends one at every stop)
+    sgn = np.where(v > 0, 1.0, np.where(v < 0, -1.0, np.where(np.sin(q) > 0, 1.0, -1.0)))
+    # the faster of the floor's period and the arc's pendulum period 2π√(R/g_max)
+    swing = math.inf if fl.flat else 2 * math.pi * math.sqrt(fl.R / (fl.g + fl.A * fl.w**2))
+    fast = min(1.0 / fl.f, swing / 8)
+    periods = tf / fast
+    n = int(np.clip(np.ceil(1024 * np.max(periods, initial=0.0)), 256, 50_000))
+    h = tf / n
+    n_min = np.full(k.size, np.inf)
+    q_max = np.zeros(k.size)
+    v_min = np.full(k.size, np.inf)
+    gmax = fl.g + fl.A * fl.w**2
+    th = th_a.copy()
+    for i in range(n):
+        k1q, k1v, n0 = _contact_rates(fl, mu, q, v, th, sgn)
+        if i > 0:
+            n_min = np.minimum(n_min, n0)
+            q_max = np.maximum(q_max, np.abs(q))
+            v_min = np.minimum(v_min, sgn * v)
+        k2q, k2v, _ = _contact_rates(fl, mu, q + 0.5 * h * k1q, v + 0.5 * h * k1v, th + 0.5 * fl.w * h, sgn)
+        k3q, k3v, _ = _contact_rates(fl, mu, q + 0.5 * h * k2q, v + 0.5 * h * k2v, th + 0.5 * fl.w * h, sgn)
+        k4q, k4v, _ = _contact_rates(fl, mu, q + h * k3q, v + h * k3v, th + fl.w * h, sgn)
+        q = q + h * (k1q + 2 * k2q + 2 * k3q + k4q) / 6
+        v = v + h * (k1v + 2 * k2v + 2 * k3v + k4v) / 6
+        th = th + fl.w * h
+    # the recorded end, on the arc it ends on (a stop or a lift-off: where it is; a cusp: ±S/2)
+    rest_b = kind_b == STOP
+    q_b, v_b, d_b, _ = _contact_state(fl, x_b, vx_b, vy_b, th_b, rest_b)
+    if not fl.flat:
+        # a stretch stays on one arc: the end (a cusp row: d = ±S/2) is on the start's arc
+        d_b = x_b - (x_a - d_a)
+        q_b = np.arcsin(np.clip(d_b / fl.R, -1.0, 1.0))
+        nxb, nyb = fl.normal(d_b)
+        ub_x, ub_y = vx_b, vy_b - fl.v(th_b)
+        v_b = np.where(rest_b, 0.0, ub_x * nyb - ub_y * nxb)
+        un_b = ub_x * nxb + ub_y * nyb
+    else:
+        un_b = vy_b - fl.v(th_b)
+    # tolerances: the kernel's integration (CONTACT_RTOL per period) and event location
+    # (tol_t at the event function's rates), plus the rounding of the numbers involved
+    grow = CONTACT_RTOL * (1.0 + periods)
+    dt = numerics.tol_t + 16.0 * EPS * (1.0 + tf * fl.f) / fl.f
+    v_tol = grow * scale_v + gmax * (1.0 + mu) * dt + 64 * EPS * scale_v
+    # θ from d = R sin θ is ill-conditioned at a vertical cusp: δθ ≤ √(2 δd/R)
+    dd_x = 4.0 * np.spacing(np.abs(x_b) + fl.S)
+    q_tol = grow + (np.abs(v) + scale_v) * dt / (1.0 if fl.flat else fl.R) \
+        + (16 * EPS * (np.abs(x_b) + fl.S) if fl.flat
+           else np.sqrt(2.0 * dd_x / fl.R) + dd_x / fl.R)
+    miss = np.abs(q - q_b) > q_tol
+    rep.flag("contact_path", miss | (np.abs(v - v_b) > v_tol), idx[k], np.abs(v - v_b), v_tol)
+    # no event before the recorded end: N > 0, inside the arc, still moving (friction)
+    n_tol = gmax * grow + (fl.A * fl.w**3 + 4 * gmax * scale_v / (1.0 if fl.flat else fl.R)) * (dt + h)
+    q_c = math.inf if fl.flat else math.asin(min(0.5 * fl.S / fl.R, 1.0))
+    early = (n_min < -n_tol) | (q_max > q_c + q_tol)
+    if mu > 0:
+        early |= v_min < -v_tol
+    # a stretch of zero length (the event at its start: e.g. a particle at rest where the floor
+    # lets go at once) has no inside; its end check below covers it
+    early &= tf > dt
+    rep.flag("contact_normal", early, idx[k], -n_min, n_tol)
+    # the end is the event it claims
+    n_end = _contact_rates(fl, mu, q, v, th, sgn)[2]
+    n_end_tol = gmax * grow + (fl.A * fl.w**3 + 4 * gmax * scale_v / (1.0 if fl.flat else fl.R)) * dt
+    ev_bad = np.zeros(k.size, bool)
+    lift = kind_b == CONTACT_LIFT
+    dd_b = 4.0 * np.spacing(np.abs(x_b) + fl.S)
+    dn_b = 0.0 if fl.flat else dd_b / fl.R + np.sqrt(2.0 * fl.R * dd_b) / fl.R
+    un_tol = 64 * EPS * scale_v + 2.0 * np.hypot(vx_b, vy_b - fl.v(th_b)) * dn_b
+    ev_bad |= lift & ((n_end > n_end_tol) | (np.abs(un_b - numerics.v_stick) > un_tol))
+    ev_bad |= (kind_b == CUSP) & (np.abs(np.abs(q) - q_c) > q_tol)
+    ev_bad |= rest_b & ((mu == 0) | (np.abs(v) > v_tol) | (vx_b != 0.0))
+    rep.flag("contact_event", ev_bad, idx[k], n_end, n_end_tol)
 
 
 def check_run(run, particles=None, last: int | None = None) -> Report:

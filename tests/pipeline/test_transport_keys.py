@@ -75,3 +75,11 @@ def test_reduce_adds_transport_columns_only_for_a_conveyor(tmp_path):
     # downhill is -x (gravity along the plane -g sin φ): every frequency drifts that way
     assert (tilted["v_hi"] < 0).all(), tilted[["f", "v", "v_lo", "v_hi"]]
     assert (tilted["D_drift"] < tilted["D"]).all()  # the drift's v² Δ² is out of the MSD
+
+
+def test_a_contact_model_on_the_conveyor_is_one_line_naming_both_keys():
+    with pytest.raises(WorkflowError) as e:
+        parse_workflow(_with('tilt = 2.0\ncontact = "coulomb"\nmu = 0.3'), source="wf.toml")
+    msg = str(e.value)
+    assert "\n" not in msg and "wf.toml" in msg and "contact" in msg and "tilt" in msg
+    assert "allowed" in msg and "stick" in msg

@@ -1,0 +1,231 @@
+"""Sustained contact with an arc under the `slide` and `coulomb` models: the jitted
+integrator of the contact phase and its certified event location.
+
+In the floor's frame (which accelerates with ÿ_f) a particle in contact is a point on the
+circle of radius R of its arc, at angle θ from the arc's top (offset d = R sin θ), with
+tangential speed v = R θ̇ (positive towards +x).  With g_eff(t) = g + ÿ_f(t) (mm/s²):
+
+    R θ̈ = g_eff sin θ − μ N sgn(v),       N = g_eff cos θ − v²/R  (normal force per mass)
+
+(``slide``: μ = 0).  A flat floor (R = ∞) has θ ≡ 0: the state is the offset d itself,
+ḋ = v, v̇ = −μ g_eff sgn(v), N = g_eff.  Contact ends at an event:
+
+- LIFT: N ≤ 0 (the floor no longer pushes): free flight with the current velocity;
+- CUSP: |θ| reaches θ_c = asin(S/2R): the particle meets the neighbouring arc;
+- STOP (μ > 0): v reaches 0; static friction holds it if |tan θ| ≤ μ;
+- END: the run's t_max (or the caller's limit) is reached.
+
+Integration: classic RK4 with step h ≤ T/256, ≤ 2π√(R/(g + Aω²))/2048 (the arc's pendulum
+period) and ≤ 0.02 R/|v| (≤ 0.02 rad per step); local error O((ωh)⁵) ≈ 1e-10 relative per
+step.  The particle is on its arc by construction (the
+state is an angle), so it is never below the surface.
+
+Certified event location: a step [a, b] with no event at b is accepted only when a bound
+on the exact solution excludes a crossing inside: N ≥ (N_a + N_b)/2 − L_N h/2 > 0 with
+L_N ≥ sup |Ṅ| on the step; ±θ ≤ ±θ_a ± θ̇_a τ + a_max τ²/(2R) < θ_c; for Coulomb
+sgn(v)·v ≥ sgn(v)(v_a + v̇_a τ) − J τ²/2 > 0 (a_max, J bound |v̇|, |v̈|); otherwise the step
+is halved.  A step with an event at b is halved (a
+bisection from a) until it is ≤ tol_t: the event is located to tol_t (s).  What can be
+missed: an excursion of the event function shallower than L·tol_t/2 (e.g. N below 0 by
+≤ L_N tol_t/2 ≈ 1e-5 mm/s² at f = 60), or one smaller than the integration error.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .surface import arc_normal, floor_v
+
+LIFT = 1
+CUSP = 2
+STOP = 3
+END = 4
+#: RK4 steps per floor period at most
+STEPS_PER_PERIOD = 256.0
+#: RK4 steps per pendulum period 2π√(R/g_max) at most (the timing error of a stretch grows
+#: as (h/√(R/g))⁴: 256 steps left 3e-7 relative at R = 1, f = 5 Hz; 2048 steps, ≤ 1e-10)
+STEPS_PER_SWING = 2048.0
+#: largest angle (rad) a step may sweep
+MAX_ANGLE_STEP = 0.02
+
+
+@njit(cache=True, inline="always")
+def g_eff(s, g, A, w):
+    # g + ÿ_f with y_f = -A sin(ωs) (Sec. 2): the floor frame's gravity
+    return g + A * w * w * math.sin(w * s)
+
+
+@njit(cache=True, inline="always")
+def normal_force(q, v, s, g, A, w, R, flat):
+    """N (mm/s²) per unit mass: g_eff cos θ − v²/R (g_eff on a flat floor)."""
+    if flat:
+        return g_eff(s, g, A, w)
+    return g_eff(s, g, A, w) * math.cos(q) - v * v / R
+
+
+@njit(cache=True, inline="always")
+def rates(q, v, s, g, A, w, R, mu, sgn, flat):
+    # contact equation R θ̈ = g_eff sin θ − μ N sgn(v) (docs/physics.md, "Contact models")
+    ge = g_eff(s, g, A, w)
+    if flat:
+        return v, -mu * ge * sgn
+    n = ge * math.cos(q) - v * v / R
+    return v / R, ge * math.sin(q) - mu * n * sgn
+
+
+@njit(cache=True)
+def rk4(q, v, s, h, g, A, w, R, mu, sgn, flat):
+    """One classic RK4 step of length h (s) from floor time s; returns (q, v)."""
+    k1q, k1v = rates(q, v, s, g, A, w, R, mu, sgn, flat)
+    k2q, k2v = rates(q + 0.5 * h * k1q, v + 0.5 * h * k1v, s + 0.5 * h, g, A, w, R, mu, sgn, flat)
+    k3q, k3v = rates(q + 0.5 * h * k2q, v + 0.5 * h * k2v, s + 0.5 * h, g, A, w, R, mu, sgn, flat)
+    k4q, k4v = rates(q + h * k3q, v + h * k3v, s + h, g, A, w, R, mu, sgn, flat)
+    return (q + h * (k1q + 2.0 * k2q + 2.0 * k3q + k4q) / 6.0,
+            v + h * (k1v + 2.0 * k2v + 2.0 * k3v + k4v) / 6.0)
+
+
+@njit(cache=True)
+def step_bounds(va, vb, h, g, A, w, R, mu, flat, sin_c):
+    """Bounds on a step of length h (s) from speeds va to vb: (a_max ≥ sup|v̇|,
+    J ≥ sup|v̈|, L_N ≥ sup|Ṅ|), all on the exact solution through the step."""
+    gmax = g + A * w * w
+    jerk = A * w * w * w
+    v0 = max(abs(va), abs(vb))
+    if flat:
+        return mu * gmax, mu * jerk, jerk
+    amax = gmax * (sin_c + mu) + mu * v0 * v0 / R
+    V = v0 + h * amax
+    amax = gmax * (sin_c + mu) + mu * V * V / R
+    V = v0 + h * amax
+    # v̈ = ġ_eff (sin θ ∓ μ cos θ) + g_eff (cos θ ± μ sin θ) θ̇ ∓ 2μ v v̇/R
+    J = jerk * (1.0 + mu) + gmax * (1.0 + mu) * V / R + 2.0 * mu * V * amax / R
+    # Ṅ = ġ_eff cos θ − g_eff sin θ θ̇ − 2 v v̇ / R
+    L = jerk + gmax * sin_c * V / R + 2.0 * V * amax / R
+    return amax, J, L
+
+
+@njit(cache=True)
+def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos, isamp,
+          cell, tol_t):
+    """Integrate one contact stretch from (θ or d = q, v, floor time s, period count tp)
+    until an event.  Writes x (mm) at the sample times passed into ``pos``.
+
+    Returns (q, v, s, tp, cell, isamp, event, elapsed time in s).  A flat floor's q is the
+    offset d, wrapped into [-S/2, S/2) with ``cell``."""
+    sgn = 1.0 if v > 0.0 else -1.0
+    if v == 0.0:
+        # from rest the particle moves downhill (the caller only starts a stretch at rest
+        # where static friction cannot hold it)
+        sgn = 1.0 if math.sin(q) > 0.0 else -1.0
+    sin_c = 0.0 if flat else min(0.5 * S / R, 1.0)
+    q_c = math.inf if flat else math.asin(sin_c)
+    # resolve the faster of the floor's period and the arc's pendulum period 2π√(R/g_max)
+    h_nom = T / STEPS_PER_PERIOD
+    if not flat:
+        h_nom = min(h_nom, 2.0 * math.pi * math.sqrt(R / (g + A * w * w)) / STEPS_PER_SWING)
+    t_start = tp * T + (s - s0)
+    n_a = normal_force(q, v, s, g, A, w, R, flat)
+    if n_a <= 0.0:
+        return q, v, s, tp, cell, isamp, LIFT, 0.0
+    if not flat and abs(q) >= q_c and q * v > 0.0:
+        return q, v, s, tp, cell, isamp, CUSP, 0.0
+    h = h_nom  # the next step to try
+    hunting = False  # an event lies within h of the current state: bisect, never grow
+    ns = sample_times.shape[0]
+    while True:
+        t_now = tp * T + (s - s0)
+        if t_max - t_now <= tol_t:
+            return q, v, s, tp, cell, isamp, END, t_now - t_start
+        hs = h
+        if not flat:
+            hs = min(hs, MAX_ANGLE_STEP * R / max(abs(v), 1e-300))
+        # end steps on the next sample time and on t_max: positions there are states
+        t_lim = t_max
+        if isamp < ns and sample_times[isamp] < t_lim:
+            t_lim = sample_times[isamp]
+        sampling = t_lim - t_now <= hs
+        if sampling:
+            hs = max(t_lim - t_now, 0.0)
+        qb, vb = rk4(q, v, s, hs, g, A, w, R, mu, sgn, flat)
+        sb = s + hs
+        nb = normal_force(qb, vb, sb, g, A, w, R, flat)
+        lift = nb <= 0.0
+        cusp = (not flat) and abs(qb) >= q_c
+        stop = mu > 0.0 and sgn * vb <= 0.0
+        amax, J, L = step_bounds(v, vb, hs, g, A, w, R, mu, flat, sin_c)
+        # N: chord minus Lipschitz, N ≥ (N_a + N_b)/2 − L h/2
+        certified = n_a + nb > L * hs
+        if not flat:
+            # ±θ(τ) ≤ ±θ_a ± θ̇_a τ + a_max τ²/(2R), convex: below θ_c at both ends
+            # (θ_a itself may be at a cusp it is leaving) means below it in between
+            reach = amax * hs * hs / (2.0 * R)
+            certified = certified and q + v * hs / R + reach < q_c \
+                and -q - v * hs / R + reach < q_c
+        if mu > 0.0:
+            # sgn·v(τ) ≥ sgn·(v_a + v̇_a τ) − J τ²/2, concave: positive at τ = h and ≥ 0 at 0
+            dva = rates(q, v, s, g, A, w, R, mu, sgn, flat)[1]
+            certified = certified and sgn * (v + dva * hs) - 0.5 * J * hs * hs > 0.0
+        event = lift or cusp or stop
+        if (event or not certified) and hs > tol_t:
+            h = 0.5 * hs
+            hunting = hunting or event
+            continue
+        # accept the step [t_now, t_now + hs]
+        q = qb
+        v = vb
+        n_a = nb
+        s = sb
+        if s >= T:
+            k = math.floor(s / T)
+            s -= k * T
+            tp += int(k)
+            if s < 0.0:
+                s = 0.0
+        if flat:
+            k = math.floor(q / S + 0.5)
+            q -= k * S
+            cell += int(k)
+        if sampling and isamp < ns:
+            x = cell * S + (q if flat else R * math.sin(q))
+            while isamp < ns and sample_times[isamp] <= t_lim:
+                pos[isamp] = x
+                isamp += 1
+        t_el = tp * T + (s - s0) - t_start
+        if lift:
+            return q, v, s, tp, cell, isamp, LIFT, t_el
+        if cusp:
+            return math.copysign(q_c, q), v, s, tp, cell, isamp, CUSP, t_el
+        if stop:
+            return q, 0.0, s, tp, cell, isamp, STOP, t_el
+        if hs > 0.0:
+            h = hs if hunting else min(h_nom, 2.0 * hs)
+
+
+@njit(cache=True)
+def holds_at_rest(d, R, S, mu, flat):
+    """Whether a particle at rest at offset d stays at rest while g_eff > 0: on a flat
+    floor, in a cusp (held by both walls), at an arc's top, or where static friction
+    holds it, |g_eff sin θ| ≤ μ N = μ g_eff cos θ, i.e. |tan θ| ≤ μ."""
+    if flat or d == 0.0 or abs(d) >= 0.5 * S:
+        return True
+    nx, ny = arc_normal(d, R)
+    return abs(nx) <= mu * ny
+
+
+@njit(cache=True)
+def enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat):
+    """After a collision that ended a bouncing cascade (outgoing normal speed < v_stick):
+    the tangential speed v (mm/s) relative to the floor, the contact angle θ (or d on a
+    flat floor), and whether the particle slides (else it is held at rest: N ≤ 0, i.e. it
+    can only leave when the floor lets go, or at rest where it stays at rest)."""
+    nx, ny = arc_normal(d, R)
+    v = vx * ny - (vy - floor_v(s, A, w)) * nx
+    q = d if flat else math.asin(nx)
+    n = normal_force(q, v, s, g, A, w, R, flat)
+    if n <= 0.0:
+        return v, q, False
+    if v == 0.0 and holds_at_rest(d, R, S, mu, flat):
+        return v, q, False
+    return v, q, True
