@@ -18,6 +18,7 @@ positions      (frequency, family, particle, time)  x, mm  f8      (1, 1, chunk_
 collisions     (frequency, family, particle, collision, field)  f8  (1, 1, chunk_size, K, n_fields)
 n_recorded     (frequency, family, particle)  valid rows   i8      (1, 1, chunk_size) [coll.]
 n_<counter>    (frequency, family, particle)  bbb counters  i8  (1, 1, chunk_size)
+held_time, sliding_time  (frequency, family, particle)  s  f8  (1, 1, chunk_size)  [contact]
 done           (frequency, family, chunk)   bool           b1      (1, 1, 1)
 chunk_seconds  (frequency, family, chunk)   simulate, s    f8      (1, 1, 1)   not reproducible
 n_chunks_used  (frequency, family)          chunks         i8      (1, 1)      [target_ci]
@@ -66,7 +67,7 @@ import numpy as np
 import zarr
 
 from bbb.provenance import kernel_identity
-from bbb.record import COLLISION_FIELDS, COUNTER_NAMES
+from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES
 
 from .schema import as_dict
 from .workflow import Study
@@ -261,6 +262,9 @@ class StudyStore:
             g["n_recorded"][fi, mi, sl] = run.n_recorded
         for name in COUNTERS:
             g[f"n_{name}"][fi, mi, sl] = run.counters[name]
+        if obs.contact:
+            for name in CONTACT_TIME_NAMES:
+                g[f"{name}_time"][fi, mi, sl] = run.contact_time[name]
         g["chunk_seconds"][fi, mi, ci] = seconds
         # Only now, after every data array: the chunk is complete.
         if mark_done:
@@ -462,6 +466,10 @@ def _create_layout(g: zarr.Group, study: Study) -> None:
     for name in COUNTERS:
         data(f"n_{name}", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs), "int64", 0,
              "", f"number of {name} up to t_max")
+    if obs.contact:
+        for name in CONTACT_TIME_NAMES:
+            data(f"{name}_time", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs),
+                 "float64", np.nan, "s", f"time {name} in sustained contact up to t_max")
     data("done", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "bool", False, "",
          "chunk completely written")
     data("chunk_seconds", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "float64",

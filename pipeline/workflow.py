@@ -439,7 +439,8 @@ def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
     coll = obs["collisions"]
     return Observables(positions=obs["positions"] is not None,
                        collisions_record=coll.record if coll else None,
-                       collisions_from=float(coll.record_from) if coll else 0.0)
+                       collisions_from=float(coll.record_from) if coll else 0.0,
+                       contact=obs["contact"] is not None)
 
 
 def _analysis(r: Reader, doc: dict) -> Analysis:

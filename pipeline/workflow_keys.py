@@ -196,10 +196,18 @@ class CollisionsTable:
 
 
 @dataclass(frozen=True)
+class ContactTable:
+    """Per particle, the time held at rest on the floor and the time sliding on an arc (s,
+    bbb.record.CONTACT_TIME_NAMES).  No keys."""
+
+
+@dataclass(frozen=True)
 class ObservablesTable:
     positions: PositionsTable | None = key(None, "x at the sample times 0, sample_dt, ..., t_max "
                                        "(an empty [observables.positions] switches it on)")
     collisions: CollisionsTable | None = key(None, "post-collision states (t, x, y, vx, vy, phase)")
+    contact: ContactTable | None = key(None, "per-particle time held and time sliding, s "
+                                       "(an empty [observables.contact] switches it on)")
 
 
 @dataclass(frozen=True)
@@ -213,6 +221,8 @@ class Observables:
     positions: bool
     collisions_record: int | None = None
     collisions_from: float = 0.0
+    # declared omit_default: a store made before it existed keeps its fingerprint
+    contact: bool = key(False, "time held and sliding per particle", omit_default=True)
 
     @property
     def collisions(self) -> bool:
