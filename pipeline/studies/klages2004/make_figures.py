@@ -30,6 +30,7 @@ has it for the same store.
 from __future__ import annotations
 
 import argparse
+import importlib
 import json
 import os
 import sys
@@ -44,6 +45,9 @@ __all__ = ["SCENES", "run_log_entry", "make_figures", "main"]
 #: the scenes this study runs, in order
 SCENES = ("figure2", "ergodicity", "figure3", "locking", "figure2_matyas2004",
           "locking_matyas2004")
+#: further studies drawn in the same run (modules under pipeline.studies exposing SCENES,
+#: draw(tables, stores, out_dir) -> paths, and report_lines(tables) -> REPORT.md lines)
+EXTRA_STUDIES = ("contact",)
 
 
 def run_log_entry(name: str, store: str) -> dict[str, str]:
@@ -82,7 +86,8 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     except (OSError, ValueError):
         previous = {}
     stores: dict[str, str] = {}
-    for name in SCENES:
+    extras = [importlib.import_module(f"pipeline.studies.{s}") for s in EXTRA_STUDIES]
+    for name in SCENES + tuple(n for m in extras for n in m.SCENES):
         study = load_scene(name, fast)
         path = str((runs / f"{study.name}.zarr").resolve())
         stores[name] = path
@@ -126,11 +131,23 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
                    legend_loc="upper left"),
     ]
     paths = [p for fig in figs for p in fg.figure_files(out, fig.get_label())]
+    extra_lines: list[str] = []
+    for m in extras:  # each scene's reduce tables, keyed by table name (and scene_table)
+        t = {}
+        for name in m.SCENES:
+            for tname, df in reduce_store(stores[name], echo=echo).items():
+                t[tname if tname == name else f"{name}_{tname}"] = df
+                df.to_csv(out / f"{name}_{tname}.csv", index=False, float_format="%.6g")
+        paths += m.draw(t, stores, out)
+        extra_lines += m.report_lines(t)
     log["this_invocation_s"] = time.perf_counter() - t_start
     log["wall_s"] = sum(e.get("wall_s", 0.0) for e in log["scenes"].values()) + sum(
         e.get("reduce_s", 0.0) for e in log["scenes"].values())
     (out / "run_log.json").write_text(json.dumps(log, indent=2) + "\n")
     report = write_report(out, stores=stores, tables=tables, figures=paths, run_log=log)
+    if extra_lines:
+        with open(report, "a", encoding="utf-8") as fh:
+            fh.write("\n".join(extra_lines) + "\n")
     echo(f"figures: {', '.join(str(p) for p in paths if p.suffix == '.png')}")
     echo(f"tables:  {', '.join(table_files.values())}")
     echo(f"report:  {report}")
