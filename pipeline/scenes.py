@@ -2,7 +2,8 @@
 package ``pipeline.workflows``) and every study's ``pipeline/studies/<study>/scenes/*.toml``,
 found through importlib.resources so that an installed bbb finds them from any directory (a
 name in both: ``workflows/`` wins).  Also the TOML writer for workflow-shaped documents and
-the draft version of a scene (``make figures FAST=1``).
+the draft version of a scene (``make figures FAST=1``): the study's own
+``scenes/draft/<name>.toml`` if it ships one, else the scene at the draft preset.
 
 The studies are discovered as folders, not imported: the engine knows no study.
 """
