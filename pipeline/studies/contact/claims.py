@@ -48,6 +48,9 @@ CLAIM_PREFIXES = ("Onset of diffusion around f = 50", "Local maximum of D(f) aro
                   "f = 54: 1/1 frequency locking", "Local minimum around f = 58",
                   "Non-ergodic (depends on the initial condition) only near the peak")
 CLAIMS = [next(c for c in PAPER_CLAIMS if c.text.startswith(p)) for p in CLAIM_PREFIXES]
+#: their short names in the generated paragraph
+SHORT = ("the onset near 50 Hz", "the maximum near 54 Hz", "the 1/1 spot at 54 Hz",
+         "the minimum near 58 Hz", "non-ergodicity only near 55 Hz")
 FWER = 0.05  # family-wise error rate of the model-dependence rule
 _Z95 = NormalDist().inv_cdf(0.975)
 _POSITIVE = ("agrees", "agrees within the CI")
@@ -213,6 +216,11 @@ def report_lines(tables: Mapping[str, pd.DataFrame]) -> list[str]:
                              "no contact model reproduces both the onset near 50 Hz and the "
                              "maximum near 54 Hz")
             + f" (onset: {names(onset_ok)}; maximum: {names(max_ok)}). ")
+    same = [i for i in range(len(CLAIMS)) if len({rows[m][i].verdict for m in MODELS}) == 1]
+    para += ("The verdict is the same under every contact model for "
+             + (", ".join(SHORT[i] for i in same) or "none") + "; it depends on the model for "
+             + (", ".join(SHORT[i] for i in range(len(CLAIMS)) if i not in same) or "none")
+             + ". ")
     lo, hi = ONSET_RANGE
     near, high = {}, {}
     for m in MODELS:

@@ -101,6 +101,18 @@ def test_the_paragraph_names_the_model_that_reproduces_onset_and_maximum():
     text = "\n".join(report_lines(_tables()))
     assert "From rest, slide reproduces both the onset near 50 Hz and the maximum" in text
     assert "stick vs slide at f = 50–61 Hz" in text  # D from rest differs beyond the CIs
+    # slide's rest curve is paper-like, the others' are not: every verdict depends on it
+    assert "same under every contact model for none; it depends on the model for the onset" in text
+
+
+def test_identical_models_get_the_same_verdicts_and_no_model_dependence():
+    t = {k: v for k, v in _tables().items() if k.startswith("contact_slide")}
+    t = {k.replace("slide", m): v for m in MODELS for k, v in t.items()}
+    text = "\n".join(report_lines(t))
+    assert ("same under every contact model for the onset near 50 Hz, the maximum near 54 Hz, "
+            "the 1/1 spot at 54 Hz, the minimum near 58 Hz, non-ergodicity only near 55 Hz; "
+            "it depends on the model for none.") in text
+    assert "does not depend on the contact model beyond its CIs at any of the 324" in text
     header = next(line for line in text.splitlines() if line.startswith("| claim"))
     assert header.count("|") == len(MODELS) + 2
     assert sum(line.startswith("| ") for line in text.splitlines()) == len(CLAIMS) + 2
