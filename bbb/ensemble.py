@@ -26,7 +26,8 @@ FAMILIES = ("rest", "dropped", "launched")
 @dataclass(frozen=True)
 class InitialState:
     """Arrays (n_particles,) of initial states: x = cell·S + d (mm), y (mm), v (mm/s),
-    floor time s (s) within [0, 1/f), and flags."""
+    floor time s (s) within [0, 1/f), and flags.  On a thrown floor (Params.throw ≠ 90) d is
+    the offset relative to the floor, whose sideways displacement X_f(s) adds to x."""
 
     cell: np.ndarray
     d: np.ndarray
@@ -68,6 +69,14 @@ def initial_state(
     floor_v = -p.A * p.omega * np.cos(p.omega * s)
     cell = np.zeros(n, dtype=np.int64)
     vx = np.zeros(n)
+    if p.transport:
+        # a thrown floor (bbb.conveyor): d is the offset relative to the floor, which moves
+        # (Ax, Ay)(−sin 2πft); 'rest' and 'launched' start with its along-plane velocity
+        _gx, _gy, ax, ay = p.floor_frame()
+        surface = -ay * np.sin(p.omega * s) - depth(d, p.R)
+        floor_v = -ay * p.omega * np.cos(p.omega * s)
+        if family != "dropped":
+            vx = -ax * p.omega * np.cos(p.omega * s)
     if family == "rest":
         return InitialState(cell, d, surface, vx, floor_v.copy(), s,
                             np.ones(n, bool), np.ones(n, bool))

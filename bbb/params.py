@@ -35,11 +35,17 @@ class Params:
     S     -- distance between scatterer centres, mm (> 0)
     alpha -- normal restitution coefficient, Eq. (5) (0 < alpha ≤ 1)
     beta  -- tangential restitution coefficient, Eq. (6) (0 ≤ beta ≤ 1)
-    contact -- sustained-contact model: "stick" (default), "slide" or "coulomb"
+    tilt  -- inclination φ of the floor's plane, degrees (|tilt| ≤ 30; default 0): in floor
+             coordinates gravity is (−g sin φ, −g cos φ)
+    throw -- angle ψ of the vibration to the floor's plane, degrees (10 ≤ throw ≤ 170;
+             default 90, the paper's vertical vibration): the floor moves by
+             A·(cos ψ, sin ψ)·(−sin 2πft)
+    contact -- sustained-contact model: "stick" (default), "slide" or "coulomb"; only "stick"
+             on a tilted or thrown floor (bbb.conveyor has no sliding contact)
     mu    -- Coulomb friction coefficient (≥ 0; only with contact = "coulomb", else 0)
 
-    ``contact`` and ``mu`` are left out of :meth:`as_dict` at their defaults, so every
-    store and fingerprint made before they existed is unchanged.
+    ``tilt``, ``throw``, ``contact`` and ``mu`` are left out of :meth:`as_dict` at their
+    defaults, so every store and fingerprint of a scene without them is what it was before they existed.
     """
 
     g: float
@@ -49,6 +55,8 @@ class Params:
     S: float
     alpha: float
     beta: float
+    tilt: float = 0.0
+    throw: float = 90.0
     contact: str = "stick"
     mu: float = 0.0
 
@@ -73,8 +81,15 @@ class Params:
                f"R ≥ S/2 = {self.S / 2:g} (arcs must close the floor), or inf")
         _check("alpha", self.alpha, 0 < self.alpha <= 1, "0 < alpha ≤ 1")
         _check("beta", self.beta, 0 <= self.beta <= 1, "0 ≤ beta ≤ 1")
+        _check("tilt", self.tilt, abs(self.tilt) <= 30, "|tilt| ≤ 30 (degrees)")
+        _check("throw", self.throw, 10 <= self.throw <= 170, "10 ≤ throw ≤ 170 (degrees)")
         _check("mu", self.mu, self.mu >= 0 and (self.mu == 0 or self.contact == "coulomb"),
                "mu ≥ 0, and mu = 0 unless contact = 'coulomb'")
+        if self.contact != "stick" and self.transport:
+            raise ValueError(f"Params.contact = {self.contact!r} with tilt = {self.tilt:g}, "
+                             f"throw = {self.throw:g}: the conveyor (tilt ≠ 0 or throw ≠ 90) has "
+                             "only contact = 'stick'; allowed: contact = 'stick' with tilt/throw, "
+                             "or slide/coulomb with tilt = 0 and throw = 90")
 
     @classmethod
     def preset(cls, name: str, **overrides: float | str) -> Params:
@@ -85,8 +100,8 @@ class Params:
         unknown = set(overrides) - {fl.name for fl in fields(cls)}
         if unknown:
             raise ValueError(
-                f"unknown Params field(s) {sorted(unknown)}; "
-                "allowed: g, A, f, R, S, alpha, beta, contact, mu"
+                f"unknown Params field(s) {sorted(unknown)}; allowed: "
+                "g, A, f, R, S, alpha, beta, tilt, throw, contact, mu"
             )
         values.update(overrides)
         if "f" not in values:
@@ -111,9 +126,27 @@ class Params:
     def flat(self) -> bool:
         return math.isinf(self.R)
 
+    @property
+    def transport(self) -> bool:
+        """Whether the floor is tilted or thrown off the vertical (the conveyor kernel runs)."""
+        return self.tilt != 0.0 or self.throw != 90.0
+
+    def floor_frame(self) -> tuple[float, float, float, float]:
+        """(gx, gy, Ax, Ay): gravity's components (mm/s², pointing to −x, −y) and the floor's
+        amplitudes (mm) along and normal to its plane, as bbb.conveyor computes them."""
+        dev = math.radians(self.throw - 90.0)
+        return (self.g * math.sin(math.radians(self.tilt)),
+                self.g * math.cos(math.radians(self.tilt)),
+                -self.A * math.sin(dev), self.A * math.cos(dev))
+
     def as_dict(self) -> dict[str, float | str]:
-        """The fields, without ``contact``/``mu`` at their defaults (stick, 0)."""
+        """The fields; ``tilt``, ``throw``, ``contact``, ``mu`` only when they differ from 0, 90,
+        stick, 0."""
         d = asdict(self)
+        if d["tilt"] == 0.0:
+            del d["tilt"]
+        if d["throw"] == 90.0:
+            del d["throw"]
         if self.contact == "stick":
             del d["contact"]
         if self.mu == 0.0:

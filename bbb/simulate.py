@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 
+from .conveyor import evolve_ensemble_c
 from .ensemble import InitialState, initial_state
 from .kernel import evolve_ensemble
 from .numerics import Numerics
@@ -29,6 +30,7 @@ def simulate(
     numerics: Numerics | None = None,
     drop_height: tuple[float, float] = (0.0, 2.0),
     launch_speed: tuple[float, float] = (0.0, 200.0),
+    _force_conveyor: bool = False,
 ) -> SimRun:
     """Evolve ``n_particles`` independent particles for ``t_max`` seconds.
 
@@ -40,6 +42,9 @@ def simulate(
                          collisions and lift-offs together.
     initial           -- a family name (see ``bbb.ensemble``) or an explicit InitialState.
     seed              -- int or SeedSequence; the same seed gives bit-identical output.
+    A floor with ``tilt`` or ``throw`` (bbb.Params) runs bbb.conveyor's kernel; positions and
+    recorded x are then along the floor's plane in the lab (x = cell·S + d + X_f(t)).
+    ``_force_conveyor`` runs that kernel on the paper's floor too (tests compare the two).
     Memory is O(n_particles × (n_samples + record_collisions)), never O(collisions).
     """
     if not isinstance(params, Params):
@@ -85,10 +90,22 @@ def simulate(
     counters = np.zeros((n_particles, len(COUNTER_NAMES)), dtype=np.int64)
     held = np.zeros((n_particles, len(CONTACT_TIME_NAMES)))
     p = params
-    evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
-                    p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, float(t_max), times, pos,
-                    float(record_from), rec, numerics.tol_t, numerics.v_stick,
-                    numerics.max_step, counters, None if p.contact == "stick" else p.mu, held)
+    if _force_conveyor and p.contact != "stick":
+        raise ValueError("_force_conveyor runs bbb.conveyor, which has only contact = 'stick'")
+    if p.transport or _force_conveyor:
+        # tilted or thrown floor: its own compiled kernel; the paper's floor keeps bbb.kernel
+        evolve_ensemble_c(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
+                          p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, p.tilt, p.throw,
+                          float(t_max), times, pos, float(record_from), rec, numerics.tol_t,
+                          numerics.v_stick, numerics.max_step, counters)
+        contact_time = None  # the conveyor kernel does not time contact
+    else:
+        evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
+                        p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, float(t_max), times,
+                        pos, float(record_from), rec, numerics.tol_t, numerics.v_stick,
+                        numerics.max_step, counters, None if p.contact == "stick" else p.mu,
+                        held)
+        contact_time = {name: held[:, i].copy() for i, name in enumerate(CONTACT_TIME_NAMES)}
     return SimRun(
         params=params,
         numerics=numerics,
@@ -100,7 +117,7 @@ def simulate(
         n_recorded=counters[:, 3].copy(),
         counters={name: counters[:, i].copy() for i, name in enumerate(COUNTER_NAMES)},
         liftoffs=record_liftoffs,
-        contact_time={name: held[:, i].copy() for i, name in enumerate(CONTACT_TIME_NAMES)},
+        contact_time=contact_time,
     )
 
 

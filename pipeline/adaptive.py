@@ -35,7 +35,7 @@ are a function of the data at the frequencies before them, hence of the data onl
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from statistics import NormalDist
 
@@ -44,7 +44,7 @@ import numpy as np
 from bbb.extrema import Significance, critical_z, find_extrema
 
 __all__ = ["OPEN", "TARGET", "ZERO", "CAP", "STOP_LEGEND", "StoppingRule", "UnitState",
-           "advance", "decide", "refine_frequencies"]
+           "advance", "decide", "chunks_needed", "remaining", "refine_frequencies"]
 
 OPEN, TARGET, ZERO, CAP = 0, 1, 2, 3
 #: stop_reason codes as stored (the store's ``stop_reason`` array and its ``legend``)
@@ -84,12 +84,20 @@ def decide(rule: StoppingRule, n: int, ci: CI) -> tuple[int, int]:
             return ZERO, n
     if n >= rule.cap:
         return CAP, n
-    goal = max(rule.target_ci * max(D, 0.0) if math.isfinite(D) else 0.0, rule.d_resolved or 0.0)
+    return OPEN, min(2 * n, rule.cap, max(n + 1, chunks_needed(rule, n, ci)))
+
+
+def chunks_needed(rule: StoppingRule, n: int, ci: CI) -> int:
+    """The 1/sqrt(N) law's prediction, from the first ``n`` chunks and their (D, lo, hi), of
+    how many chunks in all meet the target (uncapped); 2 n when there is nothing to predict
+    from (D <= 0 without d_resolved, or no CI yet)."""
+    D, lo, hi = ci
+    hw = 0.5 * (hi - lo)
+    goal = max(rule.target_ci * max(D, 0.0) if math.isfinite(D) and rule.target_ci else 0.0,
+               rule.d_resolved or 0.0)
     if goal > 0 and math.isfinite(hw):
-        need = math.ceil(n * (hw / goal) ** 2)
-    else:
-        need = 2 * n  # nothing to predict from (D <= 0 without d_resolved, or no CI yet)
-    return OPEN, min(2 * n, rule.cap, max(n + 1, need))
+        return max(n, math.ceil(n * (hw / goal) ** 2))
+    return 2 * n
 
 
 @dataclass
@@ -100,6 +108,8 @@ class UnitState:
     n: int
     waves: list[int] = field(default_factory=list)
     reason: int = OPEN
+    #: the law's latest prediction of the chunks it ends with (capped; ``n`` until decided)
+    need: int = 0
 
 
 def advance(rule: StoppingRule, state: UnitState | None, n_done_prefix: int,
@@ -111,13 +121,28 @@ def advance(rule: StoppingRule, state: UnitState | None, n_done_prefix: int,
     if state is None:
         state = UnitState(min(rule.first, rule.cap), [min(rule.first, rule.cap)])
     while state.reason == OPEN and state.n <= n_done_prefix:
-        reason, n_next = decide(rule, state.n, ci_of(state.n))
+        ci = ci_of(state.n)
+        reason, n_next = decide(rule, state.n, ci)
         if reason != OPEN:
             state.reason = reason
+            state.need = state.n
         else:
+            state.need = min(rule.cap, max(n_next, chunks_needed(rule, state.n, ci)))
             state.n = n_next
             state.waves.append(n_next)
     return state
+
+
+def remaining(states: Iterable[UnitState], n_done: Iterable[int]) -> tuple[int, int]:
+    """(units still open, chunks they still need): for each open unit the law's latest
+    prediction of its final chunk count (at least what its current wave asks for) less its
+    ``n_done`` done chunks; what the waves' progress line shows."""
+    units = chunks = 0
+    for s, d in zip(states, n_done, strict=True):
+        if s.reason == OPEN:
+            units += 1
+            chunks += max(s.n, s.need) - d
+    return units, chunks
 
 
 def predicted_waves(first: int, n_needed: int, cap: int) -> int:

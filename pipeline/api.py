@@ -28,7 +28,7 @@ if TYPE_CHECKING:
     from distributed import Client
 
     from .run import RunReport
-    from .workflow import Study
+    from .study import Study
 
 __all__ = ["open_study", "reduced", "run_study", "load_study", "TABLE_UNITS"]
 

@@ -3,7 +3,7 @@
 
 ``bbb run WORKFLOW --frequencies 60,72`` runs only those frequencies of the workflow, into a
 store of their own (default ``runs/<name>-60Hz-72Hz.zarr``); chunk seeds are keyed by the
-frequency's value (pipeline/run.py), so its chunks are those of the whole sweep, bit for bit.
+frequency's value (pipeline/study.py), so its chunks are those of the whole sweep, bit for bit.
 ``bbb reduce STORE --workflow W`` reduces with W's analysis settings ([analysis] and
 ``accuracy.n_resamples``) without re-running; W must otherwise describe the stored data.
 

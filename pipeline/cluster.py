@@ -181,12 +181,21 @@ def check_slurm(timeout: float = 120.0) -> None:
 def work_left(study, store_path) -> bool:
     """Whether ``bbb run`` has chunks to compute in this store, found before any job is
     submitted; refuses, as the run would, a store held by another run or made by another
-    workflow (StoreError).  Lays the store out if it is new, as the run would."""
-    from .store import StudyStore, normalize_path, run_lock
+    workflow (StoreError).  Lays the store out if it is new, as the run would.
+
+    An adaptive store never has every chunk done (a (frequency, family) stops short of the
+    cap): it is finished when the wave rule, replayed as the run would (recorded stops are
+    read, not recomputed), leaves no (frequency, family) open and refinement adds nothing."""
+    from .lock import run_lock
+    from .store import StudyStore, normalize_path
+    from .waves import Waves
 
     path = normalize_path(store_path)
     with run_lock(path):
-        return not StudyStore.create_or_open(path, study).done().all()
+        store = StudyStore.create_or_open(path, study)
+        if not store.study.adaptive:
+            return not store.done().all()
+        return bool(Waves(store, echo=lambda _: None).prepare())
 
 
 @contextmanager
@@ -283,7 +292,7 @@ class WarmNumba(WorkerPlugin):
         self.study = study
 
     def setup(self, worker=None) -> None:
-        from .run import warm_numba
+        from .task import warm_numba
 
         path = os.path.join(tempfile.gettempdir(), f"bbb-numba-warm-{os.getuid()}.lock")
         with open(path, "a") as fh:

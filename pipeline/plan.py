@@ -51,7 +51,7 @@ from pathlib import Path
 
 import numpy as np
 
-from .workflow import Study
+from .study import Study
 
 __all__ = ["Cell", "Rates", "Overheads", "TaskRow", "Plan", "predict", "plan_table",
            "pilot_rates", "benchmark_rate", "particles_needed", "makespan", "CI_LAW", "BAND_EDGES"]
@@ -324,7 +324,7 @@ def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
                 todo.append((f, fam))
     when = {s.get("_measured") for _, s in caches.values() if s}
     if todo:
-        from .run import warm_numba
+        from .task import warm_numba
 
         warm_numba(study)
         if echo:

@@ -31,6 +31,17 @@ dD, dD_lo, dD_hi  D_half2 - D_half1 with its paired bootstrap CI over particles,
 dD_tol       what that CI must clear to flag: 5 % of D plus 1e-6 mm^2/s
 stationary   False where D depends on the run length (the CI of dD lies beyond +-dD_tol)
 verdict      the verdict's reasons, '; '-joined
+v, v_lo, v_hi  (scenes with tilt or throw only) drift velocity, mm/s, with its bootstrap CI
+             over particles (bbb.transport: slope of the mean displacement over the fit lags)
+D_drift, D_drift_lo, D_drift_hi  D about the drift (MSD of x - v t), mm^2/s, with its CI;
+             there the column D still holds the raw MSD's D, drift included
+Pe           Péclet number v S / D_drift
+dv, dv_lo, dv_hi  v of the analysed run's second half minus its first half, mm/s, paired CI
+steady       False where that CI lies beyond +-(5 % of |v| + 1e-6 mm/s): an acceleration (a
+             particle running away downhill), not a drift -- v and D_drift are then window means
+
+``mechanisms.parquet`` / ``.csv`` (stores with jumps or lyapunov): the Green–Kubo expansion
+and the Lyapunov exponent per frequency (columns in :mod:`pipeline.mechanisms`).
 
 ``counters.parquet`` / ``counters.csv`` (every store), one row per (frequency, family):
 collisions, sticks, liftoffs (and any other bbb counter) per particle per second, and the
@@ -62,15 +73,20 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from .store import COUNTERS, StudyStore, package_version
-from .workflow import Study
+from .adaptive import OPEN
+from .store import StudyStore, package_version
+from .store_layout import COUNTERS
+from .study import Study
 
 __all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir", "column_unit",
            "table_metadata", "write_table"]
 
 # (pattern, unit) by column name, first match wins; see the module docstring
-_UNITS = ((r"f", "Hz"), (r"D(_.*)?", "mm^2/s"), (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),
-          (r".*_per_s", "1/s"), (r"(Gamma|EB.*)", "1"), (r"n_.*", "1"), (r".*_frac(_lo|_hi)?", "1"))
+_UNITS = ((r"f", "Hz"), (r"lam(_lo|_hi)?", "1/s"), (r"lag_s", "s"),
+          (r"(lam_coll.*|lag|max_lag|frac_creep)", "1"), (r"D(_.*)?", "mm^2/s"),
+          (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),
+          (r".*_per_s", "1/s"), (r"d?v(_lo|_hi)?", "mm/s"), (r"(Gamma|EB.*|Pe)", "1"), (r"n_.*", "1"),
+          (r".*_frac(_lo|_hi)?", "1"))
 
 
 def default_out_dir(store_path: str, study: Study) -> str:
@@ -91,7 +107,8 @@ def reduce_store(store_path: str | os.PathLike | StudyStore,
     out = Path(out_dir if out_dir is not None else default_out_dir(store.path, study))
     out.mkdir(parents=True, exist_ok=True)
     done = store.done()
-    if not done.all():
+    stops = store.stops()
+    if not done.all() and not (stops is not None and (stops[1] != OPEN).all()):
         echo(f"{study.name}: {int((~done).sum())} of {done.size} chunks not done; "
              "reducing the done ones (re-run `bbb run` to finish)")
     tables = {"counters": counters_table(store, done)}
@@ -101,6 +118,13 @@ def reduce_store(store_path: str | os.PathLike | StudyStore,
         from .contact import contact_table
 
         tables["contact"] = contact_table(store, done)
+    if study.observables.jumps or study.observables.lyapunov:
+        from .mechanisms import mechanisms_table
+
+        tables["mechanisms"] = mechanisms_table(store, done)
+    # refined frequencies are appended to the store's frequency axis: the tables go by f
+    tables = {name: df.sort_values("f", kind="stable").reset_index(drop=True)
+              if "f" in df.columns else df for name, df in tables.items()}
     provenance = _provenance(store)
     for name, df in tables.items():
         write_table(df, out / f"{name}.parquet", {**provenance, "table": name})
@@ -193,9 +217,11 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
                                                    verdict.eb.get(name, math.nan))})
         row["verdict"] = "; ".join(verdict.reasons)
         row.update(_stationarity_columns(x, times, an, acc, seed))
+        if {"tilt", "throw"} & study.overrides.keys():  # a conveyor (even at tilt = 0)
+            row.update(_transport_columns(x, times, study, seed, fit))
         rows.append(row)
     df = pd.DataFrame(rows)
-    for col in ("ergodic", "families_agree", "eb_ok", "stationary"):
+    for col in ("ergodic", "families_agree", "eb_ok", "stationary", "steady"):
         if col in df:
             df[col] = df[col].astype("boolean")
     return df
@@ -235,6 +261,19 @@ def _stationarity_columns(x: np.ndarray, times: np.ndarray, an, acc,
         return {}
     return {"D_half1": s.D_half1, "D_half2": s.D_half2, "dD": s.dD, "dD_lo": s.dD_lo,
             "dD_hi": s.dD_hi, "dD_tol": s.tolerance, "stationary": s.stationary}
+
+
+def _transport_columns(x: np.ndarray, times: np.ndarray, study: Study,
+                       seed: np.random.SeedSequence, fit: dict) -> dict:
+    from bbb.transport import transport
+
+    an = study.analysis
+    t = transport(x, times, study.base_params["S"], n_resamples=study.accuracy.n_resamples,
+                  ci=an.ci, method=an.ci_method, seed=np.random.SeedSequence(
+                      seed.entropy, spawn_key=(*seed.spawn_key, zlib.crc32(b"transport"))), **fit)
+    return {"v": t.v, "v_lo": t.v_lo, "v_hi": t.v_hi, "D_drift": t.D, "D_drift_lo": t.D_lo,
+            "D_drift_hi": t.D_hi, "Pe": t.Pe, "dv": t.dv, "dv_lo": t.dv_lo, "dv_hi": t.dv_hi,
+            "steady": t.steady}
 
 
 def _ratio(a: float, b: float) -> float:

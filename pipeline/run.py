@@ -4,7 +4,8 @@ The cluster is a ``LocalCluster`` (processes, one thread each, ``workers`` of th
 the number of cores) or an existing scheduler given by address.  Every chunk's result depends
 only on (parameters, frequency, family, chunk) through its SeedSequence, so the store is the
 same bit for bit whatever the worker count or task order.  Chunks already marked done are
-skipped, so re-running the same workflow on the same store resumes it.
+skipped, so re-running the same workflow on the same store resumes it.  This module is the
+client side; what a task computes on a worker is :mod:`pipeline.task`.
 
 Fault injection (for tests): the environment variable ``BBB_FAIL_CHUNKS`` lists chunks, as
 ``F:FAMILY:CHUNK`` separated by commas (F in Hz), whose task writes its data and then fails
@@ -15,7 +16,6 @@ from __future__ import annotations
 
 import logging
 import os
-import socket
 import sys
 import time
 import traceback
@@ -23,9 +23,18 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from .store import KERNEL_ATTRS, StudyStore, _is_local, normalize_path, run_lock
+from .lock import run_lock
+from .store import StudyStore, _is_local, normalize_path
+from .study import Study
+from .task import (  # the task and what it reports, importable from here as before the split
+    FAIL_ENV,
+    ChunkKey,
+    ChunkResult,
+    KernelMismatch,
+    compute_chunk,
+    warm_numba,
+)
 from .waves import Waves
-from .workflow import Study
 
 __all__ = [
     "RunFailed",
@@ -39,32 +48,12 @@ __all__ = [
     "KernelMismatch",
 ]
 
-FAIL_ENV = "BBB_FAIL_CHUNKS"
-ChunkKey = tuple[float, str, int]  # (f in Hz, family name, chunk index)
-
-
 class RunFailed(RuntimeError):
     """A task failed; the message names the frequency, family, chunk and cause."""
 
 
 class SchedulerUnreachable(ValueError):
     """--scheduler names no reachable Dask scheduler (a usage error: nothing ran)."""
-
-
-class InjectedFailure(RuntimeError):
-    """The failure asked for by BBB_FAIL_CHUNKS."""
-
-
-@dataclass(frozen=True)
-class ChunkResult:
-    """What a task reports back: its key, collisions simulated, the wall time of the
-    simulation and of the store writes (s), and the worker's host."""
-
-    key: ChunkKey
-    collisions: int
-    seconds: float
-    write_seconds: float
-    host: str
 
 
 @dataclass
@@ -88,6 +77,7 @@ class RunReport:
     compute_wall: float = 0.0
     workers: int = 0
     dashboard: str | None = None
+    adaptive: bool = False  # n_chunks is then the store's capacity, not a plan
 
     @property
     def collisions_per_s(self) -> float:
@@ -95,74 +85,14 @@ class RunReport:
 
     def summary(self) -> str:
         done = self.skipped + len(self.computed)
-        return (f"{self.name}: {done}/{self.n_chunks} chunks done ({len(self.computed)} computed, "
+        # an adaptive store's chunk axis is a cap: most of it is never meant to be computed
+        count = (f"{done} chunks used (of {self.n_chunks} the cap allows)" if self.adaptive
+                 else f"{done}/{self.n_chunks} chunks done")
+        return (f"{self.name}: {count} ({len(self.computed)} computed, "
                 f"{self.skipped} already done), {self.collisions:.3g} collisions in "
                 f"{self.wall:.1f} s wall ({self.compute_wall:.1f} s computing, "
                 f"{self.task_seconds:.1f} s in tasks) on {self.workers} workers = "
                 f"{self.collisions_per_s:.3g} collisions/s -> {self.store}")
-
-
-# -------------------------------------------------------------------------------------------
-def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = False
-                  ) -> ChunkResult:
-    """The Dask task: simulate one chunk of particles and write it to its own store chunk."""
-    from bbb.simulate import simulate
-
-    t0 = time.perf_counter()
-    study = store.study
-    f, fam = study.frequencies[fi], study.families[mi]
-    _check_kernel(store)
-    acc, obs = study.accuracy, study.observables
-    run = simulate(
-        study.params(f), acc.chunk_size, acc.t_max, study.seed_sequence(f, fam, ci),
-        sample_times=study.sample_times() if obs.positions else None,
-        record_collisions=obs.collisions_record or 0, record_from=obs.collisions_from,
-        numerics=acc.numerics(), **fam.simulate_kwargs(),
-    )
-    seconds = time.perf_counter() - t0
-    store.write_chunk(fi, mi, ci, run, seconds, mark_done=not fail)
-    if fail:
-        raise InjectedFailure(f"{FAIL_ENV} asked this chunk to fail after writing its data")
-    return ChunkResult((f, fam.name, ci), int(run.counters["collisions"].sum()), seconds,
-                       time.perf_counter() - t0 - seconds, socket.gethostname())
-
-
-class KernelMismatch(RuntimeError):
-    """This worker's kernel (bbb sources, numba, numpy) is not the one that made the store."""
-
-
-def _check_kernel(store: StudyStore) -> None:
-    # The client checked the store against its own kernel; a worker of a remote cluster may
-    # run another installation of bbb.  Checked before anything is written.
-    from bbb.provenance import kernel_identity
-
-    attrs, mine = store.attrs(), kernel_identity()
-    for key in KERNEL_ATTRS:
-        if attrs.get(key) != mine[key]:
-            raise KernelMismatch(f"worker {socket.gethostname()} runs another kernel ({key}: "
-                                 f"worker {mine[key]}, store {attrs.get(key)}); allowed: workers "
-                                 "with the same bbb, numba and numpy as the store's")
-
-
-def warm_numba(study: Study) -> float:
-    """Compile (or load from numba's on-disk cache) everything a task runs; returns seconds.
-
-    One tiny simulate call per family with the study's observables, so that no task compiles
-    and no two processes write the same cache entry at once (numba issue #4807).
-    """
-    import numpy as np
-
-    from bbb.simulate import simulate
-
-    t0 = time.perf_counter()
-    obs = study.observables
-    t = min(0.05, study.accuracy.t_max)
-    for fam in study.families:
-        simulate(study.params(study.frequencies[0]), 2, t, 0,
-                 sample_times=np.array([0.0, t]) if obs.positions else None,
-                 record_collisions=2 if obs.collisions else 0, record_from=0.0,
-                 numerics=study.accuracy.numerics(), **fam.simulate_kwargs())
-    return time.perf_counter() - t0
 
 
 def parse_fail_chunks(spec: str | None) -> set[tuple[int, str, int]]:
@@ -218,7 +148,8 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
         store = StudyStore.create_or_open(store_path, study)
         store.consolidate()  # readable by xarray.open_zarr even if the run is interrupted
         done = store.done()
-        report = RunReport(study.name, store_path, done.size, int(done.sum()))
+        report = RunReport(study.name, store_path, done.size, int(done.sum()),
+                           adaptive=study.adaptive)
         if study.adaptive:
             # waves and refinement: the chunks to compute follow from the done ones
             waves = Waves(store, echo)
@@ -260,6 +191,7 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
             else:
                 waves.execute(client, fails, report, progress, compute_chunk, _failed)
                 store = waves.store
+                report.n_chunks = store.done().size  # refinement may have grown the store
                 echo(f"{study.name}: {waves.summary()}"
                      + (f"; {waves.rounds} refinement rounds, {len(store.study.refined)} "
                         "frequencies added" if store.study.refine else ""))

@@ -18,13 +18,15 @@ from importlib.resources.abc import Traversable
 from pathlib import Path
 
 __all__ = ["ROOT", "scene_names", "scene_path", "scene_label", "toml_dump", "draft_text",
-           "load_scene", "shipped_draft", "DRAFT_COLLISIONS", "DRAFT_RECORD"]
+           "load_scene", "shipped_draft", "DRAFT_COLLISIONS", "DRAFT_RECORD", "DRAFT_TARGET"]
 
 #: the source tree (the repository): labels and run logs are relative to it
 ROOT = Path(__file__).resolve().parent.parent
 #: draft accuracy of collision scenes (positions scenes use the plain "draft" preset)
 DRAFT_COLLISIONS = {"n_particles": 4, "chunk_size": 4, "t_max": 60.0}
 DRAFT_RECORD = {"record": 1000, "record_from": 20.0}
+#: draft accuracy of target-driven scenes: a loose target, small chunks, a low cap
+DRAFT_TARGET = {"target_ci": 0.15, "chunk_size": 64, "max_particles": 256}
 
 
 def _scene_folders() -> list[tuple[str, Traversable]]:
@@ -101,10 +103,18 @@ def toml_dump(doc: dict, prefix: str = "") -> str:
 
 def draft_text(text: str) -> str:
     """The same scene at draft accuracy: preset "draft"; for collision scenes also a few
-    particles, a 60 s run and collisions recorded from 20 s."""
+    particles, a 60 s run and collisions recorded from 20 s; for target-driven scenes
+    (``target_ci``) the loose target of DRAFT_TARGET, with d_resolved loosened by the same
+    factor."""
     doc = tomllib.loads(text)
     obs = doc.get("observables", {})
     acc: dict = {"preset": "draft"}
+    given = doc.get("accuracy", {})
+    if isinstance(given, dict) and given.get("target_ci") is not None:
+        acc.update(DRAFT_TARGET)
+        if given.get("d_resolved") is not None:
+            acc["d_resolved"] = float(given["d_resolved"]) * max(
+                1.0, DRAFT_TARGET["target_ci"] / float(given["target_ci"]))
     if isinstance(obs.get("collisions"), dict) or obs.get("collisions") is True:
         acc.update(DRAFT_COLLISIONS)
         coll = obs["collisions"] if isinstance(obs["collisions"], dict) else {}
@@ -112,6 +122,11 @@ def draft_text(text: str) -> str:
         coll["record"] = min(int(coll.get("record", 1000)), DRAFT_RECORD["record"])
         coll["record_from"] = DRAFT_RECORD["record_from"]
         obs["collisions"] = coll
+    if isinstance(obs.get("lyapunov"), dict):  # at most the draft's particles
+        from .accuracy import ACCURACY_PRESETS
+
+        n = acc.get("n_particles", ACCURACY_PRESETS["draft"]["n_particles"])
+        obs["lyapunov"] = {**obs["lyapunov"], "particles": min(obs["lyapunov"]["particles"], n)}
     doc["accuracy"] = acc
     doc["observables"] = obs
     return "# draft version written by pipeline.scenes.draft_text\n" + toml_dump(doc)

@@ -1,37 +1,5 @@
-"""The Zarr v3 store of one study: layout, chunk-aligned writes, done-markers, resume checks.
-
-Layout (``F`` frequencies, ``M`` families, ``N`` particles per (frequency, family) split into
-``C = N / chunk_size`` chunks, ``T`` sample times, ``K`` recorded collisions per particle):
-
-=============  ==========================================  ======  ===========================
-array          dims                                        dtype   chunks
-=============  ==========================================  ======  ===========================
-frequency      (frequency,)                 Hz             f8      whole
-family         (family,)                    name           str     whole
-initial        (family,)                    rest|dropped|..str     whole
-particle       (particle,)                  index          i8      whole
-chunk          (chunk,)                     index          i8      whole
-time           (time,)                      s              f8      whole    [positions]
-collision      (collision,)                 index          i8      whole    [collisions]
-field          (field,)          bbb.record.COLLISION_FIELDS  str  whole    [collisions]
-positions      (frequency, family, particle, time)  x, mm  f8      (1, 1, chunk_size, T)
-collisions     (frequency, family, particle, collision, field)  f8  (1, 1, chunk_size, K, n_fields)
-n_recorded     (frequency, family, particle)  valid rows   i8      (1, 1, chunk_size) [coll.]
-n_<counter>    (frequency, family, particle)  bbb counters  i8  (1, 1, chunk_size)
-held_time, sliding_time  (frequency, family, particle)  s  f8  (1, 1, chunk_size)  [contact]
-done           (frequency, family, chunk)   bool           b1      (1, 1, 1)
-chunk_seconds  (frequency, family, chunk)   simulate, s    f8      (1, 1, 1)   not reproducible
-n_chunks_used  (frequency, family)          chunks         i8      (1, 1)      [target_ci]
-stop_reason    (frequency, family)          STOP_LEGEND    i1      (1, 1)      [target_ci]
-refined        (frequency,)                 added by refine b1     like frequency  [refine]
-=============  ==========================================  ======  ===========================
-
-With ``target_ci`` the chunk axis is sized by the cap (max_particles); a (frequency, family)
-uses the first ``n_chunks_used`` chunks, and ``stop_reason`` says why it stopped
-(:data:`pipeline.adaptive.STOP_LEGEND`, also the array's ``legend`` attribute; 0 = not decided
-yet).  With ``refine`` the store grows along the frequency axis (:meth:`StudyStore.
-add_frequencies`): refined frequencies follow the workflow's own, ``refined`` marks them, and
-no chunk written before is rewritten.
+"""The Zarr v3 store of one study: opening, resume checks, chunk-aligned writes, done-markers,
+the root attributes and the fingerprint.  Which arrays it holds is :mod:`pipeline.store_layout`.
 
 One Dask task computes one (frequency, family, chunk) and writes exactly one chunk of every
 data array, so concurrent writers never share a chunk.  ``done`` is set only after the data:
@@ -51,14 +19,10 @@ and numbers; the nested ones (:data:`JSON_ATTRS`) are JSON strings, decoded by
 from __future__ import annotations
 
 import datetime as _dt
-import fcntl
 import hashlib
 import json
 import os
-import socket
 import warnings
-from collections.abc import Iterator
-from contextlib import contextmanager
 from dataclasses import dataclass
 from importlib import metadata
 from typing import Any
@@ -67,13 +31,22 @@ import numpy as np
 import zarr
 
 from bbb.provenance import kernel_identity
-from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES
+from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES
 
 from .schema import as_dict
-from .workflow import Study
+from .store_layout import (  # importable from here as before the split
+    COUNTERS,
+    FIELD_UNITS,
+    collision_field_units,
+    create_layout,
+    n_periods,
+)
+from .study import Study
 
-__all__ = ["StoreError", "StudyStore", "run_lock", "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
-           "package_version", "read_attrs", "store_fingerprint", "JSON_ATTRS", "KERNEL_ATTRS"]
+__all__ = ["StoreError", "StudyStore", "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
+           "package_version", "read_attrs", "store_fingerprint", "JSON_ATTRS", "KERNEL_ATTRS",
+           # of pipeline.store_layout, importable from here too
+           "COUNTERS", "FIELD_UNITS", "collision_field_units", "create_layout", "n_periods"]
 
 # 3: root attributes record the kernel (KERNEL_ATTRS) and are netCDF-safe (JSON_ATTRS are JSON
 #    strings); 2: collisions carry bbb.record.COLLISION_FIELDS (t, x, y, vx, vy, phase);
@@ -86,8 +59,6 @@ _OLDER_LAYOUTS = {2: "it records no kernel hash, so whether its chunks were comp
 JSON_ATTRS = ("workflow", "params", "numerics", "accuracy")
 #: root attributes naming the kernel that computed the chunks (bbb.provenance.kernel_identity)
 KERNEL_ATTRS = ("kernel_hash", "numba_version", "numpy_version")
-# Per-particle counters kept from bbb's SimRun.counters ('recorded' is stored as n_recorded).
-COUNTERS = tuple(c for c in COUNTER_NAMES if c != "recorded")
 SEEDING = ("SeedSequence(workflow seed, spawn_key=(round(f * 1000), "
            "zlib.crc32(family name), chunk index))")
 
@@ -184,7 +155,7 @@ class StudyStore:
         try:
             g = zarr.open_group(path, mode="w" if overwrite else "w-",
                                 attributes={"bbb_creating": True})
-            _create_layout(g, study)
+            create_layout(g, study)
             # The fingerprint goes last: a store without it was never completely laid out.
             g.attrs.update(_root_attrs(study))
             del g.attrs["bbb_creating"]
@@ -245,12 +216,14 @@ class StudyStore:
 
     # -- writing ---------------------------------------------------------------------------
     def write_chunk(self, fi: int, mi: int, ci: int, run: Any, seconds: float,
-                    mark_done: bool = True) -> None:
+                    mark_done: bool = True, extra: dict[str, np.ndarray] | None = None) -> None:
         """Write one task's results (a bbb SimRun) into its own chunk of every array, then
         mark it done.  Indices: fi frequency, mi family, ci chunk; seconds: its simulation time.
 
         Idempotent: Dask may run a task twice, and a rerun writes the same bytes.
         mark_done=False leaves a written chunk unfinished (fault injection in tests).
+        extra: {array name: values for this chunk's particles (leading axis)} ([jumps],
+        [lyapunov]); a shorter leading axis fills the chunk's first particles.
         """
         g = self.group("r+")
         sl = self.chunk_particles(ci)
@@ -265,6 +238,13 @@ class StudyStore:
         if obs.contact:
             for name in CONTACT_TIME_NAMES:
                 g[f"{name}_time"][fi, mi, sl] = run.contact_time[name]
+        for name, values in (extra or {}).items():
+            a = np.asarray(values)
+            rows = slice(sl.start, sl.start + a.shape[0])
+            if a.ndim == 1:
+                g[name][fi, mi, rows] = a
+            else:
+                g[name][fi, mi, rows, : a.shape[1]] = a
         g["chunk_seconds"][fi, mi, ci] = seconds
         # Only now, after every data array: the chunk is complete.
         if mark_done:
@@ -311,101 +291,6 @@ class StudyStore:
             zarr.consolidate_metadata(self.path)
 
 
-# -------------------------------------------------------------------------------------------
-@contextmanager
-def run_lock(path: str) -> Iterator[None]:
-    """Hold ``<store>.lock`` (beside a local store) while a run writes to the store.
-
-    The lock records the holder's host, pid and start time.  A second run is refused with
-    that information; a lock left by a killed run on this host (its pid is gone) is stale and
-    taken over.  fsspec URLs are not locked (no atomic create on object stores).
-    """
-    path = normalize_path(path)
-    if not _is_local(path):
-        yield
-        return
-    lock = path.rstrip("/") + ".lock"
-    me = {"host": socket.gethostname(), "pid": os.getpid(),
-          "started": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")}
-    try:
-        os.makedirs(os.path.dirname(os.path.abspath(lock)), exist_ok=True)
-    except OSError as e:
-        raise StoreError(f"{path}: cannot create its directory ({e.strerror})") from None
-    for _ in range(3):
-        try:
-            fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
-        except FileExistsError:
-            holder = _read_lock(lock)
-            if holder.get("host") == me["host"] and not _pid_alive(holder.get("pid")):
-                _remove_stale(lock, holder)  # its run was killed on this machine
-                continue
-            raise StoreError(
-                f"{path}: in use by another bbb run (host {holder.get('host', '?')}, pid "
-                f"{holder.get('pid', '?')}, since {holder.get('started', '?')}); if no run is "
-                f"active, delete {lock}") from None
-        except OSError as e:
-            raise StoreError(f"{path}: cannot create the lock {lock} ({e.strerror})") from None
-        with os.fdopen(fd, "w") as fh:
-            json.dump(me, fh)
-        break
-    else:
-        raise StoreError(f"{path}: could not take the lock {lock}; delete it if no run is active")
-    try:
-        yield
-    finally:
-        if _read_lock(lock).get("pid") == me["pid"]:
-            _remove(lock)
-
-
-def _remove_stale(lock: str, stale: dict) -> None:
-    """Remove ``lock`` if it still holds ``stale``.  Two runs that find the same stale lock must
-    not both take it over: the later one would remove the lock the first has just written.  So
-    the check and the removal happen under an exclusive flock of the lock's directory (no extra
-    file; where directories cannot be locked, e.g. on some NFS mounts, the check runs unlocked)."""
-    try:
-        dfd = os.open(os.path.dirname(lock) or ".", os.O_RDONLY)
-    except OSError:
-        dfd = None
-    try:
-        if dfd is not None:
-            try:
-                fcntl.flock(dfd, fcntl.LOCK_EX)
-            except OSError:
-                pass
-        if _read_lock(lock) == stale:
-            _remove(lock)
-    finally:
-        if dfd is not None:
-            os.close(dfd)  # releases the flock
-
-
-def _read_lock(lock: str) -> dict:
-    try:
-        with open(lock) as fh:
-            return json.load(fh)
-    except (OSError, ValueError):  # gone, or written only half by a killed run
-        return {}
-
-
-def _pid_alive(pid) -> bool:
-    if not isinstance(pid, int) or pid <= 0:
-        return False
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:  # exists, owned by someone else
-        return True
-    return True
-
-
-def _remove(path: str) -> None:
-    try:
-        os.remove(path)
-    except FileNotFoundError:
-        pass
-
-
 def _open_group(path: str) -> zarr.Group | None:
     try:
         return zarr.open_group(path, mode="r")
@@ -413,85 +298,6 @@ def _open_group(path: str) -> zarr.Group | None:
         return None
     except Exception as e:  # e.g. an unreadable file where the store should be
         raise StoreError(f"{path}: cannot open ({type(e).__name__}: {e})") from None
-
-
-def _create_layout(g: zarr.Group, study: Study) -> None:
-    acc, obs = study.accuracy, study.observables
-    F, M, N, C = len(study.frequencies), len(study.families), acc.n_particles, acc.n_chunks
-    cs = acc.chunk_size
-    # chunked by the workflow's own grid, so that refinement (which appends) keeps the chunks
-    n_base = max(1, len(study.base_frequencies))
-
-    def coord(name, values, dtype, units, long_name, dim=None, chunk=None):
-        arr = g.create_array(name, shape=(len(values),), dtype=dtype,
-                             chunks=(chunk or max(1, len(values)),),
-                             dimension_names=[dim or name],
-                             attributes={"units": units, "long_name": long_name})
-        arr[:] = np.asarray(values, dtype=dtype if dtype is not str else None)
-
-    def data(name, dims, shape, chunks, dtype, fill, units, long_name, **extra):
-        attrs = {"units": units, "long_name": long_name, **extra}
-        if "family" in dims:  # CF convention: xarray then shows `initial` as a coordinate
-            attrs["coordinates"] = "initial"
-        g.create_array(name, shape=shape, chunks=chunks, dtype=dtype, fill_value=fill,
-                       dimension_names=list(dims), attributes=attrs)
-
-    coord("frequency", list(study.frequencies), "float64", "Hz", "floor frequency f",
-          chunk=n_base)
-    if study.refine is not None:
-        added = {round(f * 1000) for f in study.refined}
-        coord("refined", [round(f * 1000) in added for f in study.frequencies], "bool", "",
-              "frequency added by adaptive refinement", dim="frequency", chunk=n_base)
-    coord("family", [f.name for f in study.families], str, "", "initial-condition family")
-    coord("initial", [f.initial for f in study.families], str, "", "initial condition kind",
-          dim="family")
-    coord("particle", np.arange(N), "int64", "", "particle index within the family")
-    coord("chunk", np.arange(C), "int64", "", f"ensemble chunk of {cs} particles")
-    if obs.positions:
-        times = study.sample_times()
-        coord("time", times, "float64", "s", "sample time")
-        data("positions", ("frequency", "family", "particle", "time"), (F, M, N, len(times)),
-             (1, 1, cs, len(times)), "float64", np.nan, "mm", "horizontal position x")
-    if obs.collisions:
-        K = obs.collisions_record
-        coord("collision", np.arange(K), "int64", "", f"collision index from t = "
-              f"{obs.collisions_from:g} s")
-        units = ", ".join(collision_field_units())
-        coord("field", list(COLLISION_FIELDS), str, units, "post-collision state component")
-        data("collisions", ("frequency", "family", "particle", "collision", "field"),
-             (F, M, N, K, len(COLLISION_FIELDS)), (1, 1, cs, K, len(COLLISION_FIELDS)), "float64",
-             np.nan, units, f"post-collision ({', '.join(COLLISION_FIELDS)}), NaN-padded")
-        data("n_recorded", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs), "int64",
-             0, "", "valid rows of collisions")
-    for name in COUNTERS:
-        data(f"n_{name}", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs), "int64", 0,
-             "", f"number of {name} up to t_max")
-    if obs.contact:
-        for name in CONTACT_TIME_NAMES:
-            data(f"{name}_time", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs),
-                 "float64", np.nan, "s", f"time {name} in sustained contact up to t_max")
-    data("done", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "bool", False, "",
-         "chunk completely written")
-    data("chunk_seconds", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "float64",
-         np.nan, "s", "wall time of the chunk's simulation (not reproducible)")
-    if acc.adaptive:
-        from .adaptive import STOP_LEGEND
-
-        legend = "; ".join(f"{k} {v}" for k, v in STOP_LEGEND.items())
-        data("n_chunks_used", ("frequency", "family"), (F, M), (1, 1), "int64", 0, "",
-             "chunks used: the first n_chunks_used chunks (0: not decided yet)")
-        data("stop_reason", ("frequency", "family"), (F, M), (1, 1), "int8", 0, "",
-             f"why sampling stopped ({legend})", legend=legend)
-
-
-#: units of the recorded collision fields (bbb.record.COLLISION_FIELDS), "1": dimensionless
-FIELD_UNITS = {"t": "s", "x": "mm", "y": "mm", "vx": "mm/s", "vy": "mm/s", "phase": "1"}
-
-
-def collision_field_units() -> tuple[str, ...]:
-    """Units of bbb.record.COLLISION_FIELDS in storage order ('?' for a field this module does
-    not know yet: tests/pipeline/test_store.py fails on it, so it is named here)."""
-    return tuple(FIELD_UNITS.get(name, "?") for name in COLLISION_FIELDS)
 
 
 def _root_attrs(study: Study) -> dict[str, Any]:

@@ -26,6 +26,9 @@ frequency, family and chunk):
 
 Reading needs no lock: a done chunk is complete before its marker is written, so a store can
 be verified while a run is still filling it.
+
+Size: one idea, a store checked against its own workflow; the three passes (attributes,
+layout, done chunks) fill one list of Problems and each is short, so they stay together.
 """
 
 from __future__ import annotations
@@ -46,19 +49,18 @@ from bbb.surface import cell_of, depth
 
 from .schema import as_dict
 from .store import (
-    COUNTERS,
     JSON_ATTRS,
     KERNEL_ATTRS,
     LAYOUT_VERSION,
     SEEDING,
     StoreError,
-    _create_layout,
     normalize_path,
     read_attrs,
     store_fingerprint,
 )
 from .store import package_version as _version
-from .workflow import Study
+from .store_layout import COUNTERS, create_layout
+from .study import Study
 
 __all__ = ["Problem", "VerifyReport", "verify_store", "ON_SURFACE_MM", "REQUIRED_ATTRS"]
 
@@ -206,7 +208,7 @@ def _check_attrs(attrs: dict[str, Any], problems: list[Problem]) -> Study | None
 def _check_layout(g: zarr.Group, study: Study, problems: list[Problem]) -> bool:
     """Arrays as `bbb run` lays them out for this study; False if chunks cannot be checked."""
     ref = zarr.open_group(zarr.storage.MemoryStore(), mode="w")
-    _create_layout(ref, study)
+    create_layout(ref, study)
     want = dict(ref.arrays())
     try:
         have = dict(g.arrays())

@@ -18,9 +18,9 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .adaptive import OPEN, STOP_LEGEND, StoppingRule, UnitState, advance, refine_frequencies
+from .adaptive import OPEN, STOP_LEGEND, StoppingRule, UnitState, advance, refine_frequencies, remaining
 from .store import StudyStore
-from .workflow import Study
+from .study import Study
 
 __all__ = ["Waves", "rule_of", "stop_seed", "unit_ci", "pooled_ci"]
 
@@ -226,6 +226,15 @@ class Waves:
     def _done(self, fi: int, mi: int) -> np.ndarray:
         return np.asarray(self.store.group()["done"][fi, mi], dtype=bool)
 
+    def progress_line(self) -> str:
+        """What the waves still need, e.g. "waves: 12 (f, family) mid-wave, need ~40 more
+        chunks; 100 target met, 20 resolved zero" (the need from the 1/sqrt(N) law)."""
+        done = self.store.done()
+        units = sorted(self.states)
+        k, n = remaining([self.states[u] for u in units],
+                         [int(done[fi, mi].sum()) for fi, mi in units])
+        return f"waves: {k} (f, family) mid-wave, need ~{n} more chunks; {self.summary()}"
+
     def _postfix(self, bar, outstanding) -> None:
-        waiting = sum(1 for s in outstanding.values() if s)
-        bar.set_postfix_str(f"{waiting} (f, family) in a wave; {self.summary()}", refresh=False)
+        if not bar.disable:  # the line reads the store: not for a bar nobody sees
+            bar.set_postfix_str(self.progress_line(), refresh=False)

@@ -34,27 +34,23 @@ record = 2000
 discard = 0.1
 ```
 
-Any mistake raises :class:`WorkflowError`, whose message is one line naming the file, the
-line (when it can be found), the key, and what is allowed.
+The result is a :class:`pipeline.study.Study` (also importable from here).  Any mistake raises
+:class:`WorkflowError`, whose message is one line naming the file, the line (when it can be
+found), the key, and what is allowed.
 """
 
 from __future__ import annotations
 
-import hashlib
-import json
 import re
 import sys
-from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
-
-import numpy as np
 
 from bbb.numerics import Numerics
 from bbb.params import Params
 
 from .accuracy import ACCURACY_PRESETS, NUMERICS_KNOBS
-from .schema import InputError, Reader, as_dict, declared, tname
+from .schema import InputError, Reader, declared, tname
+from .study import Study  # the validated workflow; importable from here as before the split
 from .workflow_keys import (
     ALLOWED_F,
     DEFAULT_ANALYSIS,
@@ -94,157 +90,6 @@ class WorkflowError(InputError):
     """A malformed workflow: one line with file, line, key and what is allowed."""
 
 
-# -- the validated workflow -------------------------------------------------------------------
-@dataclass(frozen=True)
-class Study:
-    """A validated workflow.  Frequencies are in Hz, rounded to 1 mHz."""
-
-    name: str
-    source: str
-    seed: int
-    preset: str
-    overrides: dict[str, float | str]
-    frequencies: tuple[float, ...]
-    families: tuple[Family, ...]
-    accuracy: Accuracy
-    observables: Observables
-    analysis: Analysis
-    #: adaptive frequency refinement ([frequencies] refine), or None
-    refine: RefineTable | None = None
-    #: frequencies added by refinement, Hz, in the order they joined the store; they follow
-    #: the workflow's own grid in ``frequencies``
-    refined: tuple[float, ...] = ()
-    text: str = field(default="", compare=False, repr=False)
-
-    # -- derived quantities -------------------------------------------------------------------
-    def params(self, f: float) -> Params:
-        return Params.preset(self.preset, f=float(f), **self.overrides)
-
-    @property
-    def base_params(self) -> dict[str, float]:
-        """The resolved parameters except f (which varies over the grid)."""
-        d = Params.preset(self.preset, f=1.0, **self.overrides).as_dict()
-        del d["f"]
-        return d
-
-    @property
-    def f_mhz(self) -> tuple[int, ...]:
-        return tuple(round(f * 1000) for f in self.frequencies)
-
-    @property
-    def base_frequencies(self) -> tuple[float, ...]:
-        """The workflow's own frequencies, Hz (``frequencies`` without the refined ones)."""
-        added = {round(f * 1000) for f in self.refined}
-        return tuple(f for f in self.frequencies if round(f * 1000) not in added)
-
-    @property
-    def adaptive(self) -> bool:
-        """Whether chunks are computed in waves (target_ci) or frequencies added (refine)."""
-        return self.accuracy.adaptive or self.refine is not None
-
-    def with_refined(self, added: tuple[float, ...]) -> Study:
-        """The study whose store also holds the refined frequencies ``added`` (Hz, in store
-        order), appended after the workflow's own."""
-        base = self.base_frequencies
-        return replace(self, frequencies=base + tuple(added), refined=tuple(added))
-
-    def sample_times(self) -> np.ndarray:
-        """Position sample times, s: 0, dt, ..., t_max."""
-        n = round(self.accuracy.t_max / self.accuracy.sample_dt)
-        return np.arange(n + 1, dtype=np.float64) * self.accuracy.sample_dt
-
-    def seed_sequence(self, f: float, family: Family, chunk: int) -> np.random.SeedSequence:
-        """The seed of one chunk, keyed by values (f in mHz, family name hash, chunk index), so
-        adding frequencies or families never changes the results of the others."""
-        return np.random.SeedSequence(self.seed, spawn_key=(round(f * 1000), family.key, chunk))
-
-    def with_frequencies(self, frequencies: tuple[float, ...]) -> Study:
-        """The same study at some of its frequencies (Hz): every chunk keeps its seed, so it
-        computes the same numbers as in the whole sweep."""
-        mhz = {round(f * 1000) for f in frequencies}
-        return replace(self, frequencies=tuple(f for f in self.base_frequencies
-                                               if round(f * 1000) in mhz), refined=())
-
-    # -- serialisation ------------------------------------------------------------------------
-    def to_dict(self) -> dict[str, Any]:
-        """Everything resolved (preset numbers written out), JSON-able."""
-        d = {
-            "name": self.name,
-            "source": self.source,
-            "seed": self.seed,
-            "params": {"preset": self.preset, **self.overrides},
-            "resolved_params": self.base_params,
-            "frequencies": list(self.frequencies),
-            "families": [_drop_none(as_dict(fam)) for fam in self.families],
-            "accuracy": as_dict(self.accuracy),
-            "observables": as_dict(self.observables),
-            "analysis": as_dict(self.analysis),
-        }
-        # only when used, so that the stored workflow of every older scene stays as it was
-        if self.refine is not None:
-            d["refine"] = as_dict(self.refine)
-        if self.refined:
-            d["refined"] = list(self.refined)
-        return d
-
-    @classmethod
-    def from_dict(cls, d: dict[str, Any], text: str = "") -> Study:
-        params = dict(d["params"])
-        preset = params.pop("preset")
-        fams = tuple(
-            Family(
-                name=fd["name"],
-                initial=fd["initial"],
-                drop_height=_tuple_or_none(fd.get("drop_height")),
-                launch_speed=_tuple_or_none(fd.get("launch_speed")),
-                description=fd.get("description", ""),
-            )
-            for fd in d["families"]
-        )
-        return cls(
-            name=d["name"],
-            source=d["source"],
-            seed=int(d["seed"]),
-            preset=preset,
-            overrides={k: v if k == "contact" else float(v) for k, v in params.items()},
-            frequencies=tuple(float(f) for f in d["frequencies"]),
-            families=fams,
-            accuracy=Accuracy(**d["accuracy"]),
-            observables=Observables(**d["observables"]),
-            analysis=Analysis(**d["analysis"]),
-            refine=RefineTable(**d["refine"]) if d.get("refine") is not None else None,
-            refined=tuple(float(f) for f in d.get("refined", ())),
-            text=text,
-        )
-
-    def data_identity(self) -> dict[str, Any]:
-        """The parts that determine the stored numbers (not the name, not reduce settings)."""
-        acc = as_dict(self.accuracy, identity=True)
-        del acc["preset"], acc["n_resamples"]
-        d = {
-            "seed": self.seed,
-            "params": self.base_params,
-            "f_mhz": [round(f * 1000) for f in self.base_frequencies],
-            "families": [_drop_none(as_dict(fam, identity=True)) for fam in self.families],
-            "accuracy": acc,
-            "observables": as_dict(self.observables, identity=True),
-        }
-        if self.adaptive:
-            # Which chunks and frequencies get computed depends on the CI of D, so on the
-            # settings of that CI too (absent for fixed-N scenes: their fingerprints stay).
-            an = self.analysis
-            d["stopping"] = {"n_resamples": self.accuracy.n_resamples, "ci": an.ci,
-                             "ci_method": an.ci_method, "discard": an.discard,
-                             "fit_from": an.fit_from, "fit_to": an.fit_to}
-        if self.refine is not None:
-            d["refine"] = as_dict(self.refine)
-        return d
-
-    def fingerprint(self) -> str:
-        blob = json.dumps(self.data_identity(), sort_keys=True, default=_json_default)
-        return hashlib.sha256(blob.encode()).hexdigest()
-
-
 # -- reading ----------------------------------------------------------------------------------
 def load_workflow(path: str | Path) -> Study:
     """Read and validate a workflow file; raises WorkflowError (one line) on any mistake."""
@@ -282,10 +127,15 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
                 path = ("params", "preset")
             r.fail(path, f"invalid parameters at f = {f:g} Hz: {e}")
     acc = _accuracy(r, doc)
+    obs = _observables(r, doc, acc)
+    conveyor = {"tilt": 0.0, "throw": 90.0}  # their values on the paper's floor
+    moved = [k for k, v in conveyor.items() if overrides.get(k, v) != v]
+    if obs.contact and moved:  # the conveyor kernel does not time contact (bbb.simulate)
+        r.fail(("observables", "contact"), f"not recorded on a conveyor (params {moved[0]} = "
+               f"{overrides[moved[0]]:g})", "[observables.contact] only at tilt = 0, throw = 90")
     return Study(name=name, source=source, seed=st["seed"], preset=preset, overrides=overrides,
                  frequencies=freqs, families=_families(r, doc), accuracy=acc,
-                 observables=_observables(r, doc, acc), analysis=_analysis(r, doc),
-                 refine=refine, text=text)
+                 observables=obs, analysis=_analysis(r, doc), refine=refine, text=text)
 
 
 def _params(r: Reader, doc: dict) -> tuple[str, dict[str, float | str]]:
@@ -426,7 +276,8 @@ def _target_keys(r: Reader, vals: dict, raw: dict) -> None:
 
 
 def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
-    on = "[observables.positions] and/or [observables.collisions]"
+    on = ("[observables.positions] and/or [observables.collisions] (also [observables.contact], "
+          "[observables.jumps], [observables.lyapunov])")
     if "observables" not in doc:
         r.fail(("observables",), "missing", on)
     obs = r.table(doc["observables"], ("observables",), ObservablesTable, {"t_max": acc.t_max})
@@ -436,11 +287,19 @@ def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
     if adaptive and obs["positions"] is None:
         r.fail(("observables", "positions"), f"{adaptive} needs D, so positions",
                "[observables.positions] beside " + adaptive)
-    coll = obs["collisions"]
+    coll, lyap = obs["collisions"], obs["lyapunov"]
+    if lyap is not None and lyap.particles > acc.n_particles:
+        r.fail(("observables", "lyapunov", "particles"),
+               f"{lyap.particles} > n_particles = {acc.n_particles}",
+               f"1 … {acc.n_particles} (accuracy n_particles)")
     return Observables(positions=obs["positions"] is not None,
                        collisions_record=coll.record if coll else None,
                        collisions_from=float(coll.record_from) if coll else 0.0,
-                       contact=obs["contact"] is not None)
+                       contact=obs["contact"] is not None,
+                       jumps=obs["jumps"] is not None,
+                       lyapunov_particles=lyap.particles if lyap else None,
+                       lyapunov_d0=float(lyap.d0) if lyap else 1e-8,
+                       lyapunov_discard=float(lyap.discard) if lyap else 0.1)
 
 
 def _analysis(r: Reader, doc: dict) -> Analysis:
@@ -483,20 +342,6 @@ def _field_of(e: ValueError, cls: str) -> str | None:
 def _has_refine(doc: dict) -> bool:
     fr = doc.get("frequencies")
     return isinstance(fr, dict) and fr.get("refine") not in (None, False)
-
-
-def _drop_none(d: dict) -> dict:
-    return {k: (list(v) if isinstance(v, tuple) else v) for k, v in d.items() if v is not None}
-
-
-def _tuple_or_none(v):
-    return None if v is None else tuple(float(x) for x in v)
-
-
-def _json_default(o):
-    if isinstance(o, tuple):
-        return list(o)
-    raise TypeError(type(o))
 
 
 if __name__ == "__main__":

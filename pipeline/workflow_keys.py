@@ -73,6 +73,14 @@ class ParamsTable:
                               default_doc="preset")
     beta: float | None = key(None, "tangential restitution, Eq. (6)", allowed="0 <= beta <= 1",
                              default_doc="preset")
+    # the conveyor (bbb.conveyor, docs/physics.md "Transport"); omit_default and left out of
+    # Params.as_dict at 0 and 90, so every scene without them keeps its fingerprint
+    tilt: float | None = key(None, "inclination of the floor's plane (downhill towards -x)",
+                             allowed="|tilt| <= 30 (degrees)", omit_default=True,
+                             default_doc="0 (level)")
+    throw: float | None = key(None, "angle of the vibration to the floor's plane",
+                              allowed="10 <= throw <= 170 (degrees)", omit_default=True,
+                              default_doc="90 (vertical, the paper's)")
     contact: str = key("stick", "sustained-contact model (docs/physics.md, Contact models)",
                        choices=CONTACT_MODELS)
     mu: float | None = key(None, "Coulomb friction coefficient", allowed="mu >= 0",
@@ -202,12 +210,32 @@ class ContactTable:
 
 
 @dataclass(frozen=True)
+class JumpsTable:
+    """Δx over every floor period 0 … floor(t_max f) (the Green–Kubo expansion).  No keys."""
+
+
+@dataclass(frozen=True)
+class LyapunovTable:
+    particles: int = key(REQUIRED, "particles per (frequency, family) whose largest Lyapunov "
+                         "exponent is measured: the first ones of the ensemble",
+                         gt=0, note="at most n_particles")
+    d0: float = key(1e-8, "separation of the companion trajectory after each renormalisation",
+                    units="g/ω² and g/ω", gt=0, lt=1e-3)
+    discard: float = key(0.1, "periods dropped at the start as a transient",
+                         units="fraction of t_max", ge=0, lt=0.9)
+
+
+@dataclass(frozen=True)
 class ObservablesTable:
     positions: PositionsTable | None = key(None, "x at the sample times 0, sample_dt, ..., t_max "
                                        "(an empty [observables.positions] switches it on)")
     collisions: CollisionsTable | None = key(None, "post-collision states (t, x, y, vx, vy, phase)")
     contact: ContactTable | None = key(None, "per-particle time held and time sliding, s "
                                        "(an empty [observables.contact] switches it on)")
+    jumps: JumpsTable | None = key(None, "x(n+1)/f − x(n/f) for every floor period n "
+                                   "(an empty [observables.jumps] switches it on)")
+    lyapunov: LyapunovTable | None = key(None, "per-particle largest Lyapunov exponent "
+                                         "(bbb.lyapunov, two trajectories)")
 
 
 @dataclass(frozen=True)
@@ -221,8 +249,17 @@ class Observables:
     positions: bool
     collisions_record: int | None = None
     collisions_from: float = 0.0
-    # declared omit_default: a store made before it existed keeps its fingerprint
+    # declared omit_default: a store made before these existed keeps its fingerprint
     contact: bool = key(False, "time held and sliding per particle", omit_default=True)
+    jumps: bool = key(False, "Δx over every floor period", omit_default=True)
+    lyapunov_particles: int | None = key(None, "particles with a Lyapunov exponent",
+                                         omit_default=True)
+    lyapunov_d0: float = key(1e-8, "companion separation", omit_default=True)
+    lyapunov_discard: float = key(0.1, "transient of λ, fraction of t_max", omit_default=True)
+
+    @property
+    def lyapunov(self) -> bool:
+        return self.lyapunov_particles is not None
 
     @property
     def collisions(self) -> bool:
@@ -267,6 +304,7 @@ SECTIONS: list[tuple[str, type, str]] = [
     ("[accuracy]", Accuracy, '`accuracy = "NAME"` for a preset as it is'),
     ("[observables]", ObservablesTable, "at least one; required"),
     ("[observables.collisions]", CollisionsTable, ""),
+    ("[observables.lyapunov]", LyapunovTable, "e.g. `[observables.lyapunov] particles = 64`"),
     ("[analysis]", Analysis, "settings of `bbb reduce`, not of the stored data"),
 ]
 TABLES = ("study", "params", "frequencies", "families", "accuracy", "observables", "analysis")

@@ -30,7 +30,7 @@ Modules (every public name is re-exported here, so ``from bbb.stats import X`` w
 
 from __future__ import annotations
 
-from .bootstrap import BootstrapCI, bootstrap_D
+from .bootstrap import BootstrapCI, bootstrap_D, bootstrap_mean
 from .ergodicity import (
     DEFAULT_CV_MAX,
     DEFAULT_EB_TOLERANCE,
@@ -75,6 +75,7 @@ __all__ = [
     "diffusion_coefficient",
     "per_particle_D",
     "bootstrap_D",
+    "bootstrap_mean",
     "ergodicity_breaking",
     "eb_brownian",
     "ergodic_verdict",

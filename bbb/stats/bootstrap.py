@@ -11,7 +11,7 @@ from numpy.typing import ArrayLike, NDArray
 from .fit import DEFAULT_DISCARD, _per_particle_fit, _regime
 from .inputs import _as_positions, _as_times
 
-__all__ = ["BootstrapCI", "bootstrap_D"]
+__all__ = ["BootstrapCI", "bootstrap_D", "bootstrap_mean"]
 
 _FLOAT = NDArray[np.float64]
 # Largest number of resample indices held at once in the bootstrap (≈ 32 MB).
@@ -73,6 +73,20 @@ def bootstrap_D(
     reg = _regime(xs.shape[1], times, fit_from, fit_to, discard)
     d_i, _ = _per_particle_fit(xs, reg)
     return _bootstrap_mean(d_i, int(n_resamples), ci, _rng(seed), method)
+
+
+def bootstrap_mean(values: ArrayLike, *, n_resamples: int, ci: float = 0.95,
+                   seed: int | np.random.SeedSequence, method: str = "percentile") -> BootstrapCI:
+    """The mean of per-particle ``values`` (any unit) with the bootstrap CI over particles that
+    :func:`bootstrap_D` gives D (same resampling, levels and methods)."""
+    if method not in _METHODS:
+        raise ValueError(f"method = {method!r}; allowed: {', '.join(_METHODS)}")
+    if not 0.0 < ci < 1.0:
+        raise ValueError(f"ci = {ci!r} must be a confidence level in (0, 1)")
+    v = np.asarray(values, dtype=np.float64).ravel()
+    if v.size < 2 or not np.all(np.isfinite(v)):
+        raise ValueError("bootstrap over particles needs at least 2 finite values")
+    return _bootstrap_mean(v, int(n_resamples), ci, _rng(seed), method)
 
 
 def _rng(seed: int | np.random.SeedSequence) -> np.random.Generator:

@@ -1,4 +1,8 @@
-"""Ergodicity: the ergodicity-breaking parameter EB, its Brownian value, and the verdict."""
+"""Ergodicity: the ergodicity-breaking parameter EB, its Brownian value, and the verdict.
+
+Size: one idea, the calibrated ergodicity rule; EB and its Brownian value are the rule's part
+(b), and ergodic_verdict is one decision whose components are judged together.
+"""
 
 from __future__ import annotations
 

@@ -30,27 +30,33 @@ def gap_along_flights(p: Params, rows: np.ndarray, n_grid: int = 400,
     lift-offs recorded (7 columns, ``event`` = 1) a flight starts at a collision or a lift-off
     and ends at a collision; the stretch from a stuck collision to its lift-off is carried, not
     flown.  Without them, flights that start stuck (velocity = floor velocity, vx = 0) are
-    skipped: their lift-off time is not recorded."""
+    skipped: their lift-off time is not recorded.  A tilted or thrown floor (``tilt`` φ,
+    ``throw`` ψ): gravity (−g sin φ, −g cos φ), arcs displaced by A(cos ψ, sin ψ)(−sin ωt)."""
     worst = math.inf
     checked = 0
     w = p.omega
+    phi, psi = math.radians(p.tilt), math.radians(p.throw)
+    conveyor = p.transport
+    gx, gy = (p.g * math.sin(phi), p.g * math.cos(phi)) if conveyor else (0.0, p.g)
+    ax, ay = (p.A * math.cos(psi), p.A * math.sin(psi)) if conveyor else (0.0, p.A)
     events = rows.shape[1] > 6
     for k in range(rows.shape[0] - 1):
         t0, x0, y0, vx, vy, ph = rows[k, :6]
         duration = rows[k + 1, 0] - t0
-        vf = -p.A * w * math.cos(2 * math.pi * ph)
+        vf = -ay * w * math.cos(2 * math.pi * ph)
+        vfx = -ax * w * math.cos(2 * math.pi * ph)
         # a flight ends at a collision (0, or 4: one starting sliding contact) and never
         # starts at a contact start or stop (those begin sliding, checked by trajectory_check)
         if events and (rows[k + 1, 6] not in (0.0, 4.0) or rows[k, 6] in (4.0, 6.0)):
             continue
-        if not events and vx == 0.0 and abs(vy - vf) < 1e-9:
+        if not events and abs(vx - vfx) < 1e-9 and abs(vy - vf) < 1e-9:
             continue
         n = max(n_grid, int(per_period * duration * p.f))
         tau = np.linspace(0.0, duration, n + 2)[1:-1]
         s = ph / p.f + tau
-        _, dd = cell_of(x0 + vx * tau, p.S)
-        surface = -p.A * np.sin(w * s) - depth(dd, p.R)
-        yp = y0 + vy * tau - 0.5 * p.g * tau * tau
+        _, dd = cell_of(x0 + vx * tau - 0.5 * gx * tau * tau + ax * np.sin(w * s), p.S)
+        surface = -ay * np.sin(w * s) - depth(dd, p.R)
+        yp = y0 + vy * tau - 0.5 * gy * tau * tau
         if tau.size:
             worst = min(worst, float(np.min(yp - surface)))
         checked += 1

@@ -39,7 +39,7 @@ MAX_FLIGHTS_CHECKED = 3000
 A_1000HZ = 3.0 * G / (2 * math.pi * 1000.0) ** 2
 
 
-def params(**changes: float) -> Params:
+def params(**changes: float | str) -> Params:
     return Params(**{**BASE, **changes})
 
 
@@ -175,6 +175,8 @@ def invariant_violations(p: Params, run: SimRun, per_period: int = 200, flights:
                 off_surface=f["clock"] + f["off_parabola"] + f["off_surface"], rule=f["velocity"],
                 liftoff=f["carried"] + f["liftoff_state"] + f["liftoff_time"] + f["stuck_flight"],
                 gap=f["below"] + f["uncertified"], messages=total.messages,
+                contact=f["contact_start"] + f["contact_path"] + f["contact_normal"] + f["contact_event"],
+                contacts=total.contacts,
                 anomalies=int(run.counters["anomalies"].sum()), flights=n_flights, worst_gap=worst_gap,
                 below=below)
 
@@ -451,8 +453,35 @@ def phase_follows_the_clock(p: Params, st: InitialState, run: SimRun) -> None:
         assert np.max(np.minimum(err, 1.0 - err)) < 1e-9
 
 
+def held_only_where_the_model_can_hold(p: Params, st: InitialState, run: SimRun) -> None:
+    """Contact models: a particle is held at rest (a collision row or a stop at rest whose
+    next event is at the same x, i.e. it did not slide on) only where the model can hold it:
+    an arc top, a cusp, or (Coulomb) |tan θ| ≤ μ; and some particle slid (the case exercises
+    the contact phase, unless μ exceeds the steepest slope, tan θ at the cusp).  A stop where
+    static friction cannot hold slides back: not held."""
+    if p.mu * math.sqrt(p.R**2 - p.S**2 / 4) < p.S / 2:
+        assert np.sum(run.contact_time["sliding"]) > 0
+    for i in range(run.n_particles):
+        ev = events_of(run, i)
+        stays = np.append(ev[1:, 1] == ev[:-1, 1], True)
+        held = ((ev[:, 6] == 0.0) | (ev[:, 6] == 6.0)) & is_stuck(p, ev) & stays
+        _, d = cell_of(ev[held, 1], p.S)
+        ad = np.abs(d)
+        q = np.sqrt(np.maximum(p.R**2 - d * d, 0.0))
+        ok = (ad == 0.0) | (np.abs(ad - 0.5 * p.S) <= 1e-12) | (ad <= p.mu * q * (1 + 1e-12))
+        assert np.all(ok), d[~ok]
+
+
 FLAT = math.inf
 CASES: list[Case] = [
+    Case("slide at 54 Hz from rest: held only at tops and cusps", params(f=54.0, contact="slide"),
+         "rest", held_only_where_the_model_can_hold, t_max=2.0),
+    Case("coulomb mu=0.05 at 54 Hz from rest: held only where static friction can",
+         params(f=54.0, contact="coulomb", mu=0.05), "rest", held_only_where_the_model_can_hold,
+         t_max=2.0),
+    Case("coulomb mu=2 Gamma=29 (A=2): held only where static friction can",
+         params(A=2.0, contact="coulomb", mu=2.0), "rest", held_only_where_the_model_can_hold,
+         t_max=5.0),
     Case("alpha=1 flat motionless floor: energy conserved", params(A=0.0, R=FLAT, alpha=1.0, beta=1.0),
          "dropped", energy_is_conserved, n=3, t_max=10.0, family_kw=dict(drop_height=(1.0, 3.0))),
     Case("alpha=1e-6 (plastic): every collision sticks, x never changes", params(alpha=1e-6),
@@ -543,6 +572,12 @@ def test_every_stuck_particle_is_carried_and_lifts_off_when_the_floor_first_lets
 def test_every_flight_is_certified_above_the_surface(case):
     v = violations(case.name)
     assert v["gap"] == 0, v["messages"]
+
+
+@pytest.mark.parametrize("case", CASES, ids=IDS)
+def test_every_sliding_stretch_follows_the_contact_equations(case):
+    v = violations(case.name)
+    assert v["contact"] == 0, v["messages"]
 
 
 @pytest.mark.parametrize("case", CASES, ids=IDS)

@@ -53,9 +53,9 @@ def test_editing_a_kernel_source_changes_the_hash(tmp_path):
 def test_bumping_the_version_string_leaves_the_hash_alone(tmp_path):
     root = _copy_of_bbb(tmp_path)
     init = root / "bbb" / "__init__.py"
-    text = init.read_text()
-    assert '__version__ = "' in text
-    init.write_text(text.replace('__version__ = "', '__version__ = "99.'))
+    # the version comes from the package metadata; a release that changes it changes only
+    # __init__.py's view of it, which the kernel hash leaves out
+    init.write_text(init.read_text() + '\n__version__ = "99.0"\n')
     out = _python("import bbb; from bbb.provenance import kernel_hash; "
                   "print(bbb.__version__); print(kernel_hash())", root).splitlines()
     assert out[0].startswith("99.") and out[1] == kernel_hash()

@@ -22,6 +22,7 @@ from pipeline.adaptive import (
     advance,
     predicted_waves,
     refine_frequencies,
+    remaining,
 )
 from pipeline.cli import _status_text
 from pipeline.run import RunFailed, run_study
@@ -174,6 +175,16 @@ def test_an_unreachable_target_stops_at_the_cap_and_says_so(tmp_path):
     assert "4/4 cap" in _status_text(StudyStore.open(store))
 
 
+def test_the_run_summary_counts_the_chunks_used_against_the_cap(tmp_path):
+    """54 Hz from rest: D = 0 is resolved by the first chunk; the summary must not call the
+    other 7 chunks of the cap undone work."""
+    text = (SCENE.replace("[54.0, 60.0, 72.0]", "[54.0]")
+            .replace('[families.launched]\ninitial = "launched"\n', ""))
+    report = run_study(parse_workflow(text, "zero.toml"), tmp_path / "zero.zarr", workers=1,
+                       **QUIET)
+    assert report.summary().startswith("adaptive: 1 chunks used (of 8 the cap allows)")
+
+
 def test_d_near_zero_is_resolved_only_with_an_absolute_half_width():
     """D = 0 exactly (no particle moves): a relative target can never be met; d_resolved
     stops it at once."""
@@ -262,3 +273,58 @@ def test_growing_the_store_by_a_frequency_leaves_every_written_chunk_byte_identi
               .with_frequencies((63.123,)), alone, workers=1, **QUIET)
     a = zarr.open_group(str(alone), mode="r")
     assert np.array_equal(g["positions"][3], a["positions"][0])
+
+
+# -- loose ends: finished stores, table order, progress ------------------------------------------
+def test_a_finished_adaptive_store_has_no_work_left_and_an_open_unit_has(scene, two_workers,
+                                                                          tmp_path):
+    """work_left replays the wave rule: the finished store (chunks short of the cap, every
+    unit stopped) needs nothing; reopening one stopped unit with its last chunk undone does."""
+    import shutil
+
+    from pipeline.cluster import work_left
+
+    study = parse_workflow(SCENE, str(scene))
+    copy = tmp_path / "copy.zarr"
+    shutil.copytree(two_workers, copy)
+    assert not StudyStore.open(copy).done().all()  # an adaptive store stops short of the cap
+    assert work_left(study, copy) is False
+    used, _ = _stops(copy)
+    fi, mi = np.unravel_index(int(np.argmax(used)), used.shape)  # a unit that took > 1 wave
+    g = zarr.open_group(str(copy), mode="r+")
+    g["stop_reason"][fi, mi] = OPEN
+    g["done"][fi, mi, int(used[fi, mi]) - 1] = False
+    assert work_left(study, copy) is True
+
+
+def test_the_reduced_tables_go_by_frequency_when_refinement_appended_one(tmp_path):
+    from pipeline.reduce import reduce_store
+
+    text = (SCENE.replace("values = [54.0, 60.0, 72.0]",
+                          "values = [60.0, 66.0, 72.0]\nrefine = { to = 10.0 }")
+            .replace("target_ci = 0.3\nd_resolved = 1.0\n", "")
+            .replace("max_particles = 64", "n_particles = 8")
+            .replace('[families.launched]\ninitial = "launched"\n', ""))
+    study = parse_workflow(text, "refine.toml")
+    store = tmp_path / "refine.zarr"
+    run_study(study, store, workers=1, **QUIET)
+    StudyStore.open(store).add_frequencies((63.0,))  # appended: the store's axis is 60, 66, 72, 63
+    run_study(study, store, workers=1, **QUIET)
+    tables = reduce_store(store, tmp_path / "out", echo=lambda _: None)
+    for name in ("diffusion", "counters"):
+        assert tables[name]["f"].tolist() == [60.0, 63.0, 66.0, 72.0], name
+    assert tables["diffusion"]["D"].notna().all()
+
+
+def test_the_progress_counts_the_open_units_and_the_chunks_the_law_says_they_need():
+    """Wave 1 of a unit at 40 % relative half-width with a 10 % target: the law asks for
+    (0.4 / 0.1)^2 = 16 chunks in all (the wave only doubles to 2); one chunk is done, so 15
+    remain.  A stopped unit needs nothing; a unit beyond its prediction needs its wave."""
+    rule = StoppingRule(0.1, None, 64)
+    wide = advance(rule, None, 1, lambda n: (100.0, 60.0, 140.0))  # hw = 40 % of D
+    assert wide.reason == OPEN and wide.n == 2 and wide.need == 16
+    met = advance(rule, None, 1, lambda n: (100.0, 95.0, 105.0))
+    assert met.reason == TARGET
+    capped = advance(StoppingRule(0.1, None, 4), None, 1, lambda n: (100.0, 0.0, 200.0))
+    assert capped.n == 2 and capped.need == 4  # the law wants 100 chunks; the cap is 4
+    assert remaining([wide, met, capped], [1, 1, 1]) == (2, 15 + 3)

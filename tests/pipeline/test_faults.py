@@ -212,7 +212,7 @@ def test_two_runs_taking_over_one_stale_lock_do_not_both_get_it(tmp_path, monkey
     """The interleaving that let two runs in: run B reads a stale lock (dead pid, this host);
     before B removes it, run A removes it too and writes its own; B must now see A's lock and
     be refused, not remove A's lock believing it the stale one."""
-    from pipeline import store as store_module
+    from pipeline import lock as store_module
 
     path = str(tmp_path / "s.zarr")
     lock = Path(f"{path}.lock")

@@ -7,8 +7,8 @@ import pandas as pd
 import pytest
 
 from pipeline.reduce import default_out_dir, reduce_store
-from pipeline.run import compute_chunk
 from pipeline.store import StudyStore
+from pipeline.task import compute_chunk
 from pipeline.workflow import parse_workflow
 
 from .helpers import TINY

@@ -1,4 +1,5 @@
-"""The Zarr store: layout readable by xarray, chunk alignment, done-markers, refusals."""
+"""The Zarr store: chunk-aligned writes, done-markers, attributes, refusals (the layout:
+test_store_layout.py)."""
 
 from __future__ import annotations
 
@@ -15,14 +16,13 @@ import zarr
 
 from bbb.provenance import kernel_hash, kernel_identity
 from bbb.record import COLLISION_FIELDS
+from pipeline.lock import run_lock
 from pipeline.store import (
     JSON_ATTRS,
     KERNEL_ATTRS,
     StoreError,
     StudyStore,
-    collision_field_units,
     read_attrs,
-    run_lock,
     store_fingerprint,
 )
 from pipeline.workflow import parse_workflow
@@ -53,18 +53,6 @@ class FakeRun:
                          for c in ("collisions", "sticks", "liftoffs", "recorded", "anomalies")}
 
 
-def test_xarray_opens_the_store_with_named_dims_and_coords(store, study):
-    store.consolidate()
-    ds = xr.open_zarr(store.path)
-    assert ds["positions"].dims == ("frequency", "family", "particle", "time")
-    assert ds["collisions"].dims == ("frequency", "family", "particle", "collision", "field")
-    assert list(ds["frequency"].values) == [54.0, 60.0]
-    assert list(ds["family"].values) == ["rest", "launched"]
-    assert list(ds["field"].values) == ["t", "x", "y", "vx", "vy", "phase"]
-    assert "initial" in ds.coords
-    assert ds["time"].values[-1] == study.accuracy.t_max
-
-
 def test_the_documented_xarray_mask_hides_chunks_not_marked_done(store, study):
     store.write_chunk(1, 0, 1, FakeRun(study, 5.0), 0.1)                    # done
     store.write_chunk(0, 1, 0, FakeRun(study, 6.0), 0.1, mark_done=False)  # written, not done
@@ -74,15 +62,6 @@ def test_the_documented_xarray_mask_hides_chunks_not_marked_done(store, study):
     x = ds.positions.where(done).values
     assert np.all(x[1, 0, 4:8] == 5.0)
     assert np.isnan(x[0, 1]).all() and np.isfinite(x).sum() == 4 * x.shape[-1]
-
-
-def test_one_chunk_per_frequency_family_and_ensemble_chunk(store, study):
-    g = store.group()
-    cs, T = study.accuracy.chunk_size, len(study.sample_times())
-    assert g["positions"].chunks == (1, 1, cs, T)
-    assert g["collisions"].chunks == (1, 1, cs, study.observables.collisions_record, 6)
-    assert g["n_collisions"].chunks == (1, 1, cs)
-    assert g["done"].shape == (2, 2, study.accuracy.n_chunks) and g["done"].chunks == (1, 1, 1)
 
 
 def test_root_attrs_hold_workflow_params_numerics_version_and_kernel(store, study):
@@ -111,17 +90,6 @@ def test_root_attributes_survive_to_netcdf(store, study, tmp_path):
     assert json.loads(back.attrs["workflow"]) == store.attrs()["workflow"]
     assert StudyStore.open(store.path).study == study
     assert back.attrs["kernel_hash"] == kernel_identity()["kernel_hash"]
-
-
-def test_every_collision_field_has_a_unit_in_the_store(store):
-    # bbb.record.COLLISION_FIELDS is the record's dtype; a new field needs its unit in
-    # pipeline.store.FIELD_UNITS, else the store's metadata would describe it as '?'
-    units = collision_field_units()
-    assert "?" not in units, dict(zip(COLLISION_FIELDS, units, strict=True))
-    g = store.group()
-    for name in ("field", "collisions"):
-        assert g[name].attrs["units"].split(", ") == list(units), name
-    assert all(f in g["collisions"].attrs["long_name"] for f in COLLISION_FIELDS)
 
 
 def test_a_task_writes_only_its_own_chunk_files(store, study):
@@ -294,7 +262,7 @@ def _dead_pid() -> int:
 
 def test_fsspec_urls_are_stores_too(study, tmp_path):
     # memory:// goes through zarr's FsspecStore like s3:// would; file:// is a local path.
-    from pipeline.run import compute_chunk
+    from pipeline.task import compute_chunk
 
     for url in ("memory://bbb-test/s.zarr", f"file://{tmp_path}/s.zarr"):
         store = StudyStore.create_or_open(url, study)

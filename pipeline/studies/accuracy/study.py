@@ -22,7 +22,8 @@ Outputs (``out_dir``; the tables also beside the figure, in ``figures/``):
 ``accuracy.parquet/.csv`` (one row per variant, frequency, family: columns in
 :data:`ROW_COLUMNS`), ``accuracy_summary.parquet/.csv`` (one row per variant:
 :data:`SUMMARY_COLUMNS`), ``accuracy_scaling.parquet/.csv`` (:data:`SCALING_COLUMNS`), and
-the figure ``accuracy.png`` (error versus cost, Pareto front marked).  Units: D in mm²/s,
+the figure ``accuracy.png`` (error versus cost, Pareto front marked).  The scaling table is
+:mod:`.scaling`, the figure :mod:`.figures`; both names stay importable from here.  Units: D in mm²/s,
 times in s (CPU time = summed ``chunk_seconds`` of the tasks, the simulation only).
 """
 
@@ -39,7 +40,10 @@ import numpy as np
 import pandas as pd
 
 from ...accuracy import ACCURACY_PRESETS
-from ...workflow import Study, parse_workflow
+from ...study import Study
+from ...workflow import parse_workflow
+from .figures import accuracy_figure, plot_accuracy  # importable from here too
+from .scaling import SCALING_COLUMNS, per_particle_D, scaling_table
 
 __all__ = [
     "Variant", "default_variants", "variant_study", "run_accuracy_study", "compare",
@@ -74,14 +78,6 @@ SUMMARY_COLUMNS = (
     "err_rms_all",    # RMS of z_ref over all rows with D_ref significantly > 0
     "systematic",     # some row differs from its comparison by more than 3 sigma (z_stat/z_pair)
     "pareto",         # on the Pareto front of (cpu_s, err_rms)
-)
-#: statistical (N) and finite-time (t_max) behaviour measured on the reference store
-SCALING_COLUMNS = (
-    "f", "family", "axis", "value",           # axis "N" (particles) or "T" (t_max, s)
-    "sd_rel",         # N: spread of D over disjoint subsets / D_ref; T: se of the bias
-    "hw_rel",         # mean 95 % CI half-width / D (percentile bootstrap over particles)
-    "bias_rel",       # T: mean over particles of D_i(T) - D_i(t_ref), / D_ref (paired)
-    "exponent",       # N: fitted slope of log sd_rel vs log N (expect -1/2), same per group
 )
 
 
@@ -303,18 +299,6 @@ def _paired_reference(ref_store, results: dict) -> dict:
     return out
 
 
-def per_particle_D(x: np.ndarray, times: np.ndarray, analysis) -> np.ndarray:
-    """Each particle's own TAMSD slope D_i, mm²/s (``bbb reduce``'s D is their mean), with
-    the workflow's discard and fractional fit lags."""
-    from bbb import stats
-
-    T = analysis.duration(times[-1] - times[0])
-    # bbb.stats' own per-particle fit, so that these are exactly the estimator's D_i
-    reg = stats._regime(x.shape[1], times, analysis.fit_from * T, analysis.fit_to * T,
-                        analysis.discard)
-    return stats._per_particle_fit(np.asarray(x, dtype=float), reg)[0]
-
-
 def _div(a: float, b: float) -> float:
     return float(a / b) if b and np.isfinite(b) else math.nan
 
@@ -361,135 +345,3 @@ def pareto_front(cost: np.ndarray, error: np.ndarray) -> np.ndarray:
         dom = ok & (cost <= cost[i]) & (error <= error[i]) & ((cost < cost[i]) | (error < error[i]))
         front[i] = not dom.any()
     return front
-
-
-# -------------------------------------------------------------------------------------------
-def scaling_table(ref_store, n_values: Sequence[int] | None = None,
-                  t_values: Sequence[float] | None = None, n_resamples: int = 400,
-                  seed: int = 5) -> pd.DataFrame:
-    """Statistical versus systematic error, measured on the reference store alone.
-
-    N axis: the reference's particles split into disjoint subsets of n; the spread of D over
-    subsets (relative to the full D) should fall like n^-1/2, and so should the bootstrap
-    half-width.  T axis: each particle's D_i over the first T seconds minus its D_i over the
-    whole run (paired: same particles), averaged -- the finite-time bias of the fit at
-    fractional lags -- with its standard error, and the half-width at that T.
-    """
-    from bbb import stats
-
-    study = ref_store.study
-    g = ref_store.group()
-    times = study.sample_times()
-    n_all, t_all = study.accuracy.n_particles, study.accuracy.t_max
-    n_values = n_values or [n for n in (16, 32, 64, 128, 256, 512) if n <= n_all // 4]
-    t_values = t_values or [t for t in (12.5, 25.0, 50.0, 100.0) if t < t_all]
-    rng = np.random.default_rng(seed)
-    rows = []
-    for fi, f in enumerate(study.frequencies):
-        for mi, fam in enumerate(study.families):
-            x = np.asarray(g["positions"][fi, mi])
-            d_all = per_particle_D(x, times, study.analysis)
-            D = d_all.mean()
-            if not D > 2 * d_all.std(ddof=1) / math.sqrt(d_all.size):
-                continue  # D not significantly > 0: no relative errors to scale
-            group = []
-            for n in n_values:
-                subs = d_all[rng.permutation(n_all)[: (n_all // n) * n]].reshape(-1, n).mean(1)
-                hw = _hw(stats, x[:n], times, study, n_resamples, seed)
-                group.append(dict(f=f, family=fam.name, axis="N", value=float(n),
-                                  sd_rel=float(subs.std(ddof=1) / D), hw_rel=hw / D,
-                                  bias_rel=float((subs.mean() - D) / D)))
-            if len(group) >= 2:
-                k = np.polyfit(np.log([r["value"] for r in group]),
-                               np.log([r["sd_rel"] for r in group]), 1)[0]
-                for r in group:
-                    r["exponent"] = float(k)
-            rows += group
-            for T in t_values:
-                n_t = int(np.searchsorted(times, T + 1e-9))
-                d_t = per_particle_D(x[:, :n_t], times[:n_t], study.analysis)
-                diff = d_t - d_all
-                hw = _hw(stats, x[:, :n_t], times[:n_t], study, n_resamples, seed)
-                rows.append(dict(f=f, family=fam.name, axis="T", value=float(T),
-                                 sd_rel=float(diff.std(ddof=1) / math.sqrt(diff.size) / D),
-                                 hw_rel=hw / D, bias_rel=float(diff.mean() / D),
-                                 exponent=math.nan))
-    return pd.DataFrame(rows, columns=list(SCALING_COLUMNS))
-
-
-def _hw(stats, x, times, study, n_resamples, seed) -> float:
-    an = study.analysis
-    T = an.duration(times[-1] - times[0])
-    ci = stats.bootstrap_D(x, times, n_resamples=n_resamples, ci=an.ci, seed=seed,
-                           fit_from=an.fit_from * T, fit_to=an.fit_to * T, discard=an.discard)
-    return float((ci.hi - ci.lo) / 2)
-
-
-# -------------------------------------------------------------------------------------------
-def plot_accuracy(summary: pd.DataFrame, path: str | os.PathLike) -> Path:
-    """Draw :func:`accuracy_figure` and write it to ``path`` (PNG, 130 dpi)."""
-    fig = accuracy_figure(summary)
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(p, dpi=130)
-    return p
-
-
-def accuracy_figure(summary: pd.DataFrame):
-    """Error (RMS of |D - D_ref| / CI_ref half-width) versus CPU time, one point per variant,
-    the Pareto front joined; presets as large markers, knob variants small.  A Figure made
-    without pyplot; each variant's name goes to the first free spot around its marker."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    s = summary[summary.variant != "reference"].copy()
-    fig = Figure(figsize=(7.5, 5))
-    FigureCanvasAgg(fig)
-    fig.set_label("accuracy")
-    ax = fig.subplots()
-    labels = []
-    for kind, mk, size in (("preset", "o", 80), ("knob", "s", 35)):
-        k = s[s.kind == kind]
-        ax.scatter(k.cpu_s, k.err_rms, marker=mk, s=size, label=kind + "s",
-                   c=np.where(k.pareto, "tab:red", "tab:blue"), zorder=3)
-        labels += [(r.variant, r.cpu_s, r.err_rms) for _, r in k.iterrows()]
-    front = s[s.pareto].sort_values("cpu_s")
-    ax.plot(front.cpu_s, front.err_rms, "-", color="tab:red", lw=1.2, label="Pareto front",
-            zorder=2)
-    ax.axhline(1.0, color="0.6", ls=":", lw=1)
-    ax.set_xscale("log")
-    if (s.err_rms > 0).all():
-        ax.set_yscale("log")
-    ax.set_xlabel("CPU time of the study's frequencies, s (sum of task simulation times)")
-    ax.set_ylabel("error: RMS |D - D_ref| / (95 % CI half-width of D_ref),\n"
-                  "stationary frequencies")
-    ax.set_title("Accuracy versus cost (knob variants: reference numerics, one knob changed)",
-                 fontsize=10)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    _place_labels(fig, ax, labels)
-    return fig
-
-
-def _place_labels(fig, ax, labels) -> None:
-    """Annotate (text, x, y) points, each at the first of a few offsets around its marker
-    where it overlaps no label placed before it (points of labels that share a spot, such as
-    two variants of equal cost and error, would otherwise be printed over each other)."""
-    renderer = fig.canvas.get_renderer()
-    offsets = [((4, 4), "left", "bottom"), ((4, -4), "left", "top"),
-               ((-4, 4), "right", "bottom"), ((-4, -4), "right", "top"),
-               ((4, 12), "left", "bottom"), ((4, -12), "left", "top")]
-    placed = []
-    for text, x, y in labels:
-        for (dx, dy), ha, va in offsets:
-            a = ax.annotate(text, (x, y), xytext=(dx, dy), textcoords="offset points",
-                            fontsize=8, ha=ha, va=va)
-            box = a.get_window_extent(renderer)
-            if not any(box.overlaps(b) for b in placed):
-                break
-            a.remove()
-        else:
-            a = ax.annotate(text, (x, y), xytext=offsets[0][0], textcoords="offset points",
-                            fontsize=8)
-            box = a.get_window_extent(renderer)
-        placed.append(box)

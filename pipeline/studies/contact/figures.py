@@ -16,7 +16,7 @@ from matplotlib import rc_context
 from bbb.locking import creep_speed
 
 from ...collisions import as_store, states
-from ..klages2004.figures import STYLE, _new_figure, _save, figure_files
+from ..figure_style import PAGE, STYLE, figure_files, new_figure, save_figure
 from .claims import LABELS, MODELS, ONSET_RANGE, PROJ_F
 
 __all__ = ["draw", "figure_contact", "figure_contact_high"]
@@ -40,7 +40,7 @@ def figure_contact(tables: Mapping[str, pd.DataFrame | None],
     post-collision arrays at 54 Hz from rest, or None}.  Returns the Figure (PNG + PDF written
     given ``out_dir``)."""
     with rc_context(STYLE):
-        fig = _new_figure(name, (7.0, 7.6))
+        fig = new_figure(name, (PAGE, 7.6))
         gs = fig.add_gridspec(3, len(MODELS), height_ratios=[1.3, 0.8, 1.0], hspace=0.42,
                               wspace=0.35)
         ax_d = fig.add_subplot(gs[0, :])
@@ -95,7 +95,7 @@ def figure_contact(tables: Mapping[str, pd.DataFrame | None],
             ax.axhline(creep_speed(0.1, PROJ_F), color="0.6", lw=0.4, ls=":")
             ax.axhspan(90.0, 100.0, color="tab:green", alpha=0.12, lw=0)
             ax.locator_params(axis="x", nbins=3)
-        return _save(fig, out_dir, dpi=200)
+        return save_figure(fig, out_dir, dpi=200)
 
 
 def figure_contact_high(tables: Mapping[str, pd.DataFrame | None],
@@ -103,7 +103,7 @@ def figure_contact_high(tables: Mapping[str, pd.DataFrame | None],
                         name: str = "fig_contact_high"):
     """D(f) from rest per model over the whole grid ({model: diffusion table}), 95 % CIs."""
     with rc_context(STYLE):
-        fig = _new_figure(name, (7.0, 3.2))
+        fig = new_figure(name, (PAGE, 3.2))
         ax = fig.subplots()
         for m in MODELS:
             t = tables.get(m)
@@ -114,7 +114,7 @@ def figure_contact_high(tables: Mapping[str, pd.DataFrame | None],
         ax.set_ylabel("D (mm²/s), from rest")
         ax.set_ylim(bottom=0)
         ax.legend(fontsize="x-small", loc="upper left")
-        return _save(fig, out_dir)
+        return save_figure(fig, out_dir)
 
 
 def projection(store) -> dict[str, np.ndarray] | None:

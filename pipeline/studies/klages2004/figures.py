@@ -14,7 +14,11 @@ Tables used (all made by ``pipeline.reduce`` or ``pipeline.collisions``):
 ``locking``     optional: :func:`pipeline.collisions.locking_table` of a collisions scene
 
 Units on every axis: f in Hz, D in mm²/s, y in mm, v in mm/s.  Sizes are for a journal
-column (3.4 in wide) or the full page width (7 in).
+column (3.4 in wide) or the full page width (7 in); the style is
+:mod:`pipeline.studies.figure_style`.
+
+Size: one paper's four figures, which share their panels (Fig. 3's letters mark Fig. 2, the
+k panel is drawn in Fig. 2's variant and in the locking figure), one function each.
 """
 
 from __future__ import annotations
@@ -22,7 +26,6 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Mapping, Sequence
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -36,6 +39,13 @@ from bbb.locking import creep_speed, flight_time_max, flight_times
 from ...collisions import as_store, states
 from ...store import StudyStore
 
+# the house style, shared by every study's figures (pipeline.studies.figure_style); the old
+# private names stay, for the figures of other studies that import them from here
+from ..figure_style import COLUMN, PAGE, STYLE, figure_files
+from ..figure_style import family_color as _color
+from ..figure_style import new_figure as _new_figure
+from ..figure_style import save_figure as _save
+
 __all__ = ["PANELS", "PAPER_K", "STYLE", "figure1", "figure2", "figure3", "figure_locking",
            "figure_files", "main_columns"]
 
@@ -45,62 +55,6 @@ PANELS = {"a": 54.0, "b": 58.0, "c": 60.0, "d": 66.0, "e": 72.0, "f": 78.0}
 PAPER_K = {60.0: 1.47, 72.0: 2.5, 80.0: 3.43, 90.0: 4.5}
 #: Fig. 3 panels with the spiral approximation overlaid, as in the paper
 SPIRAL_PANELS = ("d", "e", "f")
-
-COLUMN, PAGE = 3.4, 7.0  # inches
-STYLE = {
-    "font.family": "serif",
-    "font.serif": ["DejaVu Serif"],
-    "mathtext.fontset": "dejavuserif",
-    "font.size": 8,
-    "axes.labelsize": 8,
-    "axes.titlesize": 8,
-    "legend.fontsize": 6.5,
-    "xtick.labelsize": 7,
-    "ytick.labelsize": 7,
-    "axes.linewidth": 0.6,
-    "xtick.major.width": 0.6,
-    "ytick.major.width": 0.6,
-    "xtick.direction": "in",
-    "ytick.direction": "in",
-    "xtick.top": True,
-    "ytick.right": True,
-    "lines.linewidth": 0.8,
-    "legend.frameon": False,
-    "savefig.dpi": 300,
-    "savefig.bbox": "tight",
-    "savefig.pad_inches": 0.02,
-    "pdf.fonttype": 42,
-}
-FAMILY_COLORS = {"rest": "black", "launched": "tab:blue", "dropped": "tab:green"}
-_OTHER_COLORS = ["tab:orange", "tab:purple", "tab:brown", "tab:pink"]
-
-
-def _color(family: str, i: int = 0) -> str:
-    return FAMILY_COLORS.get(family, _OTHER_COLORS[i % len(_OTHER_COLORS)])
-
-
-def figure_files(out_dir: str | os.PathLike, name: str) -> list[Path]:
-    """The files a figure function given ``out_dir`` writes: ``<name>.png``, ``<name>.pdf``."""
-    out = Path(out_dir)
-    return [out / f"{name}.png", out / f"{name}.pdf"]
-
-
-def _new_figure(name: str, figsize: tuple[float, float]) -> Figure:
-    """A Figure outside pyplot (no backend, no global figure list), labelled ``name``."""
-    fig = Figure(figsize=figsize)
-    fig.set_label(name)
-    return fig
-
-
-def _save(fig: Figure, out_dir: str | os.PathLike | None, dpi: int | None = None) -> Figure:
-    """Write <label>.png and <label>.pdf to ``out_dir`` unless it is None (``dpi``: of the
-    PNG and of rasterized PDF layers); returns the figure.  Call inside ``rc_context(STYLE)``:
-    the savefig settings (tight bounding box, dpi, fonts) are read from it."""
-    if out_dir is not None:
-        Path(out_dir).mkdir(parents=True, exist_ok=True)
-        for p in figure_files(out_dir, fig.get_label()):
-            fig.savefig(p, **({"dpi": dpi} if dpi else {}))
-    return fig
 
 
 def main_columns(table: pd.DataFrame, family: str = "rest") -> tuple[str, str, str]:

@@ -13,6 +13,8 @@ locking                post-collision states on Fig. 2's grid, 2 families  -> Fi
                                                                                parameters
 figure2_matyas2004     D(f) for R = 25, alpha = 0.5                        -> extra Fig. 2
 locking_matyas2004     post-collision states for that set                  -> its k(f) panel
+finescale              D(f) in 58-64 Hz refined to 0.05 Hz                 -> extrema per Hz
+                                                                              vs resolution
 =====================  ======================================================================
 
 Each scene runs through :func:`pipeline.run.run_study` into ``<runs>/<name>.zarr``, which
@@ -44,10 +46,10 @@ __all__ = ["SCENES", "run_log_entry", "make_figures", "main"]
 
 #: the scenes this study runs, in order
 SCENES = ("figure2", "ergodicity", "figure3", "locking", "figure2_matyas2004",
-          "locking_matyas2004")
+          "locking_matyas2004", "finescale")
 #: further studies drawn in the same run (modules under pipeline.studies exposing SCENES,
 #: draw(tables, stores, out_dir) -> paths, and report_lines(tables) -> REPORT.md lines)
-EXTRA_STUDIES = ("contact",)
+EXTRA_STUDIES = ("mechanisms", "transport", "contact")
 
 
 def run_log_entry(name: str, store: str) -> dict[str, str]:
@@ -73,6 +75,8 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     from ...reduce import reduce_store
     from ...run import run_study
     from . import figures as fg
+    from .finescale import figure_finescale
+    from .finescale import write_table as write_finescale
     from .report import write_report
 
     t_start = time.perf_counter()
@@ -106,7 +110,7 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
 
     tables: dict[str, pd.DataFrame] = {}
     table_files: dict[str, str] = {}
-    for name in ("figure2", "ergodicity", "figure2_matyas2004"):
+    for name in ("figure2", "ergodicity", "figure2_matyas2004", "finescale"):
         t0 = time.perf_counter()
         tables[name] = reduce_store(stores[name], echo=echo)["diffusion"]
         log["scenes"][name]["reduce_s"] = time.perf_counter() - t0
@@ -129,7 +133,9 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
                     "locking": tables["locking_matyas2004"]},
                    out, name="fig2_matyas2004", letters=None, inset=None,
                    legend_loc="upper left"),
+        figure_finescale(tables["finescale"], out),
     ]
+    table_files["finescale_extrema"] = str(write_finescale(tables["finescale"], out))
     paths = [p for fig in figs for p in fg.figure_files(out, fig.get_label())]
     extra_lines: list[str] = []
     for m in extras:  # each scene's reduce tables, keyed by table name (and scene_table)

@@ -126,12 +126,6 @@ def test_fig2_drawn_from_the_committed_tables_has_no_text_over_text():
     assert [overlaps(f) for f in (fig2, matyas, lock)] == [[], [], []]
 
 
-def test_accuracy_plot_of_the_committed_summary_has_no_text_over_text():
-    from pipeline.studies.accuracy.study import accuracy_figure
-
-    assert overlaps(accuracy_figure(_committed("accuracy_summary.csv"))) == []
-
-
 def test_the_overlap_check_finds_text_drawn_over_text_and_across_an_axis():
     fig = Figure(figsize=(3, 2))
     ax = fig.subplots()

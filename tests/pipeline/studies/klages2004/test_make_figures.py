@@ -47,7 +47,15 @@ def test_toml_dump_round_trips_a_workflow_document():
     text = scene_path("ergodicity").read_text()
     doc = tomllib.loads(text)
     assert tomllib.loads(_toml_dump(doc)) == doc
-    assert tomllib.loads(draft_text(text))["accuracy"] == {"preset": "draft"}
+    assert tomllib.loads(draft_text(text))["accuracy"]["preset"] == "draft"
+
+
+def test_the_draft_of_a_target_driven_scene_keeps_a_loose_target():
+    """Fig. 2 asks for 3 % with d_resolved = 9 mm²/s: its draft asks for 15 % with small
+    chunks and a low cap, and d_resolved loosened by the same factor 5."""
+    draft = load_scene("figure2", fast=True).accuracy
+    assert (draft.target_ci, draft.chunk_size, draft.max_particles) == (0.15, 64, 256)
+    assert draft.d_resolved == 45.0 and draft.t_max == 50.0
 
 
 def test_the_run_log_records_paths_relative_to_the_repository(tmp_path):
@@ -127,6 +135,7 @@ def test_a_wheel_ships_every_scene_and_module(installed, tmp_path):
     got = json.loads(_run_outside(installed, code, tmp_path).strip().splitlines()[-1])
     assert not Path(got["file"]).is_relative_to(ROOT)  # the installed copy, not this checkout
     assert set(SCENES) | {"smoke", "accuracy"} <= set(got["scenes"])
+    assert set(scene_names()) <= set(got["scenes"])  # every study's scenes/ is package data
     assert got["version"] == importlib.metadata.version("bbb")
     # every module of the source tree is in the wheel (pyproject lists the packages)
     site = Path(got["file"]).parent.parent

@@ -1,0 +1,203 @@
+"""The transport claims as data (judged by :mod:`pipeline.claims` from each scene's diffusion
+table with its v, D_drift columns; :mod:`bbb.transport`).
+
+Rules, fixed before the data (calibrated on synthetic curves in
+tests/pipeline/studies/transport/test_claims.py):
+
+significant v   v(f) ≠ 0 at a frequency when |v| exceeds z_n standard errors (read off its CI
+                side towards 0, as bbb.extrema does), z_n = Φ⁻¹(1 − α / (2 n)) Bonferroni over
+                the n frequencies of the curve, α = 0.05: on a curve with v ≡ 0 the chance of
+                calling any frequency significant is ≤ 5 %; and |v| > V_MIN = 1e-6 mm/s (a
+                particle at rest has |v| ~ 1e-16 mm/s with a CI of rounding size).
+steady only     every rule uses the frequencies whose drift is steady (bbb.transport: not
+                steady when the CI of v(second half) − v(first half) lies beyond ±(5 % of |v|
+                + 1e-6 mm/s), the rule bbb.stationarity applies to D); where
+                the ensemble accelerates (runs away downhill) v and D are window means, not
+                transport coefficients.  The rows say how many frequencies were left out.
+reversal        a sign change between consecutive significant frequencies (those in between
+                not significant).  The claim counts reversals over all conveyor scenes; it
+                agrees with ≥ 1.
+extrema         bbb.extrema.find_extrema (Bonferroni over all pairs, family-wise α = 0.05)
+                on v(f) and on D_drift(f), min_depth = V_MIN resp. D_MIN = 1e-6 mm²/s.
+                "Extrema of the transport rate": ≥ 1 extremum of v(f) per conveyor scene.
+                "D irregular": ≥ 2 extrema of D_drift(f) (a curve with a maximum and a
+                minimum is not monotonic) per conveyor scene; the row also gives the count
+                at φ = 0, ψ = 90°.
+no current      at φ = 0, ψ = 90° (mirror symmetric): no frequency with a significant v.
+
+k = 2 v_y⁺ f / g needs post-collision states, which these positions-only scenes do not
+record: the extrema are reported by frequency.
+"""
+
+from __future__ import annotations
+
+import math
+from statistics import NormalDist
+
+import numpy as np
+import pandas as pd
+
+from bbb.extrema import find_extrema
+
+from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, measure
+
+__all__ = ["SCENES", "CONVEYORS", "LABELS", "CLAIMS", "significant_signs", "reversals",
+           "report_lines"]
+
+#: (scene, tilt φ °, throw ψ °); the first one is the paper's symmetric floor
+GEOMETRY = (("transport_t0", 0.0, 90.0), ("transport_t2", 2.0, 90.0),
+            ("transport_t5", 5.0, 90.0), ("transport_p60", 0.0, 60.0),
+            ("transport_p30", 0.0, 30.0))
+SCENES = tuple(s for s, _, _ in GEOMETRY)
+CONVEYORS = SCENES[1:]
+LABELS = {s: f"φ = {t:g}°, ψ = {p:g}°" for s, t, p in GEOMETRY}
+ALPHA = 0.05
+V_MIN = 1e-6  # mm/s
+D_MIN = 1e-6  # mm²/s
+_Z95 = NormalDist().inv_cdf(0.975)
+
+
+def significant_signs(v, lo, hi, ci: float = 0.95, alpha: float = ALPHA) -> np.ndarray:
+    """+1 / −1 where v is significantly positive / negative (Bonferroni over the n points,
+    module docstring), 0 elsewhere."""
+    v, lo, hi = (np.asarray(a, dtype=float) for a in (v, lo, hi))
+    z_ci = NormalDist().inv_cdf(0.5 + ci / 2.0)
+    z_n = NormalDist().inv_cdf(1.0 - alpha / (2.0 * max(1, v.size)))
+    s_below, s_above = (v - lo) / z_ci, (hi - v) / z_ci  # standard errors, each side
+    pos = (v > z_n * s_below) & (v > V_MIN)
+    neg = (-v > z_n * s_above) & (-v > V_MIN)
+    return np.where(pos, 1, np.where(neg, -1, 0))
+
+
+def reversals(f, signs) -> list[float]:
+    """Frequencies (midpoints) where consecutive significant signs differ."""
+    out, prev = [], None
+    for fi, s in zip(f, signs, strict=True):
+        if s == 0:
+            continue
+        if prev is not None and s != prev[1]:
+            out.append(0.5 * (prev[0] + fi))
+        prev = (fi, s)
+    return out
+
+
+def _table(ctx, scene: str) -> pd.DataFrame | None:
+    """The scene's rows with a steady drift, sorted by f (attrs["unsteady"]: the others' f)."""
+    t = ctx["tables"].get(scene)
+    if t is None or "v" not in t:
+        return None
+    t = t.dropna(subset=["v", "v_lo", "v_hi"]).sort_values("f")
+    ok = t["steady"].fillna(True).astype(bool) if "steady" in t else pd.Series(True, t.index)
+    out = t[ok].copy()
+    out.attrs["unsteady"] = t["f"][~ok].tolist()
+    return out
+
+
+def _left_out(t: pd.DataFrame) -> str:
+    u = t.attrs.get("unsteady", [])
+    return (f" [{len(u)} f left out, drift not steady: {min(u):g}–{max(u):g} Hz]" if u else "")
+
+
+def _extrema_text(ex) -> str:
+    return ", ".join(f"{e.kind} {e.f:g} Hz" for e in ex) or "none"
+
+
+@measure("transport_no_current")
+def no_current(claim: Claim, ctx) -> Measured:
+    t = _table(ctx, claim.scene)
+    if t is None:
+        return Measured(missing=f"no transport columns for {claim.scene}")
+    s = significant_signs(t["v"], t["v_lo"], t["v_hi"])
+    where = t["f"][s != 0].tolist()  # steady rows only; at φ = 0, ψ = 90° all should be
+    vmax = float(np.abs(t["v"]).max())
+    return Measured([Part(LABELS[claim.scene], Quantity(float(len(where))),
+                          f"{len(where)} of {len(t)} frequencies with a significant v "
+                          f"({', '.join(f'{x:g}' for x in where) or 'none'}); max |v| = "
+                          f"{vmax:.3g} mm/s")])
+
+
+@measure("transport_v_extrema")
+def v_extrema(claim: Claim, ctx) -> Measured:
+    parts = []
+    for sc in CONVEYORS:
+        t = _table(ctx, sc)
+        if t is None:
+            continue
+        ex = find_extrema(t["f"], t["v"], t["v_lo"], t["v_hi"], min_depth=V_MIN)
+        parts.append(Part(LABELS[sc], Quantity(float(len(ex))),
+                          f"{len(ex)} ({_extrema_text(ex)}); v from {t['v'].min():.3g} to "
+                          f"{t['v'].max():.3g} mm/s{_left_out(t)}"))
+    return Measured(parts) if parts else Measured(missing="no conveyor scene reduced")
+
+
+@measure("transport_reversals")
+def v_reversals(claim: Claim, ctx) -> Measured:
+    texts, total, seen = [], 0, False
+    for sc in CONVEYORS:
+        t = _table(ctx, sc)
+        if t is None:
+            continue
+        seen = True
+        s = significant_signs(t["v"], t["v_lo"], t["v_hi"])
+        r = reversals(t["f"].to_numpy(), s)
+        total += len(r)
+        texts.append(f"{LABELS[sc]}: {len(r)} ({', '.join(f'~{x:g} Hz' for x in r) or 'none'}; "
+                     f"v > 0 at {int((s > 0).sum())}, < 0 at {int((s < 0).sum())} of {len(t)} f)"
+                     f"{_left_out(t)}")
+    if not seen:
+        return Measured(missing="no conveyor scene reduced")
+    return Measured([Part("significant sign changes of v(f), all conveyor scenes",
+                          Quantity(float(total)), "; ".join(texts))])
+
+
+@measure("transport_d_extrema")
+def d_extrema(claim: Claim, ctx) -> Measured:
+    def count(sc):
+        t = _table(ctx, sc)
+        if t is None:
+            return None
+        ex = find_extrema(t["f"], t["D_drift"], t["D_drift_lo"], t["D_drift_hi"],
+                          min_depth=D_MIN)
+        return ex, _left_out(t)
+
+    ref = count(SCENES[0])
+    parts = [Part(LABELS[sc], Quantity(float(len(ex))), f"{len(ex)} ({_extrema_text(ex)}){lo}")
+             for sc in CONVEYORS if (r := count(sc)) is not None for ex, lo in [r]]
+    if not parts:
+        return Measured(missing="no conveyor scene reduced")
+    ref_txt = ("not reduced" if ref is None else f"{len(ref[0])} ({_extrema_text(ref[0])})")
+    return Measured(parts, text=f"at {LABELS[SCENES[0]]}: {ref_txt}")
+
+
+CLAIMS = [
+    Claim("Mirror symmetry: a level floor vibrated vertically carries no current",
+          "transport_no_current", SCENES[0],
+          Band(0.0, 0.0, "rule: no frequency with a significant v (Bonferroni, α = 0.05)")),
+    Claim("Integer frequency lockings produce extrema of the transport rate (paper's outlook, "
+          "after Hongler et al.)", "transport_v_extrema", "",
+          Band(1.0, math.inf, "rule: at least one significant extremum of v(f) per conveyor "
+               "scene (bbb.extrema, family-wise α = 0.05)")),
+    Claim("Current reversals: the sign of the current changes with the driving (paper's "
+          "outlook, after Grochowski et al.)", "transport_reversals", "",
+          Band(1.0, math.inf, "rule: at least one sign change between frequencies whose v is "
+               "significant (Bonferroni over the curve)")),
+    Claim("Not only the current, but also the diffusion coefficient may be irregular functions "
+          "of control parameters", "transport_d_extrema", "",
+          Band(2.0, math.inf, "rule: at least 2 significant extrema of D about the drift "
+               "(a maximum and a minimum) per conveyor scene")),
+]
+
+
+def report_lines(tables) -> list[str]:
+    """The REPORT.md section: the claim rows judged from each scene's diffusion table."""
+    ctx = {"tables": {sc: tables.get(f"{sc}_diffusion") for sc in SCENES}}
+    rows = evaluate(CLAIMS, ctx)
+    L = ["", "## Transport on a vibro-conveyor (scenes transport_*)", "",
+         "Drift v with its bootstrap CI and D about the drift (bbb.transport) along f per "
+         "(tilt φ, throw ψ); pipeline/studies/transport/claims.py states the rules.", "",
+         "| # | claim | we measured | verdict | judged by | notes |",
+         "| --- | --- | --- | --- | --- | --- |"]
+    for i, r in enumerate(rows, 1):
+        L.append(f"| T{i} | {r.claim} | {r.measured} | **{r.verdict}** | {r.judged_by} | "
+                 f"{r.note} |".replace("\n", " "))
+    return L

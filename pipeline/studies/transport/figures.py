@@ -1,0 +1,61 @@
+"""The transport figure: (a) drift v(f) and (b) D(f) about the drift, with their bootstrap
+CIs, one curve per (tilt φ, throw ψ); hollow markers where the drift is not steady (the
+ensemble accelerates: v and D are window means there).  Units: f Hz, v mm/s, D mm²/s."""
+
+from __future__ import annotations
+
+import os
+from collections.abc import Mapping
+from pathlib import Path
+
+import pandas as pd
+from matplotlib import rc_context
+
+from ..figure_style import STYLE, figure_files, new_figure, save_figure
+from .claims import LABELS, SCENES
+
+__all__ = ["draw", "figure_transport"]
+
+
+def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLike | None = None,
+                     name: str = "fig_transport"):
+    """Two panels from ``tables[scene]`` (diffusion tables with v, D_drift); returns the Figure
+    (writes PNG + PDF given ``out_dir``)."""
+    with rc_context(STYLE):
+        fig = new_figure(name, (7.0, 5.6))
+        ax_v, ax_d = fig.subplots(2, 1, sharex=True)
+        for i, sc in enumerate(SCENES):
+            t = tables.get(sc)
+            if t is None or "v" not in t:
+                continue
+            t = t.sort_values("f")
+            c = f"C{i}"
+            ax_v.plot(t["f"], t["v"], "-", lw=1, color=c, label=LABELS[sc])
+            ax_d.plot(t["f"], t["D_drift"], "-", lw=1, color=c)
+            steady = t["steady"].fillna(True).astype(bool) if "steady" in t else True
+            for sel, mfc in ((t[steady], c), (t[~steady], "none")):  # hollow: not steady
+                kw = dict(fmt="o", ms=3, capsize=0, color=c, mfc=mfc)
+                ax_v.errorbar(sel["f"], sel["v"], yerr=[sel["v"] - sel["v_lo"],
+                                                        sel["v_hi"] - sel["v"]], **kw)
+                ax_d.errorbar(sel["f"], sel["D_drift"], yerr=[sel["D_drift"] - sel["D_drift_lo"],
+                                                              sel["D_drift_hi"] - sel["D_drift"]],
+                              **kw)
+        ax_v.axhline(0.0, color="0.6", lw=0.8, zorder=0)
+        ax_v.set_yscale("symlog", linthresh=1.0)
+        ax_v.set_ylabel("drift v (mm/s)")
+        ax_d.legend(*ax_v.get_legend_handles_labels(), fontsize="x-small", loc="center left",
+                    bbox_to_anchor=(0.0, 0.62))
+        ax_v.text(0.01, 0.92, "(a)", transform=ax_v.transAxes)
+        ax_d.set_yscale("symlog", linthresh=1.0)
+        ax_d.set_ylim(bottom=0.0)  # D of particles at rest is 0 within rounding (±1e-5)
+        ax_d.set_ylabel("D about the drift (mm²/s)")
+        ax_d.set_xlabel("f (Hz)")
+        ax_d.text(0.01, 0.92, "(b)", transform=ax_d.transAxes)
+        return save_figure(fig, out_dir)
+
+
+def draw(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str],
+         out_dir: str | os.PathLike) -> list[Path]:
+    """make_figures' hook: the figure from ``tables["<scene>_diffusion"]``; the files written."""
+    fig = figure_transport({sc: tables.get(f"{sc}_diffusion") for sc in SCENES}, out_dir)
+    return figure_files(out_dir, fig.get_label())
