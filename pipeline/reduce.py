@@ -47,6 +47,9 @@ and the Lyapunov exponent per frequency (columns in :mod:`pipeline.mechanisms`).
 collisions, sticks, liftoffs (and any other bbb counter) per particle per second, and the
 summed simulation time of its chunks (s, from chunk_seconds).
 
+``contact.parquet`` / ``.csv`` (stores with ``[observables.contact]``): per (frequency, family)
+the fractions of the run held and sliding with bootstrap CIs (columns in :mod:`pipeline.contact`).
+
 Every Parquet table carries its provenance in the schema metadata under the key ``bbb``
 (a JSON object: ``units`` per column, ``store_fingerprint``, ``kernel_hash``,
 ``bbb_version`` of the reducing package and of the store, ``study``, ``table``), and each
@@ -82,7 +85,8 @@ __all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir
 _UNITS = ((r"f", "Hz"), (r"lam(_lo|_hi)?", "1/s"), (r"lag_s", "s"),
           (r"(lam_coll.*|lag|max_lag|frac_creep)", "1"), (r"D(_.*)?", "mm^2/s"),
           (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),
-          (r".*_per_s", "1/s"), (r"d?v(_lo|_hi)?", "mm/s"), (r"(Gamma|EB.*|Pe)", "1"), (r"n_.*", "1"))
+          (r".*_per_s", "1/s"), (r"d?v(_lo|_hi)?", "mm/s"), (r"(Gamma|EB.*|Pe)", "1"), (r"n_.*", "1"),
+          (r".*_frac(_lo|_hi)?", "1"))
 
 
 def default_out_dir(store_path: str, study: Study) -> str:
@@ -110,6 +114,10 @@ def reduce_store(store_path: str | os.PathLike | StudyStore,
     tables = {"counters": counters_table(store, done)}
     if study.observables.positions:
         tables["diffusion"] = diffusion_table(store, done)
+    if study.observables.contact:
+        from .contact import contact_table
+
+        tables["contact"] = contact_table(store, done)
     if study.observables.jumps or study.observables.lyapunov:
         from .mechanisms import mechanisms_table
 

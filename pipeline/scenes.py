@@ -2,7 +2,8 @@
 package ``pipeline.workflows``) and every study's ``pipeline/studies/<study>/scenes/*.toml``,
 found through importlib.resources so that an installed bbb finds them from any directory (a
 name in both: ``workflows/`` wins).  Also the TOML writer for workflow-shaped documents and
-the draft version of a scene (``make figures FAST=1``).
+the draft version of a scene (``make figures FAST=1``): the study's own
+``scenes/draft/<name>.toml`` if it ships one, else the scene at the draft preset.
 
 The studies are discovered as folders, not imported: the engine knows no study.
 """
@@ -17,7 +18,7 @@ from importlib.resources.abc import Traversable
 from pathlib import Path
 
 __all__ = ["ROOT", "scene_names", "scene_path", "scene_label", "toml_dump", "draft_text",
-           "load_scene", "DRAFT_COLLISIONS", "DRAFT_RECORD", "DRAFT_TARGET"]
+           "load_scene", "shipped_draft", "DRAFT_COLLISIONS", "DRAFT_RECORD", "DRAFT_TARGET"]
 
 #: the source tree (the repository): labels and run logs are relative to it
 ROOT = Path(__file__).resolve().parent.parent
@@ -131,10 +132,25 @@ def draft_text(text: str) -> str:
     return "# draft version written by pipeline.scenes.draft_text\n" + toml_dump(doc)
 
 
+def shipped_draft(name: str) -> tuple[str, Traversable] | None:
+    """(label, file) of the draft a study ships for scene ``name`` (``draft/<name>.toml`` beside
+    the scene), or None: then the draft is :func:`draft_text` of the scene."""
+    label, _ = _find_scene(name)
+    for lab, folder in _scene_folders():
+        if f"{lab}/{name}.toml" == label:
+            p = folder / "draft" / f"{name}.toml"
+            return (f"{lab}/draft/{name}.toml", p) if p.is_file() else None
+    return None
+
+
 def load_scene(name: str, fast: bool = False):
-    """The Study of a scene, at draft accuracy if ``fast``."""
+    """The Study of a scene, at draft accuracy if ``fast``: the study's own draft of it if it
+    ships one (:func:`shipped_draft`, e.g. fewer frequencies), else :func:`draft_text`."""
     from .workflow import parse_workflow
 
+    own = shipped_draft(name) if fast else None
+    if own is not None:
+        return parse_workflow(own[1].read_text(encoding="utf-8"), source=own[0])
     path = scene_path(name)
     text = path.read_text(encoding="utf-8")
     return parse_workflow(draft_text(text) if fast else text, source=scene_label(name))

@@ -31,7 +31,7 @@ import numpy as np
 import zarr
 
 from bbb.provenance import kernel_identity
-from bbb.record import COLLISION_FIELDS
+from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES
 
 from .schema import as_dict
 from .store_layout import (  # importable from here as before the split
@@ -235,6 +235,9 @@ class StudyStore:
             g["n_recorded"][fi, mi, sl] = run.n_recorded
         for name in COUNTERS:
             g[f"n_{name}"][fi, mi, sl] = run.counters[name]
+        if obs.contact:
+            for name in CONTACT_TIME_NAMES:
+                g[f"{name}_time"][fi, mi, sl] = run.contact_time[name]
         for name, values in (extra or {}).items():
             a = np.asarray(values)
             rows = slice(sl.start, sl.start + a.shape[0])

@@ -20,6 +20,7 @@ positions      (frequency, family, particle, time)  x, mm  f8      (1, 1, chunk_
 collisions     (frequency, family, particle, collision, field)  f8  (1, 1, chunk_size, K, n_fields)
 n_recorded     (frequency, family, particle)  valid rows   i8      (1, 1, chunk_size) [coll.]
 n_<counter>    (frequency, family, particle)  bbb counters  i8  (1, 1, chunk_size)
+held_time, sliding_time  (frequency, family, particle)  s  f8  (1, 1, chunk_size)  [contact]
 done           (frequency, family, chunk)   bool           b1      (1, 1, 1)
 chunk_seconds  (frequency, family, chunk)   simulate, s    f8      (1, 1, 1)   not reproducible
 n_chunks_used  (frequency, family)          chunks         i8      (1, 1)      [target_ci]
@@ -50,7 +51,7 @@ import math
 import numpy as np
 import zarr
 
-from bbb.record import COLLISION_FIELDS, COUNTER_NAMES
+from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES
 
 from .study import Study
 
@@ -112,6 +113,10 @@ def create_layout(g: zarr.Group, study: Study) -> None:
     for name in COUNTERS:
         data(f"n_{name}", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs), "int64", 0,
              "", f"number of {name} up to t_max")
+    if obs.contact:
+        for name in CONTACT_TIME_NAMES:
+            data(f"{name}_time", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs),
+                 "float64", np.nan, "s", f"time {name} in sustained contact up to t_max")
     if obs.jumps:
         P = max(n_periods(study.accuracy.t_max, f) for f in study.frequencies)
         coord("period", np.arange(P), "int64", "", "floor period n: jump from n/f to (n+1)/f")

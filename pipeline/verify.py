@@ -260,7 +260,7 @@ def _check_consolidated(path: str, g: zarr.Group, problems: list[Problem]) -> No
 
 
 _DATA = ("positions", "collisions", "n_recorded", "done", "chunk_seconds",
-         *(f"n_{c}" for c in COUNTERS))
+         *(f"n_{c}" for c in COUNTERS), "held_time", "sliding_time")
 
 
 # -- chunks --------------------------------------------------------------------------------------
@@ -302,6 +302,7 @@ def _chunk_problems(g: zarr.Group, study: Study, fi: int, mi: int, ci: int,
     names = ["chunk_seconds", *(f"n_{c}" for c in COUNTERS)]
     names += ["positions"] if obs.positions else []
     names += ["n_recorded", "collisions"] if obs.collisions else []
+    names += ["held_time", "sliding_time"] if obs.contact else []
     for name in names:
         try:
             data[name] = np.asarray(g[name][fi, mi, ci] if name == "chunk_seconds"
@@ -338,6 +339,7 @@ def _chunk_problems(g: zarr.Group, study: Study, fi: int, mi: int, ci: int,
                                 f"(particle {ci * cs + i}: x(0) = {float(x0[i])!r} mm); allowed: "
                                 f"|x(0)| <= S/2 = {0.5 * p.S:g} mm")
 
+    yield from _contact_problems(data, acc.t_max, ci * cs)
     nrec = data.get("n_recorded")
     rows = data.get("collisions")
     if nrec is not None:
@@ -354,6 +356,23 @@ def _chunk_problems(g: zarr.Group, study: Study, fi: int, mi: int, ci: int,
                                  f"(particle {ci * cs + i}: {nrec[i]} > {ncoll[i]})")
         if rows is not None and not wrong.any():
             yield from _collision_problems(rows, nrec, p, study, ci * cs)
+
+
+def _contact_problems(data: dict[str, np.ndarray], t_max: float, first: int
+                      ) -> Iterator[tuple[str, str]]:
+    """held_time, sliding_time (s) of one chunk: finite, >= 0, together at most t_max."""
+    held, sliding = data.get("held_time"), data.get("sliding_time")
+    for name, t in (("held_time", held), ("sliding_time", sliding)):
+        if t is not None and not (np.isfinite(t) & (t >= 0)).all():
+            i = int(np.argmax(~(np.isfinite(t) & (t >= 0))))
+            yield name, f"particle {first + i}: {float(t[i])!r}; allowed: finite, >= 0 s"
+    if held is not None and sliding is not None:
+        over = held + sliding > t_max * (1 + 1e-9)
+        if over.any():
+            i = int(np.argmax(over))
+            yield "held_time", (f"held + sliding exceeds t_max = {t_max:g} s for "
+                                f"{int(over.sum())} particles (particle {first + i}: "
+                                f"{float(held[i] + sliding[i])!r} s)")
 
 
 def _collision_problems(rows: np.ndarray, nrec: np.ndarray, p, study: Study, first: int

@@ -127,10 +127,15 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
                 path = ("params", "preset")
             r.fail(path, f"invalid parameters at f = {f:g} Hz: {e}")
     acc = _accuracy(r, doc)
+    obs = _observables(r, doc, acc)
+    conveyor = {"tilt": 0.0, "throw": 90.0}  # their values on the paper's floor
+    moved = [k for k, v in conveyor.items() if overrides.get(k, v) != v]
+    if obs.contact and moved:  # the conveyor kernel does not time contact (bbb.simulate)
+        r.fail(("observables", "contact"), f"not recorded on a conveyor (params {moved[0]} = "
+               f"{overrides[moved[0]]:g})", "[observables.contact] only at tilt = 0, throw = 90")
     return Study(name=name, source=source, seed=st["seed"], preset=preset, overrides=overrides,
                  frequencies=freqs, families=_families(r, doc), accuracy=acc,
-                 observables=_observables(r, doc, acc), analysis=_analysis(r, doc),
-                 refine=refine, text=text)
+                 observables=obs, analysis=_analysis(r, doc), refine=refine, text=text)
 
 
 def _params(r: Reader, doc: dict) -> tuple[str, dict[str, float | str]]:
@@ -271,8 +276,8 @@ def _target_keys(r: Reader, vals: dict, raw: dict) -> None:
 
 
 def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
-    on = ("[observables.positions] and/or [observables.collisions] (also [observables.jumps], "
-          "[observables.lyapunov])")
+    on = ("[observables.positions] and/or [observables.collisions] (also [observables.contact], "
+          "[observables.jumps], [observables.lyapunov])")
     if "observables" not in doc:
         r.fail(("observables",), "missing", on)
     obs = r.table(doc["observables"], ("observables",), ObservablesTable, {"t_max": acc.t_max})
@@ -290,6 +295,7 @@ def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
     return Observables(positions=obs["positions"] is not None,
                        collisions_record=coll.record if coll else None,
                        collisions_from=float(coll.record_from) if coll else 0.0,
+                       contact=obs["contact"] is not None,
                        jumps=obs["jumps"] is not None,
                        lyapunov_particles=lyap.particles if lyap else None,
                        lyapunov_d0=float(lyap.d0) if lyap else 1e-8,

@@ -204,6 +204,12 @@ class CollisionsTable:
 
 
 @dataclass(frozen=True)
+class ContactTable:
+    """Per particle, the time held at rest on the floor and the time sliding on an arc (s,
+    bbb.record.CONTACT_TIME_NAMES).  No keys."""
+
+
+@dataclass(frozen=True)
 class JumpsTable:
     """Δx over every floor period 0 … floor(t_max f) (the Green–Kubo expansion).  No keys."""
 
@@ -224,6 +230,8 @@ class ObservablesTable:
     positions: PositionsTable | None = key(None, "x at the sample times 0, sample_dt, ..., t_max "
                                        "(an empty [observables.positions] switches it on)")
     collisions: CollisionsTable | None = key(None, "post-collision states (t, x, y, vx, vy, phase)")
+    contact: ContactTable | None = key(None, "per-particle time held and time sliding, s "
+                                       "(an empty [observables.contact] switches it on)")
     jumps: JumpsTable | None = key(None, "x(n+1)/f − x(n/f) for every floor period n "
                                    "(an empty [observables.jumps] switches it on)")
     lyapunov: LyapunovTable | None = key(None, "per-particle largest Lyapunov exponent "
@@ -242,6 +250,7 @@ class Observables:
     collisions_record: int | None = None
     collisions_from: float = 0.0
     # declared omit_default: a store made before these existed keeps its fingerprint
+    contact: bool = key(False, "time held and sliding per particle", omit_default=True)
     jumps: bool = key(False, "Δx over every floor period", omit_default=True)
     lyapunov_particles: int | None = key(None, "particles with a Lyapunov exponent",
                                          omit_default=True)

@@ -1,0 +1,237 @@
+"""The paper's claims 1–4 and 16 judged under each contact model, and where D(f) depends on
+the model beyond its CIs.
+
+Per model the klages2004 claim records and rules are reused unchanged (not re-tuned): the
+model's near-onset scene ``contact_<model>`` plays both the Fig. 2 scene (its ``rest`` family
+is the main curve) and the ergodicity scene (families rest and launched); the 54 Hz
+projection scene ``contact_proj_<model>`` gives the locking table of claim 3.
+
+Model dependence (:func:`model_differences`), a rule fixed before any contact scene ran and
+calibrated on synthetic tables (tests/pipeline/studies/contact/test_claims.py): at a frequency
+and family, two models differ when z = |D_a − D_b| / √(s_a² + s_b²) exceeds the Bonferroni
+critical value Φ⁻¹(1 − 0.05 / (2m)) over all m comparisons made, where s = (D_hi − D_lo) /
+(2 · 1.96) is the standard error read off the 95 % bootstrap CI.  On synthetic tables of
+equal models (4 models × 27 f × 2 families, normal errors, CIs ± 15 %) it flags anything in
+5.3 % of 400 tables (± 1.1 %: the intended 5 %); a 60 % difference at 3 frequencies is found
+in 200 of 200.  Real bootstrap CIs of a D near 0 are skewed; the rule reads them as symmetric.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from itertools import combinations
+from statistics import NormalDist
+
+import pandas as pd
+
+from bbb.params import Params
+
+from ...claims import Row
+from ..klages2004.claims import CLAIMS as PAPER_CLAIMS
+from ..klages2004.report import evaluate
+
+__all__ = ["MODELS", "LABELS", "SCENES", "CLAIM_PREFIXES", "CLAIMS", "FWER", "Difference",
+           "model_tables", "model_rows", "model_differences", "report_lines"]
+
+#: contact models of the study, in order: scene suffix -> label
+LABELS = {"stick": "stick", "slide": "slide", "coulomb005": "Coulomb μ = 0.05",
+          "coulomb03": "Coulomb μ = 0.3"}
+MODELS = tuple(LABELS)
+SCENES = tuple(f"contact_{m}" for m in MODELS) + tuple(f"contact_proj_{m}" for m in MODELS)
+ONSET_RANGE = (46.0, 62.0)  # Hz: the onset claims' range; above it, Fig. 2's (from rest)
+FAMILIES = ("rest", "launched")
+PROJ_F = 54.0  # Hz, the projection scenes' frequency
+#: the paper's claims judged per model (1–4 and 16 of klages2004.claims), by their text
+CLAIM_PREFIXES = ("Onset of diffusion around f = 50", "Local maximum of D(f) around f = 54",
+                  "f = 54: 1/1 frequency locking", "Local minimum around f = 58",
+                  "Non-ergodic (depends on the initial condition) only near the peak")
+CLAIMS = [next(c for c in PAPER_CLAIMS if c.text.startswith(p)) for p in CLAIM_PREFIXES]
+#: their short names in the generated paragraph
+SHORT = ("the onset near 50 Hz", "the maximum near 54 Hz", "the 1/1 spot at 54 Hz",
+         "the minimum near 58 Hz", "non-ergodicity only near 55 Hz")
+FWER = 0.05  # family-wise error rate of the model-dependence rule
+_Z95 = NormalDist().inv_cdf(0.975)
+_POSITIVE = ("agrees", "agrees within the CI")
+
+
+def model_tables(tables: Mapping[str, pd.DataFrame], model: str) -> dict[str, pd.DataFrame]:
+    """The klages2004 claim context of one model: figure2 (rest only, as D), ergodicity (the
+    near-onset diffusion table) and locking (of the projection scene), those present."""
+    out: dict[str, pd.DataFrame] = {}
+    onset = tables.get(f"contact_{model}_diffusion")
+    if onset is not None and "D_rest" in onset:
+        rest = onset.copy()
+        rest["D"], rest["D_lo"], rest["D_hi"] = rest["D_rest"], rest["D_rest_lo"], rest["D_rest_hi"]
+        keep = [c for c in rest.columns if not (c.startswith("D_") and c[2:].split("_")[0]
+                                                 in FAMILIES)]
+        out["figure2"] = rest[keep]
+        out["ergodicity"] = onset
+    lock = tables.get(f"contact_proj_{model}_locking")
+    if lock is not None:
+        out["locking"] = lock
+    return out
+
+
+def model_rows(tables: Mapping[str, pd.DataFrame]) -> dict[str, list[Row]]:
+    """{model: the claim rows of CLAIMS judged on that model's tables}."""
+    p = Params.preset("klages2004", f=60.0)
+    f_gamma1 = math.sqrt(p.g / p.A) / (2 * math.pi)
+    return {m: evaluate(model_tables(tables, m), {}, f_gamma1, p.as_dict(), claims=CLAIMS)[0]
+            for m in MODELS}
+
+
+@dataclass(frozen=True)
+class Difference:
+    """Models a and b differ at frequency f (Hz) for family ``family``: D (mm²/s) and z."""
+
+    f: float
+    family: str
+    a: str
+    b: str
+    D_a: float
+    D_b: float
+    z: float
+
+
+def _z(da: float, la: float, ha: float, db: float, lb: float, hb: float) -> float:
+    sa, sb = (ha - la) / (2 * _Z95), (hb - lb) / (2 * _Z95)
+    s = math.hypot(sa, sb)
+    if s > 0:
+        return abs(da - db) / s
+    return math.inf if abs(da - db) > 1e-6 else 0.0  # two still ensembles: D = 0 ± 0
+
+
+def model_differences(curves: Mapping[str, pd.DataFrame], families: Sequence[str] = ("rest",),
+                      fwer: float = FWER) -> tuple[list[Difference], int]:
+    """Where D(f) depends on the model (rule in the module docstring).
+
+    curves -- {model: diffusion table with f, D_<fam>, D_<fam>_lo, D_<fam>_hi (or D, D_lo, D_hi
+              for a family named "")}.  Returns (the differences found, m comparisons made).
+    """
+    rows = []
+    for fam in families:
+        c = (f"D_{fam}", f"D_{fam}_lo", f"D_{fam}_hi") if fam else ("D", "D_lo", "D_hi")
+        by_f: dict[float, dict[str, tuple[float, float, float]]] = {}
+        for m, t in curves.items():
+            if t is None or c[0] not in t:
+                continue
+            for _, r in t.iterrows():
+                v = tuple(float(r[x]) for x in c)
+                if all(math.isfinite(x) for x in v):
+                    by_f.setdefault(round(float(r["f"]), 3), {})[m] = v
+        for f, ms in sorted(by_f.items()):
+            for a, b in combinations(sorted(ms, key=list(curves).index), 2):
+                rows.append((f, fam, a, b, ms[a], ms[b], _z(*ms[a], *ms[b])))
+    m = len(rows)
+    if m == 0:
+        return [], 0
+    zc = NormalDist().inv_cdf(1 - fwer / (2 * m))
+    return [Difference(f, fam, a, b, va[0], vb[0], z) for f, fam, a, b, va, vb, z in rows
+            if z > zc], m
+
+
+def _freqs(fs: Sequence[float], grid: Sequence[float]) -> str:
+    """Frequencies as runs of consecutive points of ``grid`` (Hz): 'a–b' for a run."""
+    index = {round(f, 3): i for i, f in enumerate(sorted(set(grid)))}
+    runs: list[list[float]] = []
+    for f in sorted(set(fs)):
+        if runs and index[round(f, 3)] == index[round(runs[-1][-1], 3)] + 1:
+            runs[-1].append(f)
+        else:
+            runs.append([f])
+    return ", ".join(f"{r[0]:g}" if len(r) == 1 else f"{r[0]:g}–{r[-1]:g}" for r in runs)
+
+
+def _differences_text(diffs: list[Difference], m: int, what: str,
+                      grid: Sequence[float]) -> str:
+    if m == 0:
+        return f"{what}: not measured."
+    if not diffs:
+        return (f"{what}: D(f) does not depend on the contact model beyond its CIs at any of "
+                f"the {m} comparisons (family-wise 5 %).")
+    parts = []
+    for fam in dict.fromkeys(d.family for d in diffs):
+        pairs: dict[tuple[str, str], list[float]] = {}
+        for d in diffs:
+            if d.family == fam:
+                pairs.setdefault((d.a, d.b), []).append(d.f)
+        parts.append(f"from {fam or 'rest'}: " + "; ".join(
+            f"{LABELS[a]} vs {LABELS[b]} at f = {_freqs(fs, grid)} Hz" for (a, b), fs in pairs.items()))
+    return (f"{what}: D(f) depends on the contact model beyond its CIs (family-wise 5 % over "
+            f"{m} comparisons) " + "; ".join(parts) + ".")
+
+
+def _fractions_text(tables: Mapping[str, pd.DataFrame]) -> str:
+    out = []
+    for m in MODELS:
+        t = tables.get(f"contact_{m}_contact")
+        if t is None:
+            continue
+        r = t[(t["family"] == "rest") & ((t["f"] - PROJ_F).abs() < 1e-6)]
+        if len(r):
+            r = r.iloc[0]
+            out.append(f"{LABELS[m]} held {100 * r.held_frac:.1f} % "
+                       f"[{100 * r.held_frac_lo:.1f}, {100 * r.held_frac_hi:.1f}], sliding "
+                       f"{100 * r.slide_frac:.1f} % [{100 * r.slide_frac_lo:.1f}, "
+                       f"{100 * r.slide_frac_hi:.1f}]")
+    return (f"Time in contact at {PROJ_F:g} Hz from rest (share of the run, 95 % CI): "
+            + "; ".join(out) + ".") if out else ""
+
+
+def _measured(text: str) -> str:
+    """A klages2004 row's measured text in this study's terms: the scene's rest family once,
+    not as both 'Fig. 2 scene' and 'ergodicity scene' curves."""
+    parts = [p for p in text.split("; ") if not p.startswith("rest (ergodicity scene)")]
+    return "; ".join(parts).replace(" (Fig. 2 scene)", "").replace(" (ergodicity scene)", "")
+
+
+def report_lines(tables: Mapping[str, pd.DataFrame]) -> list[str]:
+    """The REPORT.md section: a verdict column per contact model for claims 1–4 and 16, the
+    measured values, and the generated paragraph."""
+    rows = model_rows(tables)
+    L = ["", "## Contact models: the onset claims under stick, slide and Coulomb friction", "",
+         "Scenes `pipeline/studies/contact/scenes/` (docs/contact.md): D(f) at 46–99 Hz from "
+         "rest and launched, and post-collision states at 54 Hz from rest, under each contact "
+         "model; verdicts by the rules of the claims above, evaluated on each model's tables "
+         "(the rest family is the main curve).", "",
+         "| claim | " + " | ".join(LABELS[m] for m in MODELS) + " |",
+         "| --- |" + " --- |" * len(MODELS)]
+    for i, c in enumerate(CLAIMS):
+        L.append(f"| {c.text} | " + " | ".join(rows[m][i].verdict for m in MODELS) + " |")
+    L += ["", "Measured (the rest curve is the main one; launched from the same scene):", ""]
+    for i, c in enumerate(CLAIMS):
+        L.append(f"- {c.text}: " + "; ".join(
+            f"**{LABELS[m]}**: {_measured(rows[m][i].measured)}" for m in MODELS))
+    onset_ok = [m for m in MODELS if rows[m][0].verdict in _POSITIVE]
+    max_ok = [m for m in MODELS if rows[m][1].verdict in _POSITIVE]
+    both = [m for m in onset_ok if m in max_ok]
+
+    def names(ms):
+        return ", ".join(LABELS[m] for m in ms) if ms else "none"
+
+    para = ("From rest, " + (f"{names(both)} reproduce{'s' if len(both) == 1 else ''} both the "
+                             "onset near 50 Hz and the maximum near 54 Hz" if both else
+                             "no contact model reproduces both the onset near 50 Hz and the "
+                             "maximum near 54 Hz")
+            + f" (onset: {names(onset_ok)}; maximum: {names(max_ok)}). ")
+    same = [i for i in range(len(CLAIMS)) if len({rows[m][i].verdict for m in MODELS}) == 1]
+    para += ("The verdict is the same under every contact model for "
+             + (", ".join(SHORT[i] for i in same) or "none") + "; it depends on the model for "
+             + (", ".join(SHORT[i] for i in range(len(CLAIMS)) if i not in same) or "none")
+             + ". ")
+    lo, hi = ONSET_RANGE
+    near, high = {}, {}
+    for m in MODELS:
+        t = tables.get(f"contact_{m}_diffusion")
+        if t is not None:
+            near[m], high[m] = t[t["f"] <= hi], t[t["f"] > hi]
+    d1, m1 = model_differences(near, FAMILIES)
+    d2, m2 = model_differences(high, ("rest",))
+    grid = [f for t in near.values() for f in t["f"]] + [f for t in high.values() for f in t["f"]]
+    para += (_differences_text(d1, m1, f"{lo:g}–{hi:g} Hz (rest, launched)", grid) + " "
+             + _differences_text(d2, m2, f"above {hi:g} Hz (rest)", grid))
+    frac = _fractions_text(tables)
+    L += ["", para + (" " + frac if frac else ""), ""]
+    return L
