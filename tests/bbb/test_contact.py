@@ -48,9 +48,9 @@ def slide_off_time(theta0: float, R: float) -> float:
 
 @pytest.mark.parametrize("theta0", [1e-3, 0.1])
 def test_frictionless_slide_from_rest_conserves_energy_and_leaves_where_cos_theta_is_two_thirds(theta0):
-    # A = 0, R = 1.01 S/2 (the cusp at 82° is beyond the lift-off angle): the classic result
+    # A = 0, R = 1.05 S/2 (the cusp at 72° is beyond the 48° lift-off angle): the classic result
     # cos θ = (2/3) cos θ₀ at the time given by the energy integral
-    p = Params(g=G, A=0.0, f=50.0, R=1.01, S=2.0, alpha=0.7, beta=0.99, contact="slide")
+    p = Params(g=G, A=0.0, f=50.0, R=1.05, S=2.0, alpha=0.7, beta=0.99, contact="slide")
     run = simulate(p, 1, 1.0, seed=0, initial=at_rest_on_arc(p, theta0), record_collisions=10,
                    record_liftoffs=True)
     t, x, y, vx, vy = first_row(run, 5.0)[:5]
@@ -127,8 +127,8 @@ def test_mirrored_initial_conditions_give_mirrored_trajectories(contact, mu, fam
 @given(
     f=st.floats(5.0, 200.0),
     A=st.floats(0.0, 1.0),
-    # not R = S/2: Params refuses sliding contact at vertical cusp walls (Zeno ping-pong);
-    # near-vertical walls (R = S/2 · (1 + 1e-9), 54 Hz) still flag contact_start: open
+    # not R < 1.05 S/2: Params refuses sliding contact at (near-)vertical cusp walls (Zeno
+    # ping-pong at R = S/2; at R = S/2 · (1 + 1e-9), 54 Hz, the checker flags contact_start)
     radius=st.one_of(st.floats(1.05, 60.0), st.just(1.05), st.just(math.inf)),
     alpha=st.floats(0.05, 1.0),
     beta=st.floats(0.0, 1.0),
@@ -160,13 +160,25 @@ def test_no_event_is_missed_and_no_particle_goes_below_the_surface_under_the_con
     assert np.all(run.contact_time["held"] + run.contact_time["sliding"] <= 60.0 / f * (1 + 1e-12))
 
 
+@pytest.mark.xfail(strict=True, reason="open (issue 13): a Coulomb stretch ending at the cusp "
+                   "at Γ ≈ 0.1 leaves the checker's path by 3.4e-3 with N = -9340 mm/s² "
+                   "(found by hypothesis); strict: this turns red once fixed")
+def test_a_coulomb_stretch_that_ends_at_a_cusp_follows_the_checkers_path():
+    """f = 5, A = 1, R = 2, Coulomb μ = 0.05, α = 0.5, β = 0, from rest, seed 0."""
+    test_no_event_is_missed_and_no_particle_goes_below_the_surface_under_the_contact_models \
+        .hypothesis.inner_test(f=5.0, A=1.0, radius=2.0, alpha=0.5, beta=0.0,
+                               model=("coulomb", 0.05), family="rest", seed=0)
+
+
 @pytest.mark.parametrize("contact", ["slide", "coulomb"])
 def test_sliding_contact_is_refused_at_vertical_cusp_walls(contact):
     # R = S/2: a particle sliding down a vertical wall lifts off at once and hits the other
     # wall, without end (a driven run never finished); stick holds it in the cusp
     with pytest.raises(ValueError, match="vertical cusp walls.*Zeno.*contact = 'stick'"):
         Params(g=G, A=0.1, f=54.0, R=1.0, S=2.0, alpha=0.7, beta=0.99, contact=contact)
+    with pytest.raises(ValueError, match="vertical cusp walls"):  # flags contact_start (open)
+        Params(g=G, A=0.1, f=54.0, R=1.0 + 1e-9, S=2.0, alpha=0.7, beta=0.99, contact=contact)
     with pytest.raises(ValueError, match="vertical cusp walls"):
-        Params(g=G, A=0.1, f=54.0, R=1.0 + 5e-10, S=2.0, alpha=0.7, beta=0.99, contact=contact)
-    assert Params(g=G, A=0.1, f=54.0, R=1.0 + 2e-9, S=2.0, alpha=0.7, beta=0.99, contact=contact).R > 1
+        Params(g=G, A=0.1, f=54.0, R=1.049, S=2.0, alpha=0.7, beta=0.99, contact=contact)
+    assert Params(g=G, A=0.1, f=54.0, R=1.05, S=2.0, alpha=0.7, beta=0.99, contact=contact).R > 1
     assert Params(g=G, A=0.1, f=54.0, R=1.0, S=2.0, alpha=0.7, beta=0.99).contact == "stick"
