@@ -29,7 +29,8 @@ import math
 import numpy as np
 from numba import njit
 
-from .kernel import NO_COLLISION, STACK_DEPTH, wrap_period
+from .kernel import wrap_period
+from .search import NO_COLLISION, STACK_DEPTH
 
 __all__ = ["evolve_ensemble_c"]
 from .surface import arc_curvature, arc_depth, arc_normal, arc_slope
