@@ -305,9 +305,12 @@ def figure2(store: str | os.PathLike | StudyStore | None, tables: Mapping[str, p
     if store is not None:
         st = as_store(store)
         prm = st.study.params(float(main["f"].iloc[0]))
+        acc = st.study.accuracy
+        # a target-driven scene's particle count differs per f: state the target and the cap
+        size = (f"D to ±{100 * acc.target_ci:g} %, ≤ {acc.n_particles}"
+                if acc.target_ci is not None else f"{acc.n_particles}")
         title = (f"R = {prm.R:g} mm, α = {prm.alpha:g}, β = {prm.beta:g}, A = {prm.A:g} mm "
-                 f"({st.study.accuracy.preset}: {st.study.accuracy.n_particles} particles, "
-                 f"{st.study.accuracy.t_max:g} s)")
+                 f"({size} particles × {acc.t_max:g} s)")
     lock = tables.get("locking")
     f = main["f"].to_numpy(float)
     with rc_context(STYLE):
