@@ -14,30 +14,24 @@ import datetime
 import math
 import os
 import platform
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
-from bbb import Params, simulate
-from bbb.greenkubo import cell_jumps, expansion, period_jumps
-from bbb.lyapunov import lyapunov
-from bbb.stats import bootstrap_D
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+
+from bbb import Params, simulate  # noqa: E402
+from bbb.greenkubo import cell_jumps, expansion, period_jumps  # noqa: E402
+from bbb.lyapunov import lyapunov  # noqa: E402
+from bbb.stats import bootstrap_D  # noqa: E402
+from benchmarks.kernel import cpu_name  # noqa: E402
 
 SEED = 1
 DISCARD = 0.1
 # collisions kept per particle for the per-collision expansion (from the end of the transient)
 ROWS = 4000
-
-
-def cpu_name() -> str:
-    try:
-        with open("/proc/cpuinfo") as fh:
-            for line in fh:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or platform.machine()
 
 
 def ci(v: float, lo: float, hi: float) -> str:

@@ -23,6 +23,7 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
+from benchmarks.kernel import cpu_name  # noqa: E402
 from pipeline.plan import benchmark_rate, pilot_rates, plan_table, predict  # noqa: E402
 from pipeline.workflow import load_workflow, parse_workflow  # noqa: E402
 
@@ -49,21 +50,11 @@ def scenes():
                 yield f"{rel} at {preset}", study, m
 
 
-def _cpu() -> str:
-    try:
-        for line in Path("/proc/cpuinfo").read_text().splitlines():
-            if line.startswith("model name"):
-                return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.machine()
-
-
 def main() -> None:
     os.chdir(ROOT)
     bench = benchmark_rate(KERNEL_TABLE)
     print(f"# bbb plan vs measured runs  {datetime.datetime.now():%Y-%m-%dT%H:%M:%S}")
-    print(f"# CPU: {_cpu()} ({os.cpu_count()} cores)  python {platform.python_version()}  "
+    print(f"# CPU: {cpu_name()} ({os.cpu_count()} cores)  python {platform.python_version()}  "
           f"load {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
     print("# predicted on 2 workers; rate A = today's pilot (process CPU time x 0.82 in tasks),"
           f" rate B = {Path(KERNEL_TABLE).name} ({bench:.3g} coll/s/core, x 0.82)")
