@@ -11,8 +11,7 @@ from scipy.integrate import quad
 
 from bbb import Params, simulate
 from bbb.ensemble import InitialState, initial_state
-from tests.bbb.flight_check import gap_along_flights, on_surface_tolerance
-from tests.bbb.trajectory_check import check_particle, start_event
+from tests.bbb.no_miss import assert_no_miss
 
 G = 9800.0
 
@@ -148,15 +147,7 @@ def test_no_event_is_missed_and_no_particle_goes_below_the_surface_under_the_con
     st0 = initial_state(p, 3, np.random.SeedSequence(seed), family, drop_height=(0.0, 1.0),
                         launch_speed=(0.0, 150.0))
     run = simulate(p, 3, 60.0 / f, seed=seed, initial=st0, record_collisions=300, record_liftoffs=True)
-    for i in range(3):
-        rows = run.collisions_dense[i, : run.n_recorded[i]]
-        assert np.all(np.isfinite(rows))
-        start = start_event(p, st0.cell[i], st0.d[i], st0.y[i], st0.vx[i], st0.vy[i], st0.s[i], st0.stuck[i])
-        rep = check_particle(p, run.numerics, np.vstack([start, rows]))
-        assert rep.ok, rep.messages
-        worst, _ = gap_along_flights(p, rows, n_grid=200)
-        assert worst > -on_surface_tolerance(p)
-    assert run.counters["anomalies"].sum() == 0
+    assert_no_miss(p, st0, run)
     assert np.all(run.contact_time["held"] + run.contact_time["sliding"] <= 60.0 / f * (1 + 1e-12))
 
 
