@@ -1,4 +1,5 @@
-"""Fixtures: the tiny workflow as a file, and a real dask scheduler with two workers."""
+"""Fixtures: the tiny workflow as a file and as a parsed study with an empty store on disk,
+and a real dask scheduler with two workers."""
 
 from __future__ import annotations
 
@@ -12,7 +13,20 @@ from pathlib import Path
 
 import pytest
 
+from pipeline.store import StudyStore
+from pipeline.workflow import parse_workflow
+
 from .helpers import FAULT, QUIET, TINY
+
+
+@pytest.fixture
+def study():
+    return parse_workflow(TINY, source="tiny.toml")
+
+
+@pytest.fixture
+def store(tmp_path, study):
+    return StudyStore.create_or_open(tmp_path / "s.zarr", study)
 
 
 @pytest.fixture(scope="session")

@@ -30,16 +30,6 @@ from pipeline.workflow import parse_workflow
 from .helpers import TINY
 
 
-@pytest.fixture
-def study():
-    return parse_workflow(TINY, source="tiny.toml")
-
-
-@pytest.fixture
-def store(tmp_path, study):
-    return StudyStore.create_or_open(tmp_path / "s.zarr", study)
-
-
 class FakeRun:
     """Stands in for a bbb SimRun with recognisable values (the store only reads arrays)."""
 

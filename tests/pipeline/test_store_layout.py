@@ -3,25 +3,10 @@
 
 from __future__ import annotations
 
-import pytest
 import xarray as xr
 
 from bbb.record import COLLISION_FIELDS
-from pipeline.store import StudyStore
 from pipeline.store_layout import collision_field_units
-from pipeline.workflow import parse_workflow
-
-from .helpers import TINY
-
-
-@pytest.fixture
-def study():
-    return parse_workflow(TINY, source="tiny.toml")
-
-
-@pytest.fixture
-def store(tmp_path, study):
-    return StudyStore.create_or_open(tmp_path / "s.zarr", study)
 
 
 def test_xarray_opens_the_store_with_named_dims_and_coords(store, study):
