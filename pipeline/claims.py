@@ -30,7 +30,7 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
 __all__ = ["VERDICTS", "Quantity", "Band", "Part", "Measured", "Claim", "Row", "MEASURES",
-           "measure", "judge", "combine", "evaluate"]
+           "measure", "judge", "combine", "evaluate", "markdown_table", "md_cell"]
 
 VERDICTS = ("agrees", "agrees within the CI", "inconclusive", "partly", "disagrees",
             "not measured")
@@ -249,3 +249,20 @@ def evaluate_claim(claim: Claim, ctx: Mapping) -> Row:
 def evaluate(claims: Sequence[Claim], ctx: Mapping) -> list[Row]:
     """One row per claim, in order."""
     return [evaluate_claim(c, ctx) for c in claims]
+
+
+def md_cell(text) -> str:
+    """One markdown table cell: a '|' in the text would end the cell, a newline the row."""
+    return str(text).replace("|", "\\|").replace("\n", " ")
+
+
+def markdown_table(rows: Sequence[Row], prefix: str = "", claim_header: str = "claim"
+                   ) -> list[str]:
+    """The claims table of a REPORT section: header lines and one row per claim, numbered
+    ``prefix`` + 1, 2, ... (e.g. "M1")."""
+    L = [f"| # | {claim_header} | we measured | verdict | judged by | notes |",
+         "| --- | --- | --- | --- | --- | --- |"]
+    for i, r in enumerate(rows, 1):
+        L.append(f"| {prefix}{i} | {md_cell(r.claim)} | {md_cell(r.measured)} | **{r.verdict}** | "
+                 f"{md_cell(r.judged_by)} | {md_cell(r.note)} |")
+    return L

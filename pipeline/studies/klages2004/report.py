@@ -25,7 +25,7 @@ from bbb.locking import CREEP_MARGIN, FLIGHT_TOL, MAX_QUANTILE, TMAX_QUANTILE
 
 from ... import claims as _claims
 from ...claim_measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
-from ...claims import Row
+from ...claims import Row, markdown_table, md_cell
 from ...collisions import as_store
 from .claims import CLAIMS, period1_limit
 from .measures import MAIN, families, spiral_closeness
@@ -136,10 +136,6 @@ def _ci(r: pd.Series, col: str) -> str:
     return f"{r[col]:.2f}" + (f" [{lo:.2f}, {hi:.2f}]" if np.isfinite([lo, hi]).all() else "")
 
 
-def _md(text: str) -> str:
-    return str(text).replace("|", "\\|").replace("\n", " ")
-
-
 def _scene_rows(stores: Mapping[str, str], run_log: Mapping | None) -> list[str]:
     lines = ["| scene | workflow | accuracy | particles × t_max | frequencies × families | chunks "
              "done | task time (sum of chunk_seconds) | wall time of the run |",
@@ -149,7 +145,7 @@ def _scene_rows(stores: Mapping[str, str], run_log: Mapping | None) -> list[str]
         try:
             st = as_store(path)
         except Exception as e:  # a store that cannot be opened is reported, not fatal
-            lines.append(f"| {name} | – | – | – | – | – | – | cannot open: {_md(e)} |")
+            lines.append(f"| {name} | – | – | – | – | – | – | cannot open: {md_cell(e)} |")
             continue
         g = st.group()
         secs = float(np.nansum(np.asarray(g["chunk_seconds"][...])))
@@ -275,11 +271,7 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
           "feature not found), **partly** (some parts agree, or only a curve other than the "
           "claim's main one), **not measured**. A quantity shown with '(no CI)' is judged by "
           "its value alone. ⚠ marks a D that depends on the run length (stationarity below).",
-          "", "| # | the paper says | we measured | verdict | judged by | notes |",
-          "| --- | --- | --- | --- | --- | --- |"]
-    for i, r in enumerate(rows, 1):
-        L.append(f"| {i} | {_md(r.claim)} | {_md(r.measured)} | **{r.verdict}** | "
-                 f"{_md(r.judged_by)} | {_md(r.note)} |")
+          ""] + markdown_table(rows, claim_header="the paper says")
     by: dict[str, list[str]] = {}
     for i, r in enumerate(rows, 1):
         by.setdefault(r.verdict, []).append(str(i))

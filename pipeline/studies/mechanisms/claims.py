@@ -20,7 +20,7 @@ import math
 import pandas as pd
 
 from ...claim_measures import row_at
-from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, measure
+from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, markdown_table, measure
 
 __all__ = ["CLAIMS", "EXTREMA", "report_lines"]
 
@@ -104,10 +104,5 @@ def report_lines(tables) -> list[str]:
     L = ["", "## Mechanisms: memory and chaos at the extrema (scene mechanisms)", "",
          "Verdicts computed from the mechanisms store (Green–Kubo expansion per floor period, "
          "Lyapunov exponent from two trajectories; pipeline/studies/mechanisms/claims.py "
-         "states the rules).", "",
-         "| # | claim | we measured | verdict | judged by | notes |",
-         "| --- | --- | --- | --- | --- | --- |"]
-    for i, r in enumerate(rows, 1):
-        L.append(f"| M{i} | {r.claim} | {r.measured} | **{r.verdict}** | {r.judged_by} | "
-                 f"{r.note} |".replace("\n", " "))
-    return L
+         "states the rules).", ""]
+    return L + markdown_table(rows, prefix="M")

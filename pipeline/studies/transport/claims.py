@@ -39,7 +39,7 @@ import pandas as pd
 
 from bbb.extrema import find_extrema
 
-from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, measure
+from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, markdown_table, measure
 
 __all__ = ["SCENES", "CONVEYORS", "LABELS", "CLAIMS", "significant_signs", "reversals",
            "report_lines"]
@@ -194,10 +194,5 @@ def report_lines(tables) -> list[str]:
     rows = evaluate(CLAIMS, ctx)
     L = ["", "## Transport on a vibro-conveyor (scenes transport_*)", "",
          "Drift v with its bootstrap CI and D about the drift (bbb.transport) along f per "
-         "(tilt φ, throw ψ); pipeline/studies/transport/claims.py states the rules.", "",
-         "| # | claim | we measured | verdict | judged by | notes |",
-         "| --- | --- | --- | --- | --- | --- |"]
-    for i, r in enumerate(rows, 1):
-        L.append(f"| T{i} | {r.claim} | {r.measured} | **{r.verdict}** | {r.judged_by} | "
-                 f"{r.note} |".replace("\n", " "))
-    return L
+         "(tilt φ, throw ψ); pipeline/studies/transport/claims.py states the rules.", ""]
+    return L + markdown_table(rows, prefix="T")
