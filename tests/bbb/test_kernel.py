@@ -9,8 +9,9 @@ from hypothesis import strategies as st
 
 from bbb import Numerics, Params, simulate
 from bbb.ensemble import InitialState, initial_state
-from tests.bbb.flight_check import gap_along_flights
+from tests.bbb.flight_check import gap_along_flights, on_surface_tolerance
 from tests.bbb.no_miss import assert_no_miss
+from tests.bbb.trajectory_check import check_particle, start_event
 
 ALPHA = 0.7
 # Period-1 orbit of a ball on a flat sinusoidal plate (restitution α): it exists for
@@ -88,7 +89,26 @@ def test_no_collision_is_missed_and_no_particle_goes_below_the_surface(f, A, rad
     st = initial_state(p, 3, np.random.SeedSequence(seed), family, drop_height=(0.0, 1.0),
                        launch_speed=(0.0, 150.0))
     run = simulate(p, 3, 60.0 / f, seed=seed, initial=st, record_collisions=300, record_liftoffs=True)
-    assert_no_miss(p, st, run)
+    for i in range(3):
+        rows = run.collisions_dense[i, : run.n_recorded[i]]
+        assert np.all(np.isfinite(rows))
+        start = start_event(p, st.cell[i], st.d[i], st.y[i], st.vx[i], st.vy[i], st.s[i], st.stuck[i])
+        rep = check_particle(p, run.numerics, np.vstack([start, rows]))
+        assert rep.ok, rep.messages
+        # brute force: between two recorded collisions the particle stays above the surface
+        worst, _ = gap_along_flights(p, rows, n_grid=200)
+        assert worst > -on_surface_tolerance(p)
+    assert run.counters["anomalies"].sum() == 0
+
+
+@pytest.mark.xfail(strict=True, reason="open (found by hypothesis while this stop refactored "
+                   "the test): at a subnormal amplitude A = 2.2e-311 mm the checker's velocity "
+                   "rule disagrees with the kernel at a sticking collision (f = 5, R = 51, "
+                   "launched, seed 112, particle 2, event 14); strict: turns red once fixed")
+def test_a_sticking_collision_at_a_subnormal_amplitude_passes_the_velocity_rule():
+    test_no_collision_is_missed_and_no_particle_goes_below_the_surface.hypothesis.inner_test(
+        f=5.0, A=2.225073858507e-311, radius=51.0, alpha=0.421875, beta=0.8125,
+        family="launched", seed=112)
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
