@@ -23,8 +23,7 @@ from numba import njit
 
 from .contact import CUSP, END, LIFT, normal_force, slide
 from .conveyor_search import times_or_zero
-from .kernel import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row, \
-    wrap_period
+from .kernel import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row, wrap_period
 from .surface import arc_curvature, arc_depth, arc_normal, arc_slope
 
 # contact_c's verdicts for bbb.conveyor.evolve_c's loop
