@@ -1,0 +1,105 @@
+"""Sliding and Coulomb contact on the conveyor (bbb.conveyor_contact) against analytic
+mechanics and the mirror symmetry."""
+
+import math
+
+import numpy as np
+import pytest
+
+from bbb import Params, simulate
+from bbb.ensemble import InitialState
+
+G = 9800.0
+STOP, CONTACT_LIFT = 6.0, 5.0  # bbb.record.EVENT_CODES
+
+
+def one(value, dtype=float):
+    return np.full(1, value, dtype=dtype)
+
+
+def at_rest(d: float, y: float = 0.0) -> InitialState:
+    """One particle at rest on the floor at offset d (cell 0), floor time 0."""
+    return InitialState(one(0, np.int64), one(d), one(y), one(0.0), one(0.0), one(0.0),
+                        one(True, bool), one(True, bool))
+
+
+def tilted(phi: float, mu: float, R: float = math.inf) -> Params:
+    """A motionless floor (A = 0) tilted by φ (degrees) under slide (μ = 0) or Coulomb μ."""
+    return Params(g=G, A=0.0, f=50.0, R=R, S=2.0, alpha=0.5, beta=0.9, tilt=phi,
+                  contact="slide" if mu == 0.0 else "coulomb", mu=mu)
+
+
+@pytest.mark.parametrize(("phi", "mu"), [(10.0, 0.0), (10.0, 0.1), (-25.0, 0.3), (30.0, 0.5)])
+def test_on_a_motionless_tilted_flat_floor_a_particle_slides_at_g_sin_phi_minus_mu_cos_phi(phi, mu):
+    # tan φ > μ: x(t) = x₀ − sgn(φ) g (sin|φ| − μ cos φ) t²/2, downhill (towards −x for φ > 0)
+    a = G * (math.sin(math.radians(abs(phi))) - mu * math.cos(math.radians(phi)))
+    assert a > 0
+    times = np.linspace(0.0, 0.6, 61)
+    run = simulate(tilted(phi, mu), 1, 0.6, seed=0, initial=at_rest(0.3), sample_times=times)
+    x = run.positions[0]
+    travel = 0.5 * a * times**2
+    expected = 0.3 - math.copysign(1.0, phi) * travel
+    # 1e-9 relative to the distance from the origin x = 0 along the way
+    assert np.all(np.abs(x - expected) <= 1e-9 * (0.3 + travel))
+
+
+@pytest.mark.parametrize(("phi", "mu"), [(10.0, 0.2), (-25.0, 0.5), (0.5, 0.01)])
+def test_on_a_motionless_tilted_flat_floor_static_friction_holds_where_tan_phi_is_below_mu(phi, mu):
+    assert math.tan(math.radians(abs(phi))) < mu
+    times = np.linspace(0.0, 1.0, 11)
+    run = simulate(tilted(phi, mu), 1, 1.0, seed=0, initial=at_rest(0.3), sample_times=times)
+    assert np.all(run.positions[0] == 0.3)
+
+
+@pytest.mark.parametrize("phi", [8.0, -15.0])
+def test_a_frictionless_particle_leaves_a_tilted_arc_where_the_classic_two_thirds_rule_says(phi):
+    # A = 0: on an arc the particle is a point on a circle under gravity g at φ to the arc's
+    # axis; from rest at θ₀ it keeps E (v² = 2gR (cos(θ₀−φ) − cos(θ−φ))) and leaves where
+    # N = g cos(θ−φ) − v²/R = 0, i.e. cos(θ−φ) = (2/3) cos(θ₀−φ)
+    R = 1.05
+    ph = math.radians(phi)
+    th0 = ph + math.copysign(0.05, phi)
+    p = tilted(phi, 0.0, R)
+    run = simulate(p, 1, 0.2, seed=0, initial=at_rest(R * math.sin(th0), -R * (1 - math.cos(th0))),
+                   record_collisions=4, record_liftoffs=True)
+    rows = run.collisions_dense[0, : run.n_recorded[0]]
+    assert rows[0, 6] == CONTACT_LIFT
+    t, x, y, vx, vy = rows[0, :5]
+    th = math.asin(x / R)
+    th_pred = ph + math.copysign(math.acos(2.0 / 3.0 * math.cos(th0 - ph)), phi)
+    assert abs(th - th_pred) <= 1e-7
+    # the speed it leaves with (less the kick v_stick along the normal) from energy
+    nx, ny = math.sin(th), math.cos(th)
+    v2 = (vx - run.numerics.v_stick * nx) ** 2 + (vy - run.numerics.v_stick * ny) ** 2
+    v2_pred = 2.0 * G * R * (math.cos(th0 - ph) - math.cos(th - ph))
+    assert abs(v2 - v2_pred) <= 1e-9 * 2.0 * G * R
+
+
+def mirror_pair(R: float, contact: str, mu: float, n: int = 6):
+    """(φ, ψ) and (−φ, 180° − ψ) from mirrored states (d, vₓ → −d, −vₓ) at low Γ (22 Hz)."""
+    p = Params.preset("klages2004", f=22.0, R=R, tilt=3.0, throw=60.0, contact=contact, mu=mu)
+    q = p.with_(tilt=-3.0, throw=120.0)
+    rng = np.random.default_rng(7)
+    d = rng.uniform(-0.9, 0.9, n)
+    s = rng.uniform(0.0, 1 / 22.0, n)
+    y = 0.05 + rng.uniform(0.0, 0.3, n)
+    vx = rng.uniform(-30.0, 30.0, n)
+    vy = rng.uniform(-30.0, 30.0, n)
+    zero, no = np.zeros(n, np.int64), np.zeros(n, bool)
+    times = np.linspace(0.0, 2.0, 201)
+    kw = dict(sample_times=times, record_collisions=400, record_liftoffs=True)
+    a = simulate(p, n, 2.0, 0, InitialState(zero, d, y, vx, vy, s, no, no), **kw)
+    b = simulate(q, n, 2.0, 0, InitialState(zero, -d, y, -vx, vy, s, no, no), **kw)
+    return a, b
+
+
+@pytest.mark.parametrize(("contact", "mu"), [("slide", 0.0), ("coulomb", 0.3)])
+@pytest.mark.parametrize("R", [15.0, 1.5, math.inf])
+def test_mirrored_conveyor_and_state_give_the_mirrored_sliding_trajectory_bit_exactly(R, contact, mu):
+    a, b = mirror_pair(R, contact, mu)
+    events = a.collisions_dense[..., 6]
+    assert np.count_nonzero(events >= 4) > 10  # it slides
+    assert np.array_equal(a.positions, -b.positions)
+    assert np.array_equal(a.n_recorded, b.n_recorded)
+    sign = np.array([1, -1, 1, -1, 1, 1, 1])
+    assert np.array_equal(a.collisions_dense * sign, b.collisions_dense, equal_nan=True)
