@@ -212,6 +212,10 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
         nb = normal_force(qb, vb, sb, g, A, w, R, flat, side)
         lift = nb <= 0.0
         cusp = (not flat) and abs(qb) >= q_c
+        if side is not None:
+            # on a conveyor a particle may leave a cusp from rest (bbb.conveyor_contact): θ then
+            # stays at ±θ_c to rounding for a while, which is no arrival at the cusp
+            cusp = cusp and qb * vb > 0.0
         stop = mu > 0.0 and sgn * vb <= 0.0
         amax, J, L = step_bounds(v, vb, hs, g, A, w, R, mu, flat, sin_c, side)
         # N: chord minus Lipschitz, N ≥ (N_a + N_b)/2 − L h/2
