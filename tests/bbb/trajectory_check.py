@@ -620,8 +620,10 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
         + fl.height_error(d_a, 4 * np.spacing(np.abs(x_a) + fl.S))
     bad |= off > y_tol
     rep.flag("contact_start", bad, idx[k], np.abs(un), start_tol)
-    # friction's sign is fixed over a stretch (the kernel ends one at every stop)
-    sgn = np.where(v > 0, 1.0, np.where(v < 0, -1.0, np.where(np.sin(q) > 0, 1.0, -1.0)))
+    # friction's sign is fixed over a stretch (the kernel ends one at every stop); a start
+    # speed within its rounding (start_tol) of 0 has no sign of its own: the particle moves
+    # the way the tangential force pulls it, downhill on the arc
+    sgn = np.where(np.abs(v) <= start_tol, np.where(np.sin(q) > 0, 1.0, -1.0), np.sign(v))
     # the faster of the floor's period and the arc's pendulum period 2π√(R/g_max)
     swing = math.inf if fl.flat else 2 * math.pi * math.sqrt(fl.R / (fl.g + fl.A * fl.w**2))
     fast = min(1.0 / fl.f, swing / 8)
