@@ -8,9 +8,10 @@ width).  The rule (calibrated in docs/statistics.md, ``benchmarks/rare_movers.py
 * ``n_eff = (Σ c_i)² / Σ c_i²`` over the positive contributions c_i = max(D_i, 0) — the
   number of equal movers that would give the same relative spread (k equal movers: k);
 * when ``n_eff < min(RARE_N_EFF, RARE_SHARE N)`` (40, and 25 % of the N particles) the CI
-  becomes the hull of the bootstrap CI and the gamma interval of Fay & Feuer (1997, Stat. Med. 16, 791) for a weighted sum of Poisson counts,
-  y = Σ c_i, v = Σ c_i² − y² / N (the Bernoulli variance: each particle moves or not),
-  w = max c_i (the next, unseen mover as large as the largest seen):
+  becomes the hull of the bootstrap CI and the gamma interval of Fay & Feuer (1997, Stat.
+  Med. 16, 791) for a weighted sum of Poisson counts, with y = Σ c_i, v = Σ c_i² − y² / N
+  (the Bernoulli variance: each particle moves or not) and w = max c_i (the next, unseen
+  mover as large as the largest seen):
 
       lo = (v / y)               G⁻¹(α/2;     y² / v)
       hi = ((v + w²) / (y + w))  G⁻¹(1 − α/2; (y + w)² / (v + w²))
