@@ -4,7 +4,7 @@ VENV   ?= .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.installed
 
-.PHONY: venv test test-slow lint smoke figures bench clean
+.PHONY: venv test test-slow lint smoke figures bench clean clean-numba
 
 venv: $(STAMP)
 
@@ -35,6 +35,11 @@ figures: $(STAMP)
 
 clean:
 	rm -rf $(VENV) runs .pytest_cache
+
+# numba caches a jitted function by its own file only: after editing a kernel module that
+# another one calls (search.py from kernel.py, ...), the caller's cached code is stale
+clean-numba:
+	find bbb -name '*.nbi' -delete -o -name '*.nbc' -delete
 
 # benchmarks print tables (not tests); committed outputs live in benchmarks/results/
 bench: $(STAMP)

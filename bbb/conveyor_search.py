@@ -15,6 +15,12 @@ from numba import njit
 from .search import NO_COLLISION
 from .surface import arc_curvature, arc_depth, arc_slope
 
+#: a carried particle within CUSP_REACH·S of a cusp rests in it: both arcs hold it, and it
+#: lifts off only when both let go (docs/physics.md, "Transport"); 1e-9 S is far above the
+#: ~|u|·tol_t ≲ 1e-9 mm to which a collision's place is known and far below any scale of
+#: the motion
+CUSP_REACH = 1e-9
+
 
 @njit(cache=True, inline="always")
 def round_half_away(u):
@@ -129,14 +135,47 @@ def refine_root_c(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S
     return min(max(t, a), b)
 
 
+@njit(cache=True, inline="always")
+def cusp_side(d, R, S):
+    """±1 when the offset d (mm, |d| ≤ S/2) lies within CUSP_REACH·S of the cusp on that
+    side (a carried particle there rests in the cusp, held by both arcs), else 0."""
+    if math.isinf(R) or 0.5 * S - abs(d) > CUSP_REACH * S:
+        return 0
+    return 1 if d > 0.0 else -1
+
+
 @njit(cache=True)
 def start_step_c(h_max, G1, d0, d10, s, gx, gy, Ax, Ay, w, R, S, Dx, lifting):
     """A step σ > 0 on which G > 0 for a flight starting on the surface (G(0) = 0); 0 if none."""
-    sigma = 0.0
     dn = nearest(d0, S)
-    # both bounds below need G'' bounded below: stop before the nearest cusp's concave kink
-    # (|d − d0| ≤ |d'0| σ + Dx σ²/2 ≤ S/2 − |d0|)
-    r = max(0.5 * S - abs(dn), 0.0)
+    side = cusp_side(dn, R, S) if lifting else 0
+    if side == 0:
+        # both bounds below need G'' bounded below: stop before the nearest cusp's concave kink
+        return start_step_arc(h_max, G1, dn, max(0.5 * S - abs(dn), 0.0), 0.5 * S, d10, s, gx,
+                              gy, Ax, Ay, w, R, Dx, lifting)
+    # a lift-off from a cusp (bbb.conveyor.liftoff_wait_c: both arcs have let go; a bounce
+    # there takes the path above, whose tiny steps resolve a flight across the cusp): both
+    # arcs are the floor, G = min(G_own, G_other), each the gap to a whole circle
+    # (smooth, convex depth), while d stays within r of the cusp: both circles defined (half
+    # the way to |e| = R, where the slope is infinite) and the nearest arc one of the two
+    e2 = dn - side * S
+    r = min(0.5 * (R - abs(e2)), 0.5 * S)
+    G1b = G1
+    if d10 != 0.0:
+        G1b = G1 - arc_slope(dn, R) * d10 + arc_slope(e2, R) * d10
+        if not math.isfinite(G1b):
+            return 0.0
+    a = start_step_arc(h_max, G1, dn, r, abs(dn) + r, d10, s, gx, gy, Ax, Ay, w, R, Dx, lifting)
+    b = start_step_arc(h_max, G1b, e2, r, abs(e2) + r, d10, s, gx, gy, Ax, Ay, w, R, Dx, lifting)
+    return min(a, b)
+
+
+@njit(cache=True)
+def start_step_arc(h_max, G1, e0, r, cap, d10, s, gx, gy, Ax, Ay, w, R, Dx, lifting):
+    """start_step_c on one circle: the flight starts at offset e0 (mm) from its centre, G(0) = 0,
+    G'(0) = G1, and the bounds hold while |d − d0| ≤ r (mm); ``cap`` bounds |e| there."""
+    sigma = 0.0
+    # (|d − d0| ≤ |d'0| σ + Dx σ²/2 ≤ r)
     if not math.isinf(R) and r < math.inf:
         sq = abs(d10) + math.sqrt(d10 * d10 + 2.0 * Dx * r)
         h_max = min(h_max, 2.0 * r / sq if sq > 0.0 else h_max)
@@ -146,7 +185,7 @@ def start_step_c(h_max, G1, d0, d10, s, gx, gy, Ax, Ay, w, R, S, Dx, lifting):
         # G ≥ G1 τ + m τ²/2 with m a lower bound of G'' on [0, σ] (|d − d0| ≤ |d'0|σ + Dxσ²/2)
         sigma = h_max
         for _ in range(60):
-            amax = min(abs(dn) + abs(d10) * sigma + 0.5 * Dx * sigma * sigma, 0.5 * S)
+            amax = min(abs(e0) + abs(d10) * sigma + 0.5 * Dx * sigma * sigma, cap)
             m = -gy - abs(Ay) * w * w - times_or_zero(arc_slope(amax, R), Dx)
             if not math.isfinite(m):
                 sigma *= 0.5
@@ -156,7 +195,7 @@ def start_step_c(h_max, G1, d0, d10, s, gx, gy, Ax, Ay, w, R, S, Dx, lifting):
             sigma = min(0.5 * sigma, -G1 / m)
         else:
             sigma = 0.0
-    cs = arc_slope(dn, R)
+    cs = arc_slope(e0, R)
     if G1 >= 0.0 and math.isfinite(cs):
         # c is convex: G ≥ H = (the flight's height) − (floor) + c(d0) + c'(d0)(d(τ) − d0), a
         # flight over a flat floor of gravity gy + c' gx and amplitude Ay + c' Ax: Taylor to

@@ -77,7 +77,7 @@ TRANSPORT_MIX = (
     "tilt=15,throw=45,A=0.3",
     "tilt=-5,throw=30,A=0.3,R=inf",
     "tilt=30,throw=90",
-    "tilt=-30,throw=45,R=1",
+    "tilt=-30,throw=45,R=1.05",  # R = S/2 is refused on the conveyor (bbb.Params)
 )
 MIXES = {"transport": TRANSPORT_MIX}
 

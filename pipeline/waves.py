@@ -223,9 +223,12 @@ class Waves:
                     outstanding[(fi, mi)].discard(ci)
                     if not outstanding[(fi, mi)]:  # its wave is complete: decide
                         state = self.states[(fi, mi)]
-                        self._advance(state, fi, mi, _prefix(self._done(fi, mi)))
+                        # only the first state.n flags: none beyond is done (plan() unmarks
+                        # them, and only chunks below state.n are submitted); the whole row is
+                        # one file per chunk, read twice per decision (figure2_matyas2004: 128)
+                        self._advance(state, fi, mi, _prefix(self._done(fi, mi, state.n)))
                         if state.reason == OPEN:
-                            done = self._done(fi, mi)
+                            done = self._done(fi, mi, state.n)
                             submit([(fi, mi, c) for c in range(state.n) if not done[c]])
                         self._postfix(bar, done_counts)
                 if not self.refine():
@@ -235,8 +238,9 @@ class Waves:
         finally:
             bar.close()
 
-    def _done(self, fi: int, mi: int) -> np.ndarray:
-        return np.asarray(self.store.group()["done"][fi, mi], dtype=bool)
+    def _done(self, fi: int, mi: int, n: int) -> np.ndarray:
+        """The done flags of the first n chunks of (fi, mi)."""
+        return np.asarray(self.store.group()["done"][fi, mi, :n], dtype=bool)
 
     def progress_line(self, done_counts: dict[Unit, int] | None = None) -> str:
         """What the waves still need, e.g. "waves: 12 (f, family) mid-wave, need ~40 more

@@ -23,6 +23,7 @@ Modules (every public name is re-exported here, so ``from bbb.stats import X`` w
 ``msd``         time-averaged MSD of each trajectory and of the ensemble
 ``fit``         D from the MSD slope, the fit regime (transient, lag range), D_last
 ``bootstrap``   bootstrap CIs for D over particles (percentile, basic, BCa)
+``rare``        the rare-mover rule: D's CI when a few particles carry D (used by bootstrap)
 ``ergodicity``  EB, its Brownian value, and the calibrated ergodicity verdict
 ``inputs``      shape and finiteness checks shared by the above
 =============== ==========================================================================

@@ -10,8 +10,9 @@ from numpy.typing import ArrayLike, NDArray
 
 from .fit import DEFAULT_DISCARD, _per_particle_fit, _regime
 from .inputs import _as_positions, _as_times
+from .rare import is_rare, rare_mover_interval
 
-__all__ = ["BootstrapCI", "bootstrap_D", "bootstrap_mean"]
+__all__ = ["BootstrapCI", "bootstrap_D", "bootstrap_mean", "with_rare_movers"]
 
 _FLOAT = NDArray[np.float64]
 # Largest number of resample indices held at once in the bootstrap (≈ 32 MB).
@@ -40,6 +41,7 @@ def bootstrap_D(
     fit_from: float | None = None,
     fit_to: float | None = None,
     discard: float = DEFAULT_DISCARD,
+    rare: bool = True,
 ) -> BootstrapCI:
     """D, mm²/s, with a bootstrap confidence interval over particles.
 
@@ -57,6 +59,10 @@ def bootstrap_D(
     seed        -- int or SeedSequence; the result is a deterministic function of it
     method      -- "percentile" (default), "basic" (reverse percentile) or "bca"
                    (bias-corrected and accelerated, acceleration from the jackknife)
+    rare        -- apply the rare-mover rule (default): when the effective number of movers
+                   n_eff = (Σ c_i)² / Σ c_i² (c_i = max(D_i, 0)) is below 40 and 25 % of the
+                   particles, the CI is the hull of the bootstrap CI and the Fay-Feuer gamma
+                   interval (:mod:`bbb.stats.rare`; the bootstrap alone covers < 90 % there)
 
     Returns ``BootstrapCI(D, lo, hi)``.
     """
@@ -72,7 +78,18 @@ def bootstrap_D(
     times = _as_times(sample_times, xs.shape[1])
     reg = _regime(xs.shape[1], times, fit_from, fit_to, discard)
     d_i, _ = _per_particle_fit(xs, reg)
-    return _bootstrap_mean(d_i, int(n_resamples), ci, _rng(seed), method)
+    boot = _bootstrap_mean(d_i, int(n_resamples), ci, _rng(seed), method)
+    return with_rare_movers(d_i, boot, ci) if rare else boot
+
+
+def with_rare_movers(d_i: ArrayLike, boot: BootstrapCI, ci: float) -> BootstrapCI:
+    """``boot`` (the bootstrap CI of mean(D_i), mm²/s), widened to the hull with the
+    Fay-Feuer gamma interval when few particles carry D (:func:`bbb.stats.rare.is_rare`)."""
+    d = np.asarray(d_i, dtype=np.float64)
+    if not is_rare(d):
+        return boot
+    lo, hi = rare_mover_interval(d, ci)
+    return BootstrapCI(boot.D, min(boot.lo, lo), max(boot.hi, hi))
 
 
 def bootstrap_mean(values: ArrayLike, *, n_resamples: int, ci: float = 0.95,

@@ -13,7 +13,9 @@ persistent  integrated Ornstein-Uhlenbeck velocity with correlation time ``tau``
 jumpy       compound Poisson walk: N(0, a²) jumps at a rate λ_i = 2 D_i / a² per s
             (few, large steps: EB far above the Brownian level, falling like 1/T)
 
-``mixture`` mixes bouncing particles (D) with creeping ones (``D * creep``).
+``mixture`` mixes bouncing particles (D) with creeping ones (``D * creep``);
+``rare_movers`` makes each particle a mover with probability p (the creeping band's few
+particles that take off), light- or heavy-tailed, the rest creeping.
 All return positions of shape (n_particles, n_samples) at times 0, dt, ..., sampled from
 a ``numpy.random.Generator``.
 """
@@ -23,7 +25,7 @@ from __future__ import annotations
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["gamma_D", "brownian", "persistent", "jumpy", "mixture", "LAWS"]
+__all__ = ["gamma_D", "brownian", "persistent", "jumpy", "mixture", "rare_movers", "LAWS"]
 
 _FLOAT = NDArray[np.float64]
 
@@ -79,6 +81,30 @@ def mixture(rng: np.random.Generator, n: int, n_samples: int, dt: float, D: floa
     d_i = np.full(n, D * creep)
     d_i[rng.permutation(n)[:n_b]] = D
     return brownian(rng, d_i, n_samples, dt)
+
+
+def rare_movers(rng: np.random.Generator, n: int, n_samples: int, dt: float, p: float,
+                tails: str = "light", D: float = 1.0, creep: float = 1e-6) -> _FLOAT:
+    """Each of n particles moves with probability p (mm, shape (n, n_samples)).  True
+    ensemble D = p D + (1 - p) creep, mm²/s (the TAMSD fit is unbiased for both laws).
+
+    tails "light": movers Brownian, D_i ~ Gamma(mean D, CV 0.5).
+    tails "heavy": movers jumpy (3 mm jumps), D_i ~ lognormal(σ = 1.5) of mean D (per-particle
+                   D spread CV ≈ 2.9, plus few-jump noise).
+    Non-movers: Brownian with D = creep (mm²/s)."""
+    moving = rng.random(n) < p
+    x = brownian(rng, np.full(n, float(creep)), n_samples, dt)
+    k = int(moving.sum())
+    if k:
+        if tails == "light":
+            x[moving] = brownian(rng, gamma_D(rng, k, D, 0.5), n_samples, dt)
+        elif tails == "heavy":
+            s = 1.5
+            d_i = D * rng.lognormal(-0.5 * s * s, s, k)
+            x[moving] = jumpy(rng, d_i, n_samples, dt, jump=3.0)
+        else:
+            raise ValueError(f"tails = {tails!r}; allowed: light, heavy")
+    return x
 
 
 LAWS = {"brownian": brownian, "persistent": persistent, "jumpy": jumpy}

@@ -151,13 +151,13 @@ def test_no_event_is_missed_and_no_particle_goes_below_the_surface_under_the_con
     assert np.all(run.contact_time["held"] + run.contact_time["sliding"] <= 60.0 / f * (1 + 1e-12))
 
 
-@pytest.mark.xfail(strict=True, reason="open (issue 13): a Coulomb stretch ending at the cusp "
-                   "at Γ ≈ 0.1 leaves the checker's path by 3.4e-3 with N = -9340 mm/s² "
-                   "(found by hypothesis); strict: this turns red once fixed")
 @pytest.mark.parametrize("A, radius, alpha", [(1.0, 2.0, 0.5), (0.5, 1.5, 1.0)])
 def test_a_coulomb_stretch_that_ends_at_a_cusp_follows_the_checkers_path(A, radius, alpha):
-    """f = 5 Hz, Coulomb μ = 0.05, β = 0, from rest, seed 0 (both examples found by hypothesis;
-    the second: contact_path 7.4e-5, N = −7426 mm/s² at event 121)."""
+    """f = 5 Hz, Coulomb μ = 0.05, β = 0, from rest, seed 0 (both examples found by hypothesis).
+    The kernel was right: the stretch starts at rest 3e-8 mm from the cusp, and the checker
+    took the sign of friction from a start speed of −3.5e-15 mm/s (rounding of v_y − v_floor),
+    so its friction pushed downhill (3.4e-3 mm/s apart at the cusp).  A start speed within its
+    rounding now takes the direction the tangential force pulls."""
     test_no_event_is_missed_and_no_particle_goes_below_the_surface_under_the_contact_models \
         .hypothesis.inner_test(f=5.0, A=A, radius=radius, alpha=alpha, beta=0.0,
                                model=("coulomb", 0.05), family="rest", seed=0)

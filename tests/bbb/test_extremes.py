@@ -594,10 +594,9 @@ def every_particle_goes_downhill(p: Params, st: InitialState, run: SimRun) -> No
 
 
 def drifts_downhill_on_average(p: Params, st: InitialState, run: SimRun) -> None:
-    """R = S/2 tilted by −30°: a particle caught in a cusp may stay there (the conveyor's
-    lift-off rule sees one arc's horizontal normal there, so with ψ = 90° it never lifts off:
-    see benchmarks/results/soak-transport-2026-11-23-small.txt), but those that move go
-    downhill, so the mean displacement does."""
+    """R = 1.05 S/2 (near-vertical cusp walls) tilted by −30°: a particle that comes to rest
+    in a cusp stays there (one wall presses at every phase: docs/physics.md, "A carried
+    particle in a cusp"), but those that move go downhill, so the mean displacement does."""
     assert p.tilt < 0
     assert np.mean(run.positions[:, -1] - start_x(p, st)) > 10 * p.S
 
@@ -622,8 +621,8 @@ CASES += [
          params(A=2.0, tilt=-30.0, throw=10.0), "launched", every_particle_goes_downhill),
     Case("throw=60 tilt=-30 Gamma=5.8 (A=0.4) arcs: every particle goes downhill",
          params(A=0.4, tilt=-30.0, throw=60.0), "launched", every_particle_goes_downhill),
-    Case("throw=90 tilt=-30 R=S/2 driven: the mean drift is downhill",
-         params(R=1.0, tilt=-30.0), "launched", drifts_downhill_on_average),
+    Case("throw=90 tilt=-30 R=1.05 S/2 driven: the mean drift is downhill",
+         params(R=1.05, tilt=-30.0), "launched", drifts_downhill_on_average),
     Case("f=1000 Hz Gamma=3 throw=30 tilt=15: many periods per flight, none missed",
          params(f=1000.0, A=A_1000HZ, tilt=15.0, throw=30.0), "launched",
          many_floor_periods_pass_during_a_flight,

@@ -130,9 +130,9 @@ def test_no_collision_is_missed_on_a_tilted_and_thrown_floor(f, A, radius, alpha
     On the conveyor the checker's rigorous gap bound uses only its range bounds (no Taylor
     bounds across the moving cusps), which cannot certify some near-grazing flights: an
     'uncertified' flight is allowed here (it is not a failure of the kernel: the dense samples
-    and the brute force still check it); every other check must pass.  Not yet covered: the
-    vertical cusps of R = S/2 on the conveyor (hypothesis found a 'velocity' flag and many
-    uncertified flights there at f = 24, A = 1, ψ = 10°: open, see the report)."""
+    and the brute force still check it); every other check must pass.  The vertical cusps of
+    R < 1.05 S/2 are refused on the conveyor (bbb.Params: flights below the surface there are
+    an open fault), so R starts at 1.05."""
     p = Params(g=9800.0, A=A, f=f, R=radius, S=2.0, alpha=alpha, beta=beta, tilt=tilt,
                throw=throw)
     st = initial_state(p, 3, np.random.SeedSequence(seed), family, drop_height=(0.0, 1.0),
@@ -142,13 +142,10 @@ def test_no_collision_is_missed_on_a_tilted_and_thrown_floor(f, A, radius, alpha
     assert_no_miss(p, st, run, tolerated=("uncertified",))
 
 
-@pytest.mark.xfail(strict=True, reason="open conveyor fault (issue 14): at a cusp the kernel "
-                   "lifts off on one arc's normal force while the other arc still holds the "
-                   "particle, then re-collides ~6e-9 s later, hundreds of times a period; "
-                   "the checker flags the lift-off time. strict: this turns red once fixed")
 def test_a_particle_carried_at_a_cusp_of_a_thrown_floor_lifts_off_when_both_arcs_let_go():
     """The example hypothesis found (f = 53, A = 1, R = 1.5, α = 0.25, β = 0, ψ = 10°, from
-    rest, seed 0): pinned so that the fault stays visible until it is fixed."""
+    rest, seed 0): the kernel lifted off on one arc's normal while the other still held the
+    particle and met it again ~1e-10 s later, hundreds of times a period (issue 14)."""
     test_no_collision_is_missed_on_a_tilted_and_thrown_floor.hypothesis.inner_test(
         f=53.0, A=1.0, radius=1.5, alpha=0.25, beta=0.0, tilt=0.0, throw=10.0, family="rest",
         seed=0)

@@ -71,3 +71,12 @@ def test_invalid_numerics_name_the_knob(field, value):
 def test_every_contact_model_runs_on_the_conveyor(geometry):
     for contact in ("stick", "slide", "coulomb"):
         assert Params.preset("klages2004", f=60.0, contact=contact, **geometry).transport
+
+
+def test_a_conveyor_with_near_vertical_cusp_walls_is_refused_with_what_is_allowed():
+    with pytest.raises(ValueError, match=r"tilt = -30.0.*R = 1.0.*allowed: R ≥ S/2 · 1.05"):
+        Params(g=9800.0, A=0.1, f=60.0, R=1.0, S=2.0, alpha=0.7, beta=0.99, tilt=-30.0)
+    with pytest.raises(ValueError, match="vertical cusp walls"):
+        Params(g=9800.0, A=0.1, f=60.0, R=1.049, S=2.0, alpha=0.7, beta=0.99, throw=45.0)
+    assert Params(g=9800.0, A=0.1, f=60.0, R=1.05, S=2.0, alpha=0.7, beta=0.99, throw=45.0).transport
+    assert Params(g=9800.0, A=0.1, f=60.0, R=1.0, S=2.0, alpha=0.7, beta=0.99).R == 1.0

@@ -102,7 +102,7 @@ def mirror_pair(R: float, n: int = 6):
     return a, b
 
 
-@pytest.mark.parametrize("R", [15.0, 1.0, math.inf])
+@pytest.mark.parametrize("R", [15.0, 1.05, math.inf])  # 1.05: near-vertical cusps (S/2 refused)
 def test_mirrored_floor_and_initial_state_give_the_mirrored_trajectory_bit_exactly(R):
     a, b = mirror_pair(R)
     assert a.counters["collisions"].sum() > 500

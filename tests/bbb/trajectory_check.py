@@ -62,6 +62,9 @@ CONTACT, CONTACT_LIFT, STOP, CUSP = 4.0, 5.0, 6.0, 7.0
 #: floor's or the arc's pendulum period, the shorter);
 #: measured: rows at 50.5-58 Hz under slide and coulomb pass at 1e-10 (2026-11-23)
 CONTACT_RTOL = 1e-8
+#: the model's cusp (docs/physics.md, "Transport"): a particle carried within this fraction
+#: of S of a cusp rests in it, held by both arcs
+CUSP_REACH = 1e-9
 
 
 @dataclass
@@ -267,7 +270,14 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
                 end = th_a2 + fl.w * tau - 1e-9  # a window opening in (θ_a, θ_b − 1e-9) was skipped
                 opens = np.floor((end - th_l) / (2 * math.pi)) >= np.ceil((th_a2 - th_l) / (2 * math.pi))
             late = window & ((inside_a & (tau > dtau_clock)) | opens)
-        rep.flag("liftoff_time", lift & ((g2 < -g2_tol) | late), idx, -g2, g2_tol)
+        # in a cusp both arcs carry the particle (the model's rule, docs/physics.md "Transport"):
+        # checked on its own below, with both arcs' normals
+        cusp = lift & (0.5 * fl.S - np.abs(d_b) <= CUSP_REACH * fl.S) if fl.conveyor and not fl.flat \
+            else np.zeros_like(lift)
+        rep.flag("liftoff_time", lift & ~cusp & ((g2 < -g2_tol) | late), idx, -g2, g2_tol)
+        if np.any(cusp):
+            _check_cusp_liftoff(fl, rep, idx[cusp], th_a[cusp], tau[cusp], d_b[cusp],
+                                np.broadcast_to(g2_tol, lift.shape)[cusp])
 
     # ---- sliding stretches (contact models): from a contact start, a stop or a start at rest
     #      to a lift-off from sliding, a stop or a cusp
@@ -318,6 +328,38 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
     _check_gap(fl, numerics, rep, idx[k], x0, y0, vx, vy0, th0, tau_f, dxb, samples, per_period,
                dtau, on_tol)
     return rep
+
+
+def _cusp_loads(fl: Floor, d, th):
+    """The normal forces per unit mass (mm/s²) that carry a particle in the cusp at offset d
+    with the floor at phase θ, one per arc: n·(a_floor + (gₓ, g_y)), rows (own, other).  In a
+    vertical cusp (R = S/2, horizontal normals) only a vertical load lets go: the load along
+    (0, 1) for both when the floor has no sideways load, else +inf (held at every phase)."""
+    side = np.sign(d)
+    other = d - side * fl.S
+    ax, ay = fl.Ax * fl.w**2 * np.sin(th) + fl.gx, fl.Ay * fl.w**2 * np.sin(th) + fl.gy
+    loads = np.array([nx * ax + ny * ay for nx, ny in (fl.normal(d), fl.normal(other))])
+    vertical = (fl.q(d) == 0.0) | (fl.q(other) == 0.0)
+    if np.any(vertical):
+        up = fl.Ay * fl.w**2 * np.sin(th) + fl.gy
+        if fl.Ax != 0.0 or fl.gx != 0.0:
+            up = np.full_like(up, np.inf)
+        loads[:, vertical] = up[vertical]
+    return loads
+
+
+def _check_cusp_liftoff(fl: Floor, rep: Report, index, th_a, tau, d_b, tol) -> None:
+    """A lift-off from a cusp: both arcs' loads ≤ 0 at it, and no phase of the carried
+    stretch (sampled at ≤ T/512, up to 1e-9 rad before the end) where both were below 0."""
+    at_b = _cusp_loads(fl, d_b, th_a + fl.w * tau)
+    worst = at_b.max(axis=0)
+    late = np.zeros(index.shape, bool)
+    for i in range(index.size):
+        n = int(math.ceil(tau[i] * fl.f * 512)) + 2
+        th = np.linspace(th_a[i], th_a[i] + fl.w * tau[i] - 1e-9, n)
+        both = _cusp_loads(fl, np.full(n, d_b[i]), th).max(axis=0)
+        late[i] = np.any(both < -tol[i]) and tau[i] > 0.0
+    rep.flag("liftoff_time", (worst > tol) | late, index, worst, tol)
 
 
 def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, dxb, thb, vxb, vyb,
@@ -578,8 +620,10 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
         + fl.height_error(d_a, 4 * np.spacing(np.abs(x_a) + fl.S))
     bad |= off > y_tol
     rep.flag("contact_start", bad, idx[k], np.abs(un), start_tol)
-    # friction's sign is fixed over a stretch (the kernel ends one at every stop)
-    sgn = np.where(v > 0, 1.0, np.where(v < 0, -1.0, np.where(np.sin(q) > 0, 1.0, -1.0)))
+    # friction's sign is fixed over a stretch (the kernel ends one at every stop); a start
+    # speed within its rounding (start_tol) of 0 has no sign of its own: the particle moves
+    # the way the tangential force pulls it, downhill on the arc
+    sgn = np.where(np.abs(v) <= start_tol, np.where(np.sin(q) > 0, 1.0, -1.0), np.sign(v))
     # the faster of the floor's period and the arc's pendulum period 2π√(R/g_max)
     swing = math.inf if fl.flat else 2 * math.pi * math.sqrt(fl.R / (fl.g + fl.A * fl.w**2))
     fast = min(1.0 / fl.f, swing / 8)

@@ -261,3 +261,14 @@ def test_fsspec_urls_are_stores_too(study, tmp_path):
         assert again.study == study and again.done().sum() == 1
         assert np.isfinite(again.group()["positions"][1, 1, :4]).all()
     assert (tmp_path / "s.zarr" / "zarr.json").exists()
+
+
+def test_read_done_reads_runs_of_done_chunks_and_skips_the_gaps(tmp_path):
+    study = parse_workflow(TINY.replace("n_particles = 8", "n_particles = 20"), source="t.toml")
+    store = StudyStore.create_or_open(tmp_path / "g.zarr", study)
+    for ci in (0, 1, 3, 4):  # two runs of done chunks around chunk 2, written but not done
+        store.write_chunk(0, 1, ci, FakeRun(study, 10.0 + ci), 0.1)
+    store.write_chunk(0, 1, 2, FakeRun(study, 99.0), 0.1, mark_done=False)
+    x = store.read_done("positions", 0, 1)
+    assert x[:, 0].tolist() == [v for ci in (0, 1, 3, 4) for v in [10.0 + ci] * 4]
+    assert store.read_done("positions", 1, 1).shape == (0, x.shape[1])  # nothing done there
