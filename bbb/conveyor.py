@@ -181,12 +181,9 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
         if t_now >= t_max:
             break
         if friction is not None and (stuck or sliding):
-            # held at rest until the lift-off the stuck branch below would take (in a cusp:
-            # both arcs let go), unless static friction lets go first
-            t_n = liftoff_wait_c(s, d, gx, gy, Ax, Ay, w, R, S, retry) if stuck else 0.0
             verdict, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, \
-                dc, ds, dl = contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, gx, gy,
-                                       Ax, Ay, w, R, S, alpha, beta, friction, flat, t_max,
+                dc, ds, dl = contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay,
+                                       w, R, S, alpha, beta, friction, flat, t_max,
                                        sample_times, pos, rec_from, rec, n_rec, tol_t, v_stick)
             n_coll += dc
             n_stick += ds

@@ -142,18 +142,17 @@ def enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, mu, flat):
 
 
 @njit(cache=True)
-def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, gx, gy, Ax, Ay, w, R, S, alpha,
-              beta, mu, flat, t_max, sample_times, pos, rec_from, rec, n_rec, tol_t, v_stick):
+def contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay, w, R, S, alpha, beta,
+              mu, flat, t_max, sample_times, pos, rec_from, rec, n_rec, tol_t, v_stick):
     """One step of sustained contact on the conveyor (module doc) for a particle held at rest
-    (``stuck``; it lifts off after t_n s, bbb.conveyor.liftoff_wait_c) or sliding (angle q,
-    tangential speed vt relative to the floor): a slip, a stretch of sliding to its event, or
-    what that event leads to.  Returns (verdict, cell,
+    (``stuck``) or sliding (angle q, tangential speed vt relative to the floor): a slip,
+    a stretch of sliding to its event, or what that event leads to.  Returns (verdict, cell,
     d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, collisions, sticking
     episodes, lift-offs) with the verdict NEXT, DONE or HELD (lift-off first: not moved)."""
     ns = sample_times.shape[0]
     t_now = tp * T + (s - s0)
     if stuck:
-        t_f, _ = slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)
+        t_f, t_n = slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)
         # at least tol_t held: a particle sent straight back into a cusp (at a slip's edge)
         # must not loop without time passing
         t_f = max(t_f, tol_t)
