@@ -149,7 +149,8 @@ def test_a_coulomb_particle_slipping_from_rest_near_a_shallow_cusp_reaches_it_wh
     sol = solve_ivp(rhs, [t_slip, t_slip + 1e-3], [q0, 0.0], method="DOP853", rtol=1e-13,
                     atol=1e-20, events=cusp)
     t_cusp = sol.t_events[0][0]
-    state = InitialState(one(0, np.int64), one(d0), one(-ay * math.sin(w * s0) - (R - math.sqrt(R * R - d0 * d0))),
+    y0 = -ay * math.sin(w * s0) - (R - math.sqrt(R * R - d0 * d0))
+    state = InitialState(one(0, np.int64), one(d0), one(y0),
                          one(-ax * w * math.cos(w * s0)), one(-ay * w * math.cos(w * s0)), one(s0),
                          one(True, bool), one(True, bool))
     run = simulate(p, 1, 0.004, seed=0, initial=state, record_collisions=4, record_liftoffs=True)
