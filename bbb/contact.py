@@ -25,7 +25,11 @@ on the exact solution excludes a crossing inside: N ≥ (N_a + N_b)/2 − L_N h/
 L_N ≥ sup |Ṅ| on the step; ±θ ≤ ±θ_a ± θ̇_a τ + a_max τ²/(2R) < θ_c; for Coulomb
 sgn(v)·v ≥ sgn(v)(v_a + v̇_a τ) − J τ²/2 > 0 (a_max, J bound |v̇|, |v̈|); otherwise the step
 is halved.  A step with an event at b is halved (a
-bisection from a) until it is ≤ tol_t: the event is located to tol_t (s).  What can be
+bisection from a) until it is ≤ tol_t: the event is located to tol_t (s).  On a conveyor a
+particle may start from rest where v = v̇ = 0 (a slip at the edge of static friction, or out
+of a cusp): there the cusp may also be excluded by the cubic bound ±θ ≤ ±θ_a ± (v_a τ +
+v̇_a τ²/2)/R + J τ³/(6R), and the step grows back (doubling) up to the earliest event met,
+so that it leaves in a few dozen steps instead of ~10⁸ steps of tol_t.  What can be
 missed: an excursion of the event function shallower than L·tol_t/2 (e.g. N below 0 by
 ≤ L_N tol_t/2 ≈ 1e-5 mm/s² at f = 60), or one smaller than the integration error.
 """
@@ -154,6 +158,19 @@ def step_bounds(va, vb, h, g, A, w, R, mu, flat, sin_c, side):
     return amax, J, L
 
 
+@njit(cache=True, inline="always")
+def clear_of_cusp(q, v, dv, h, J, R, q_c):
+    """Whether θ(τ) < θ_c for τ in (0, h] (s) by the cubic bound R θ(τ) ≤ R θ_a + v_a τ
+    + v̇_a τ²/2 + J τ³/6 (J ≥ sup|v̈| on the step), from θ_a = q ≤ θ_c (rad)."""
+    # θ(τ) − θ_a ≤ τ k(τ)/R with k(τ) = v_a + v̇_a τ/2 + J τ²/6 convex: k ≤ max(k(0), k(h))
+    kh = v + 0.5 * dv * h + J * h * h / 6.0
+    m = max(v, kh)
+    if m > 0.0:
+        return q + h * m / R < q_c
+    # k ≤ 0 on [0, h] and < 0 on (0, h] when k(h) < 0: θ stays below θ_a
+    return q < q_c or (q <= q_c and kh < 0.0)
+
+
 @njit(cache=True)
 def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos, isamp,
           cell, tol_t, side):
@@ -192,6 +209,7 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
         return q, v, s, tp, cell, isamp, CUSP, 0.0
     h = h_nom  # the next step to try
     hunting = False  # an event lies within h of the current state: bisect, never grow
+    t_hit = math.inf  # the earliest end (s) of a tried step that met an event
     ns = sample_times.shape[0]
     while True:
         t_now = tp * T + (s - s0)
@@ -220,20 +238,31 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
         amax, J, L = step_bounds(v, vb, hs, g, A, w, R, mu, flat, sin_c, side)
         # N: chord minus Lipschitz, N ≥ (N_a + N_b)/2 − L h/2
         certified = n_a + nb > L * hs
+        dva = 0.0
+        if mu > 0.0 or side is not None:
+            dva = rates(q, v, s, g, A, w, R, mu, sgn, flat, side)[1]
         if not flat:
             # ±θ(τ) ≤ ±θ_a ± θ̇_a τ + a_max τ²/(2R), convex: below θ_c at both ends
             # (θ_a itself may be at a cusp it is leaving) means below it in between
             reach = amax * hs * hs / (2.0 * R)
-            certified = certified and q + v * hs / R + reach < q_c \
-                and -q - v * hs / R + reach < q_c
+            up = q + v * hs / R + reach < q_c
+            down = -q - v * hs / R + reach < q_c
+            if side is not None:
+                # a particle leaving a cusp from rest (bbb.conveyor_contact) starts with
+                # v = v̇ = 0: the quadratic bound then admits steps of only ~v/a_max and
+                # it crawls out in steps of tol_t; the cubic one grows them geometrically
+                up = up or clear_of_cusp(q, v, dva, hs, J, R, q_c)
+                down = down or clear_of_cusp(-q, -v, -dva, hs, J, R, q_c)
+            certified = certified and up and down
         if mu > 0.0:
             # sgn·v(τ) ≥ sgn·(v_a + v̇_a τ) − J τ²/2, concave: positive at τ = h and ≥ 0 at 0
-            dva = rates(q, v, s, g, A, w, R, mu, sgn, flat, side)[1]
             certified = certified and sgn * (v + dva * hs) - 0.5 * J * hs * hs > 0.0
         event = lift or cusp or stop
         if (event or not certified) and hs > tol_t:
             h = 0.5 * hs
             hunting = hunting or event
+            if event:
+                t_hit = min(t_hit, t_now + hs)
             continue
         # accept the step [t_now, t_now + hs]
         q = qb
@@ -266,6 +295,10 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
             return q, 0.0, s, tp, cell, isamp, STOP, t_el
         if hs > 0.0:
             h = hs if hunting else min(h_nom, 2.0 * hs)
+            if hunting and side is not None:
+                # grow back up to the event met: a step halved for its certificate (from rest
+                # at a slip, v = v̇ = 0) rather than for the event must not pin h for good
+                h = max(hs, min(h_nom, 2.0 * hs, t_hit - (tp * T + (s - s0))))
 
 
 @njit(cache=True)

@@ -10,7 +10,7 @@ from bbb import Params, simulate
 from bbb.ensemble import InitialState
 
 G = 9800.0
-STOP, CONTACT_LIFT = 6.0, 5.0  # bbb.record.EVENT_CODES
+STOP, CONTACT_LIFT, CUSP = 6.0, 5.0, 7.0  # bbb.record.EVENT_CODES
 
 
 def one(value, dtype=float):
@@ -94,9 +94,8 @@ def mirror_pair(R: float, contact: str, mu: float, n: int = 6):
 
 
 @pytest.mark.parametrize(("contact", "mu"), [("slide", 0.0), ("coulomb", 0.3)])
-# R = 15 left out: a frictionless particle leaving a shallow cusp (θ_c = 3.8°, near φ = 3°) from
-# rest crawls out of it in steps of ~tol_t (one particle, 2 s: ~40 s of CPU); open
-@pytest.mark.parametrize("R", [1.5, math.inf])
+# R = 15: shallow cusps (θ_c = 3.8°, near φ = 3°) that particles leave from rest
+@pytest.mark.parametrize("R", [1.5, 15.0, math.inf])
 def test_mirrored_conveyor_and_state_give_the_mirrored_sliding_trajectory_bit_exactly(R, contact, mu):
     a, b = mirror_pair(R, contact, mu)
     events = a.collisions_dense[..., 6]
@@ -105,3 +104,56 @@ def test_mirrored_conveyor_and_state_give_the_mirrored_sliding_trajectory_bit_ex
     assert np.array_equal(a.n_recorded, b.n_recorded)
     sign = np.array([1, -1, 1, -1, 1, 1, 1])
     assert np.array_equal(a.collisions_dense * sign, b.collisions_dense, equal_nan=True)
+
+
+def test_a_coulomb_particle_slipping_from_rest_near_a_shallow_cusp_reaches_it_when_scipy_says():
+    # klages2004 (R = 15, θ_c = 3.8°) tilted 3°, thrown 60°, 40 Hz: held by static friction
+    # 7e-9 mm from a cusp, it slips where |F_t| = μN and slides into the cusp.  It starts from
+    # v = v̇ = 0: the kernel once crawled out in steps of tol_t whose position increments
+    # rounded away (v h/R < ulp θ) and arrived 2.4 % late (3.7575e-5 s instead of 3.6677e-5)
+    from scipy.integrate import solve_ivp
+    from scipy.optimize import brentq
+
+    mu = 0.3
+    p = Params.preset("klages2004", f=40.0, tilt=3.0, throw=60.0, contact="coulomb", mu=mu)
+    gx, gy = p.g * math.sin(math.radians(3.0)), p.g * math.cos(math.radians(3.0))
+    ax, ay = p.A * math.cos(math.radians(60.0)), p.A * math.sin(math.radians(60.0))
+    w, R = p.omega, p.R
+    q0 = 0.066716147927911709
+    d0 = R * math.sin(q0)
+    s0 = 0.014  # floor time (s), inside the interval where friction holds it
+
+    def forces(t, q, v=0.0):
+        u = math.sin(w * t)
+        Gx, Gy = gx + ax * w * w * u, gy + ay * w * w * u
+        return Gy * math.sin(q) - Gx * math.cos(q), Gx * math.sin(q) + Gy * math.cos(q) - v * v / R
+
+    def grip(t):  # > 0 while static friction holds it
+        ft, n = forces(t, q0)
+        return mu * n - abs(ft)
+
+    assert grip(s0) > 0
+    ts = np.linspace(s0, s0 + 0.5 / p.f, 2001)
+    first = int(np.nonzero([grip(t) <= 0 for t in ts])[0][0])
+    t_slip = brentq(grip, ts[first - 1], ts[first], xtol=1e-16, rtol=4 * np.finfo(float).eps)
+    sgn = math.copysign(1.0, forces(t_slip, q0)[0] + forces(t_slip + 1e-9, q0)[0])
+
+    def rhs(t, y):
+        ft, n = forces(t, y[0], y[1])
+        return [y[1] / R, ft - mu * n * sgn]
+
+    def cusp(t, y):
+        return abs(y[0]) - math.asin(0.5 * p.S / R)
+
+    cusp.terminal = True
+    sol = solve_ivp(rhs, [t_slip, t_slip + 1e-3], [q0, 0.0], method="DOP853", rtol=1e-13,
+                    atol=1e-20, events=cusp)
+    t_cusp = sol.t_events[0][0]
+    y0 = -ay * math.sin(w * s0) - (R - math.sqrt(R * R - d0 * d0))
+    state = InitialState(one(0, np.int64), one(d0), one(y0),
+                         one(-ax * w * math.cos(w * s0)), one(-ay * w * math.cos(w * s0)), one(s0),
+                         one(True, bool), one(True, bool))
+    run = simulate(p, 1, 0.004, seed=0, initial=state, record_collisions=4, record_liftoffs=True)
+    rows = run.collisions_dense[0, : run.n_recorded[0]]
+    assert rows[0, 6] == CUSP
+    assert abs(rows[0, 0] - (t_cusp - s0)) <= 1e-10
