@@ -71,7 +71,9 @@ def figure_sliding(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLik
             t = t.sort_values("f")
             ax.errorbar(t["f"], t["v"], yerr=[t["v"] - t["v_lo"], t["v_hi"] - t["v"]], fmt="o-",
                         ms=3, lw=1, capsize=0, color=f"C{i}", label=SLIDING_LABELS[sc])
-        ax.axvspan(ax.get_xlim()[0], f_lift, color="0.92", zorder=0)
+        x0, x1 = ax.get_xlim()
+        ax.axvspan(x0, f_lift, color="0.92", zorder=0)
+        ax.set_xlim(x0, x1)
         ax.axvline(f_lift, color="0.4", ls="--", lw=0.8)
         ax.text(f_lift, 0.96, f" lift-off {f_lift:.1f} Hz", transform=ax.get_xaxis_transform(),
                 va="top", fontsize="x-small")
@@ -82,7 +84,7 @@ def figure_sliding(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLik
         ax.set_ylabel("drift v (mm/s)")
         ax.set_title(f"φ = {SLIDING_GEOMETRY['tilt']:g}°, ψ = {SLIDING_GEOMETRY['throw']:g}°, "
                      "the paper's arcs", fontsize="small")
-        ax.legend(fontsize="x-small", loc="lower right")
+        ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(0.0, 0.9))
         return save_figure(fig, out_dir)
 
 
