@@ -31,6 +31,9 @@ dD, dD_lo, dD_hi  D_half2 - D_half1 with its paired bootstrap CI over particles,
 dD_tol       what that CI must clear to flag: 5 % of D plus 1e-6 mm^2/s
 stationary   False where D depends on the run length (the CI of dD lies beyond +-dD_tol)
 verdict      the verdict's reasons, '; '-joined
+stop         (target-driven stores only) why sampling stopped: "target met", "resolved zero"
+             (D known to +-d_resolved only: quote |D| <= d_resolved there, not D +- its CI,
+             docs/accuracy.md), "cap" or "open"; "family: reason; ..." with several families
 v, v_lo, v_hi  (scenes with tilt or throw only) drift velocity, mm/s, with its bootstrap CI
              over particles (bbb.transport: slope of the mean displacement over the fit lags)
 D_drift, D_drift_lo, D_drift_hi  D about the drift (MSD of x - v t), mm^2/s, with its CI;
@@ -73,7 +76,7 @@ import pandas as pd
 import pyarrow as pa
 import pyarrow.parquet as pq
 
-from .adaptive import OPEN
+from .adaptive import OPEN, STOP_LEGEND
 from .store import StudyStore, package_version
 from .store_layout import COUNTERS
 from .study import Study
@@ -175,6 +178,7 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
     T = an.duration(acc.t_max)
     fit_from, fit_to, eb_lag = an.fit_from * T, an.fit_to * T, an.eb_lag * T
     fit = dict(fit_from=fit_from, fit_to=fit_to, discard=an.discard)
+    stops = store.stops()
     rows = []
     for fi, f in enumerate(study.frequencies):
         fams = {}
@@ -216,6 +220,8 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
                         f"EB_decay_{name}": _ratio(verdict.eb_half.get(name, math.nan),
                                                    verdict.eb.get(name, math.nan))})
         row["verdict"] = "; ".join(verdict.reasons)
+        if stops is not None:
+            row["stop"] = _stop_text(study, stops[1][fi])
         row.update(_stationarity_columns(x, times, an, acc, seed))
         if {"tilt", "throw"} & study.overrides.keys():  # a conveyor (even at tilt = 0)
             row.update(_transport_columns(x, times, study, seed, fit))
@@ -225,6 +231,14 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
         if col in df:
             df[col] = df[col].astype("boolean")
     return df
+
+
+def _stop_text(study: Study, reasons: np.ndarray) -> str:
+    """Why each family of one frequency stopped sampling (pipeline.adaptive.STOP_LEGEND)."""
+    texts = [STOP_LEGEND[int(r)] for r in reasons]
+    if len(texts) == 1:
+        return texts[0]
+    return "; ".join(f"{fam.name}: {t}" for fam, t in zip(study.families, texts, strict=True))
 
 
 def counters_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:

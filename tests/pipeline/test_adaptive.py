@@ -132,6 +132,17 @@ def test_status_shows_the_chunks_used_and_why_each_stopped(two_workers):
     assert f"{used[0, 1]}/8 {STOP_LEGEND[reason[0, 1]]}" in row54
 
 
+def test_the_reduced_table_says_where_d_is_only_resolved_to_zero(two_workers, tmp_path):
+    # from rest at 54 Hz every particle creeps: D = 0 is resolved after one chunk, while the
+    # launched family decays into creeping until the cap; at 72 Hz both families bounce
+    from pipeline.reduce import reduce_store
+
+    t = reduce_store(two_workers, tmp_path / "out", echo=lambda _: None)["diffusion"]
+    stop = dict(zip(t["f"], t["stop"], strict=True))
+    assert stop[54.0] == "rest: resolved zero; launched: cap"
+    assert "resolved zero" not in stop[72.0] and "cap" not in stop[72.0]
+
+
 # -- the stopping rule ---------------------------------------------------------------------------
 def _brownian(n: int, times: np.ndarray, D: float, seed: int) -> np.ndarray:
     rng = np.random.default_rng(seed)
