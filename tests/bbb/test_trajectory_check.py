@@ -1,6 +1,7 @@
 """The trajectory checker can fail: each test corrupts one event of a real recorded run the
 way a wrong kernel would, and the checker must flag it (the unperturbed run passes)."""
 
+import dataclasses
 import math
 
 import numpy as np
@@ -318,3 +319,36 @@ def test_a_slip_from_rest_at_the_wrong_time_is_flagged(coulomb_conveyor, dt):
     p, runs = coulomb_conveyor
     ev, j = contact_pair(p, runs, STOP, held=2e-4)
     assert "contact_path" in failed_on(p, rebuilt(p, ev, j, dt_slip=dt))
+
+
+def held_to_liftoff(p, ev, j) -> np.ndarray:
+    """Rows j-1 (held at rest, off any cusp) and a lift-off from there where the floor first
+    lets go after it (normal load at rest 0, bisected): a kernel that never let it slip."""
+    fl = Floor(p)
+    a = ev[j - 1]
+    th_a = 2 * math.pi * a[5]
+    d = float(fl.offset(a[1], th_a))
+    th = np.linspace(th_a, th_a + 2 * math.pi, 8193)
+    k = int(np.argmax(_rest_loads(fl, p.mu, d, th)[1] <= 0.0))
+    assert k > 0
+    lo, hi = th[k - 1], th[k]
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if _rest_loads(fl, p.mu, d, mid)[1] <= 0.0 else (mid, hi)
+    tau = (hi - th_a) / fl.w
+    x = a[1] - fl.xf(th_a) + fl.xf(hi)
+    lift = [a[0] + tau, x, fl.surface(x, hi), fl.vxf(hi), fl.v(hi), (a[5] + tau * p.f) % 1.0, 1.0]
+    return np.vstack([a, lift])
+
+
+def test_a_held_particle_lifting_off_after_friction_let_go_is_flagged(coulomb_conveyor):
+    # held past its slip (it should have slid, the checker's slip search says when), until
+    # the floor lets go.  Under a sideways load any finite μ lets go just before the floor does
+    # (|F_t| > μN as N → 0: 0.34 ms before it at μ = 10 here); with μ = 1e12 that is ~1e-15 s
+    # before, below tol_t, and the same pair passes
+    p, runs = coulomb_conveyor
+    ev, j = contact_pair(p, runs, STOP, held=2e-4)
+    assert abs(abs(Floor(p).offset(ev[j - 1, 1], 2 * math.pi * ev[j - 1, 5])) - 0.5 * p.S) > 1e-6
+    pair = held_to_liftoff(p, ev, j)
+    assert failed_on(dataclasses.replace(p, mu=1e12), pair) == set()
+    assert failed_on(p, pair) == {"liftoff_time"}

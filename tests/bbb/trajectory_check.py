@@ -278,6 +278,17 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
         if np.any(cusp):
             _check_cusp_liftoff(fl, rep, idx[cusp], th_a[cusp], tau[cusp], d_b[cusp],
                                 np.broadcast_to(g2_tol, lift.shape)[cusp])
+        if fl.conveyor and getattr(p, "contact", "stick") != "stick":
+            # under slide and coulomb a held particle slides where static friction lets go
+            # (on a conveyor that depends on the phase): not before the floor let go of it
+            slip_tol = 64.0 * EPS * (fl.g + fl.A * fl.w**2) * (1.0 + fl.mu)
+            slipped = np.zeros_like(lift)
+            for i in np.nonzero(lift & stuck_a)[0]:
+                d_i = float(fl.offset(x_a[i], th_a[i]))
+                in_cusp = not fl.flat and 0.5 * fl.S - abs(d_i) <= dx_c[i]
+                th_s = _slip(fl, fl.mu, d_i, th_a[i], th_a[i] + fl.w * tau[i], in_cusp, -slip_tol)[0]
+                slipped[i] = th_s < th_a[i] + fl.w * (tau[i] - numerics.tol_t)  # nan: never
+            rep.flag("liftoff_time", slipped, idx, tau, np.zeros_like(tau))
 
     # ---- sliding stretches (contact models): from a contact start, a stop or a start at rest
     #      to a lift-off from sliding, a stop or a cusp
