@@ -31,6 +31,13 @@ offset's range from the parabola and the floor's sideways sine), which need no s
 cusps, and, on sub-intervals whose offset range holds no cusp, by the Taylor bounds 3-4 with
 −G'' ≤ g cos φ + A sin ψ ω² max sin + |c'|max |d''|max (d'' = −g sin φ − A cos ψ ω² sin θ);
 without these the range bounds alone leave near-grazing flights on arcs uncertified.
+Sliding on the conveyor (``slide``, ``coulomb``): the stretch is integrated in the floor's
+frame under the effective gravity Gₓ = gₓ + Aₓω² sin θ, G_y = g_y + A_yω² sin θ (states and
+offsets relative to the moving floor); a stretch from rest (a held collision, a stop, a start
+at rest) has no row where it starts to slide, so the checker finds the slip itself: the first
+phase where |F_t| > μN, F_t = G_y sin θ − Gₓ cos θ (in a cusp: where one wall's push up it beyond
+μN; it slides on that wall), by its own sampling and bisection; and a held particle's lift-off
+must not come after that slip.
 
 Tolerances (all derived, none tuned): the kernel finds a collision time to ``tol_t``
 (bbb.Numerics) and puts the particle on the surface at that time, so a collision point may lie
