@@ -157,3 +157,23 @@ def test_a_coulomb_particle_slipping_from_rest_near_a_shallow_cusp_reaches_it_wh
     rows = run.collisions_dense[0, : run.n_recorded[0]]
     assert rows[0, 6] == CUSP
     assert abs(rows[0, 0] - (t_cusp - s0)) <= 1e-10
+
+
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_a_bounce_exactly_at_a_cusp_leaving_both_arcs_flies(side):
+    # a contact model's cusp event leaves the particle at d = ±S/2 exactly; a bounce there
+    # that leaves both arcs (here: up and sideways relative to the floor) must fly, not meet the
+    # neighbouring arc at τ = 0 (before 2026-11-23: r = 0 in start_step_c, so τ = 0 and a
+    # collision applied with an arc the particle leaves, a chain of them at one instant)
+    from bbb.conveyor_search import next_collision_c
+    from bbb.search import STACK_DEPTH
+
+    p = Params.preset("klages2004", f=55.0, contact="slide", tilt=3.0, throw=60.0)
+    gx, gy, Ax, Ay = p.floor_frame()
+    w, s, d0 = p.omega, 0.3 / p.f, side * 0.5 * p.S
+    y = -Ay * math.sin(w * s) - (p.R - math.sqrt(p.R**2 - d0 * d0))
+    # relative velocity (3, 5) mm/s: the walls' slopes are ±1/15, so it leaves both
+    vx, vy = -Ax * w * math.cos(w * s) + 3.0, -Ay * w * math.cos(w * s) + 5.0
+    tau = next_collision_c(y, vy, vx, d0, s, True, False, gx, gy, Ax, Ay, w, p.R, p.S, 1.0, 1e-12,
+                           1.0 / p.f, np.empty(STACK_DEPTH))
+    assert tau > 1e-4
