@@ -28,38 +28,13 @@ import math
 import numpy as np
 from numba import njit
 
-from .conveyor_search import cusp_side, next_collision_c, round_half_away, times_or_zero
-from .kernel import wrap_period
+from .conveyor_contact import DONE, HELD, collide_c, contact_c, enter_contact_c
+from .conveyor_search import cusp_side, next_collision_c, round_half_away
+from .kernel import EV_CONTACT, wrap_period
 from .search import NO_COLLISION, STACK_DEPTH
-from .surface import arc_curvature, arc_depth, arc_normal, arc_slope
+from .surface import arc_depth, arc_normal
 
 __all__ = ["evolve_ensemble_c"]
-
-
-@njit(cache=True)
-def collide_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, alpha, beta, v_stick, allow_kick):
-    """Eqs. (5)-(6) relative to the floor's velocity (Vx, Vy) = −(Ax, Ay) ω cos ωs; returns
-    (vx⁺, vy⁺, outgoing relative normal speed, kicked) as bbb.kernel.collide."""
-    nx, ny = arc_normal(d, R)
-    cw = w * math.cos(w * s)
-    vfx = -Ax * cw
-    vfy = -Ay * cw
-    ux = vx - vfx
-    uy = vy - vfy
-    un = ux * nx + uy * ny
-    ut = ux * ny - uy * nx
-    un_out = alpha * abs(un)
-    ut_out = beta * ut
-    if un_out < v_stick:
-        # bbb.kernel.collide's kick, with the gap's G'' at G = G' = 0 under the tilted forces:
-        # −gy − ÿ_f + c'' d'² + c' (−gx − ẍ_f), d' = ut ny the relative tangential motion
-        sw = w * w * math.sin(w * s)
-        g2 = -gy - Ay * sw + (ut_out * ny) ** 2 * arc_curvature(d, R)
-        g2 += times_or_zero(arc_slope(d, R), -gx - Ax * sw)
-        if allow_kick and g2 > 0.0 and abs(ut_out) >= v_stick:
-            return (vfx + v_stick * nx + ut_out * ny, vfy + v_stick * ny - ut_out * nx,
-                    v_stick, True)
-    return vfx + un_out * nx + ut_out * ny, vfy + un_out * ny - ut_out * nx, un_out, False
 
 
 @njit(cache=True, inline="always")
@@ -168,9 +143,11 @@ def liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry):
 @njit(cache=True)
 def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta, tilt,
              throw, t_max, sample_times, pos, rec_from, rec, tol_t, v_stick, h_max_periods,
-             stack, counters):
+             stack, counters, friction):
     """bbb.kernel.evolve on the conveyor (angles ``tilt``, ``throw`` in degrees).  Positions
-    and recorded x are the lab's, along the floor's plane: cell·S + d + X_f."""
+    and recorded x are the lab's, along the floor's plane: cell·S + d + X_f.  ``friction``:
+    None (stick) or μ (slide: 0, coulomb), compile-time specialised as in bbb.kernel.evolve;
+    sustained contact is bbb.conveyor_contact's."""
     gx = g * math.sin(math.radians(tilt))
     gy = g * math.cos(math.radians(tilt))
     # from ψ − 90° so that ψ → 180° − ψ flips Ax's sign bit-exactly and ψ = 90 gives Ay = A
@@ -192,6 +169,10 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
     lifting = False
     retry = False
     kicked = False
+    flat = math.isinf(R)
+    sliding = False
+    q = 0.0
+    vt = 0.0
     if stuck:
         vx = -Ax * w * math.cos(w * s)
         vy = -Ay * w * math.cos(w * s)
@@ -199,6 +180,20 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
         t_now = tp * T + (s - s0)
         if t_now >= t_max:
             break
+        if friction is not None and (stuck or sliding):
+            verdict, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, \
+                dc, ds, dl = contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay,
+                                       w, R, S, alpha, beta, friction, flat, t_max,
+                                       sample_times, pos, rec_from, rec, n_rec, tol_t, v_stick)
+            n_coll += dc
+            n_stick += ds
+            n_lift += dl
+            if verdict == DONE:
+                break
+            if verdict != HELD:
+                from_surface = True
+                lifting = False
+                continue
         if stuck:
             wait = liftoff_wait_c(s, d, gx, gy, Ax, Ay, w, R, S, retry)
             t_lift = t_now + wait
@@ -264,11 +259,21 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
             vx = 0.0
             un_out = 0.0
         if un_out < v_stick:
-            # 'stick': carried with the floor (x fixed relative to it), whatever the tilt
             stuck = True
-            vx = -Ax * w * math.cos(w * s)
-            vy = -Ay * w * math.cos(w * s)
-            n_stick += 1
+            if friction is not None:
+                # sustained contact: slide with the tangential speed, or held
+                vt, q, sliding = enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, friction,
+                                                 flat)
+                stuck = not sliding
+            if stuck:
+                # 'stick': carried with the floor (x fixed relative to it), whatever the tilt
+                vx = -Ax * w * math.cos(w * s)
+                vy = -Ay * w * math.cos(w * s)
+                n_stick += 1
+            else:
+                nx, ny = arc_normal(d, R)
+                vx = -Ax * w * math.cos(w * s) + vt * ny
+                vy = -Ay * w * math.cos(w * s) - vt * nx
         t_c = tp * T + (s - s0)
         if t_c >= rec_from and n_rec < nrec_max and t_c < t_max:
             rec[n_rec, 0] = t_c
@@ -278,7 +283,7 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
             rec[n_rec, 4] = vy
             rec[n_rec, 5] = s / T
             if rec.shape[1] > 6:
-                rec[n_rec, 6] = 0.0
+                rec[n_rec, 6] = EV_CONTACT if sliding else 0.0
             n_rec += 1
         from_surface = True
         lifting = False
@@ -298,12 +303,13 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
 @njit(cache=True)
 def evolve_ensemble_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta,
                       tilt, throw, t_max, sample_times, pos, rec_from, rec, tol_t, v_stick,
-                      h_max_periods, counters):
-    """Run every particle of an ensemble independently on the conveyor."""
+                      h_max_periods, counters, friction):
+    """Run every particle of an ensemble independently on the conveyor; ``friction`` as in
+    :func:`evolve_c`."""
     stack = np.empty(STACK_DEPTH)
     for i in range(cell.shape[0]):
         evolve_c(cell[i], d[i], y[i], vx[i], vy[i], s[i], stuck[i], from_surface[i], g, A, w,
                  R, S, alpha, beta, tilt, throw, t_max, sample_times, pos[i], rec_from, rec[i],
-                 tol_t, v_stick, h_max_periods, stack, counters[i])
+                 tol_t, v_stick, h_max_periods, stack, counters[i], friction)
 
 

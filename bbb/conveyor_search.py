@@ -148,7 +148,10 @@ def cusp_side(d, R, S):
 def start_step_c(h_max, G1, d0, d10, s, gx, gy, Ax, Ay, w, R, S, Dx, lifting):
     """A step σ > 0 on which G > 0 for a flight starting on the surface (G(0) = 0); 0 if none."""
     dn = nearest(d0, S)
-    side = cusp_side(dn, R, S) if lifting else 0
+    # a lift-off within reach of a cusp, or any flight from exactly on it (a bounce there
+    # after a contact model's cusp event): the one-arc path below would have r = 0, i.e. a
+    # collision at τ = 0 with whichever arc the rounding names, even one the particle leaves
+    side = cusp_side(dn, R, S) if lifting or abs(dn) >= 0.5 * S else 0
     if side == 0:
         # both bounds below need G'' bounded below: stop before the nearest cusp's concave kink
         return start_step_arc(h_max, G1, dn, max(0.5 * S - abs(dn), 0.0), 0.5 * S, d10, s, gx,

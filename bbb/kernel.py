@@ -139,7 +139,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
             if sliding:
                 q, vt, s, tp, cell, isamp, ev, el = slide(q, vt, s, tp, s0, T, g, A, w, R, S,
                                                           mu, flat, t_max, sample_times, pos,
-                                                          isamp, cell, tol_t)
+                                                          isamp, cell, tol_t, None)
                 t_slid += el
                 if ev == END:
                     d = q if flat else R * math.sin(q)

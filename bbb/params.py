@@ -45,9 +45,9 @@ class Params:
     throw -- angle ψ of the vibration to the floor's plane, degrees (10 ≤ throw ≤ 170;
              default 90, the paper's vertical vibration): the floor moves by
              A·(cos ψ, sin ψ)·(−sin 2πft)
-    contact -- sustained-contact model: "stick" (default), "slide" or "coulomb"; only "stick"
-             on a tilted or thrown floor (bbb.conveyor has no sliding contact) and with
-             vertical cusp walls, R < S/2 · (1 + 1e-9) (sliding there never ends: Zeno)
+    contact -- sustained-contact model: "stick" (default), "slide" or "coulomb" (also on a
+             tilted or thrown floor: bbb.conveyor_contact); only "stick" with vertical cusp
+             walls, R < S/2 · (1 + 1e-9) (sliding there never ends: Zeno)
     mu    -- Coulomb friction coefficient (≥ 0; only with contact = "coulomb", else 0)
 
     ``tilt``, ``throw``, ``contact`` and ``mu`` are left out of :meth:`as_dict` at their
@@ -91,11 +91,6 @@ class Params:
         _check("throw", self.throw, 10 <= self.throw <= 170, "10 ≤ throw ≤ 170 (degrees)")
         _check("mu", self.mu, self.mu >= 0 and (self.mu == 0 or self.contact == "coulomb"),
                "mu ≥ 0, and mu = 0 unless contact = 'coulomb'")
-        if self.contact != "stick" and self.transport:
-            raise ValueError(f"Params.contact = {self.contact!r} with tilt = {self.tilt:g}, "
-                             f"throw = {self.throw:g}: the conveyor (tilt ≠ 0 or throw ≠ 90) has "
-                             "only contact = 'stick'; allowed: contact = 'stick' with tilt/throw, "
-                             "or slide/coulomb with tilt = 0 and throw = 90")
         if self.contact != "stick" and self.R < VERTICAL_CUSP_R * self.S / 2:
             # a particle sliding down a (near-)vertical cusp wall lifts off at once (N = g cos θ
             # − v²/R ≤ 0 at θ → 90°), hits the other wall and slides again: an endless

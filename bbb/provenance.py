@@ -30,8 +30,9 @@ from importlib import metadata, resources
 __all__ = ["KERNEL_SOURCES", "kernel_hash", "kernel_identity"]
 
 #: the bbb modules (file names) that determine a simulated trajectory
-KERNEL_SOURCES = ("contact.py", "conveyor.py", "conveyor_search.py", "ensemble.py", "kernel.py",
-                  "numerics.py", "params.py", "record.py", "search.py", "simulate.py", "surface.py")
+KERNEL_SOURCES = ("contact.py", "conveyor.py", "conveyor_contact.py", "conveyor_search.py", "ensemble.py",
+                  "kernel.py", "numerics.py", "params.py", "record.py", "search.py", "simulate.py",
+                  "surface.py")
 
 
 @functools.cache  # the sources as this process first saw them: close to what it has loaded

@@ -90,14 +90,13 @@ def simulate(
     counters = np.zeros((n_particles, len(COUNTER_NAMES)), dtype=np.int64)
     held = np.zeros((n_particles, len(CONTACT_TIME_NAMES)))
     p = params
-    if _force_conveyor and p.contact != "stick":
-        raise ValueError("_force_conveyor runs bbb.conveyor, which has only contact = 'stick'")
     if p.transport or _force_conveyor:
         # tilted or thrown floor: its own compiled kernel; the paper's floor keeps bbb.kernel
         evolve_ensemble_c(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
                           p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, p.tilt, p.throw,
                           float(t_max), times, pos, float(record_from), rec, numerics.tol_t,
-                          numerics.v_stick, numerics.max_step, counters)
+                          numerics.v_stick, numerics.max_step, counters,
+                          None if p.contact == "stick" else p.mu)
         contact_time = None  # the conveyor kernel does not time contact
     else:
         evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,

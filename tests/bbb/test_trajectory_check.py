@@ -1,13 +1,25 @@
 """The trajectory checker can fail: each test corrupts one event of a real recorded run the
 way a wrong kernel would, and the checker must flag it (the unperturbed run passes)."""
 
+import dataclasses
 import math
 
 import numpy as np
 import pytest
 
 from bbb import Numerics, Params, simulate
-from tests.bbb.trajectory_check import check_particle
+from bbb.ensemble import initial_state
+from tests.bbb.trajectory_check import (
+    CONTACT_LIFT,
+    STOP,
+    Floor,
+    _contact_rates,
+    _contact_state,
+    _rest_loads,
+    _slip,
+    check_particle,
+    start_event,
+)
 
 P = Params.preset("klages2004", f=60.0)
 J = 40  # the corrupted event: a collision that ends a flight from a collision
@@ -153,3 +165,190 @@ def test_a_missed_collision_on_tilted_thrown_arcs_is_flagged(conveyor):
     k = int(np.nonzero((ev[1:-1, 6] == 0.0) & (ev[:-2, 6] == 0.0))[0][5]) + 1
     rep = check_particle(p, Numerics(), np.delete(ev, k, axis=0))
     assert rep.failures["below"] > 0
+
+
+# ---- sliding and Coulomb contact on the conveyor (tilted / thrown floor)
+
+#: the four kinds of conveyor contact runs (preset klages2004: R = 15, S = 2, A = 0.1, from rest)
+CONVEYOR_CONTACT = {
+    "coulomb 3/60 at 55 Hz": dict(f=55.0, contact="coulomb", mu=0.3, tilt=3.0, throw=60.0),
+    "slide 3/60 at 55 Hz": dict(f=55.0, contact="slide", tilt=3.0, throw=60.0),
+    "coulomb 10/90 at 40 Hz": dict(f=40.0, contact="coulomb", mu=0.3, tilt=10.0, throw=90.0),
+    "coulomb 0/60 at 40 Hz": dict(f=40.0, contact="coulomb", mu=0.3, tilt=0.0, throw=60.0),
+}
+
+
+def conveyor_contact_run(kind: str, n: int = 3, t: float = 1.0) -> tuple[Params, list[np.ndarray]]:
+    """n particles from rest for t s, each record led by its initial state (a start at rest)."""
+    p = Params.preset("klages2004", **CONVEYOR_CONTACT[kind])
+    st = initial_state(p, n, np.random.SeedSequence(1), "rest")
+    run = simulate(p, n, t, seed=1, initial=st, record_collisions=4000, record_liftoffs=True)
+    assert np.all(run.n_recorded < 4000)
+    return p, [np.vstack([start_event(p, st.cell[i], st.d[i], st.y[i], st.vx[i], st.vy[i], st.s[i],
+                                      st.stuck[i]), run.collisions_dense[i, : run.n_recorded[i]]])
+               for i in range(n)]
+
+
+@pytest.fixture(scope="module", params=list(CONVEYOR_CONTACT))
+def conveyor_contact(request):
+    return conveyor_contact_run(request.param)
+
+
+@pytest.fixture(scope="module")
+def coulomb_conveyor():
+    return conveyor_contact_run("coulomb 3/60 at 55 Hz")
+
+
+def test_conveyor_contact_runs_pass_the_checker(conveyor_contact):
+    p, runs = conveyor_contact
+    reps = [check_particle(p, Numerics(), ev) for ev in runs]
+    assert sum(r.contacts for r in reps) >= 30
+    assert all(r.ok for r in reps), [(r.failures, r.messages) for r in reps if not r.ok]
+
+
+def test_conveyor_contact_runs_hold_stretches_from_rest_and_cusps(conveyor_contact):
+    # what the test above covers: slides that start from rest (no row where they slip) and,
+    # except on the flat-tilted run, cusps reached while sliding
+    p, runs = conveyor_contact
+    ev = np.vstack(runs)
+    from_rest = np.isin(ev[:-1, 6], (0.0, 3.0, 6.0)) & np.isin(ev[1:, 6], (5.0, 6.0, 7.0))
+    assert np.count_nonzero(from_rest) >= 3
+    assert np.count_nonzero(ev[:, 6] == 7.0) >= 1
+
+
+def slide_rebuilt(p: Params, a: np.ndarray, th0: float, d_arc: float, v0: float, tau: float,
+                  mu: float, lift: bool, steps: int = 20_000) -> np.ndarray:
+    """The end row of a sliding stretch rebuilt here: from row a's place (on the arc at offset
+    d_arc, tangential speed v0 relative to the floor) at floor phase θ₀ (rad), slide for the
+    rest of τ (s, from row a) under friction μ (the checker's own RK4, finer)."""
+    fl = Floor(p)
+    th_a = 2 * math.pi * a[5]
+    h = (tau - (th0 - th_a) / fl.w) / steps
+    q, v, th = math.asin(d_arc / p.R), v0, th0
+    pull = v0 if v0 != 0.0 else float(_rest_loads(fl, mu, d_arc, th0)[0])  # from rest: F_t's way
+    sgn = math.copysign(1.0, pull)
+    for _ in range(steps):
+        k1 = _contact_rates(fl, mu, q, v, th, sgn)[:2]
+        k2 = _contact_rates(fl, mu, q + h / 2 * k1[0], v + h / 2 * k1[1], th + fl.w * h / 2, sgn)[:2]
+        k3 = _contact_rates(fl, mu, q + h / 2 * k2[0], v + h / 2 * k2[1], th + fl.w * h / 2, sgn)[:2]
+        k4 = _contact_rates(fl, mu, q + h * k3[0], v + h * k3[1], th + fl.w * h, sgn)[:2]
+        q = q + h * (k1[0] + 2 * k2[0] + 2 * k3[0] + k4[0]) / 6
+        v = v + h * (k1[1] + 2 * k2[1] + 2 * k3[1] + k4[1]) / 6
+        th += fl.w * h
+    th_e = th_a + fl.w * tau
+    d = p.R * math.sin(q)
+    nx, ny = d / p.R, math.sqrt(p.R**2 - d * d) / p.R
+    x = (a[1] - fl.xf(th_a) - d_arc) + d + fl.xf(th_e)
+    vs = Numerics().v_stick if lift else 0.0
+    vx = fl.vxf(th_e) + v * ny + vs * nx
+    vy = fl.v(th_e) - v * nx + vs * ny
+    return np.array([a[0] + tau, x, fl.surface(x, th_e), vx, vy, (a[5] + tau * p.f) % 1.0,
+                     CONTACT_LIFT if lift else STOP])
+
+
+def contact_pair(p, runs, end: float, held: float = 0.0) -> tuple[np.ndarray, int]:
+    """A record and the index j of its first stretch from rest (a held row: a stop or a collision
+    that ended held) to a row of kind ``end``, held for more than ``held`` s before it slips."""
+    fl = Floor(p)
+    for ev in runs:
+        for j in np.nonzero(np.isin(ev[:-1, 6], (0.0, 6.0)) & (ev[1:, 6] == end))[0] + 1:
+            th_s = rest_slip(p, ev, j)[0]
+            if th_s - 2 * math.pi * ev[j - 1, 5] > fl.w * held:
+                return ev.copy(), int(j)
+    raise AssertionError("no such stretch")
+
+
+def rest_slip(p, ev, j):
+    """The checker's slip phase (rad) and arc offset for the stretch from rest ev[j-1] → ev[j]."""
+    fl = Floor(p)
+    a = ev[j - 1]
+    th_a = 2 * math.pi * a[5]
+    _, _, d, _ = _contact_state(fl, a[1:2], a[3:4], a[4:5], np.array([th_a]), np.array([True]))
+    cusp = abs(0.5 * p.S - abs(float(d[0]))) <= 1e-12
+    th_s, arc, _ = _slip(fl, p.mu, float(d[0]), th_a, th_a + fl.w * (ev[j, 0] - a[0]), cusp, 0.0)
+    return th_s, arc
+
+
+def failed_on(p: Params, ev: np.ndarray) -> set[str]:
+    return {k for k, v in check_particle(p, Numerics(), ev).failures.items() if v}
+
+
+def rebuilt(p, ev, j, dt_end=0.0, dt_slip=0.0, mu=None):
+    """Stretch ev[j-1] (at rest) → ev[j] rebuilt here, its slip moved by dt_slip s and its end
+    by dt_end s along the path, under friction μ (the record's by default); the record ends
+    there (the flight after it is the kernel's, from the kernel's end state)."""
+    fl = Floor(p)
+    a = ev[j - 1]
+    th_s, arc = rest_slip(p, ev, j)
+    ev = ev.copy()
+    lift = ev[j, 6] == CONTACT_LIFT
+    ev[j] = slide_rebuilt(p, a, th_s + fl.w * dt_slip, arc, 0.0, ev[j, 0] - a[0] + dt_end,
+                          p.mu if mu is None else mu, lift=lift)
+    if not lift:  # a stop: at rest relative to the floor
+        ev[j, 3], ev[j, 4] = fl.vxf(2 * math.pi * ev[j, 5]), fl.v(2 * math.pi * ev[j, 5])
+    return ev[: j + 1]
+
+
+@pytest.mark.parametrize("end", [CONTACT_LIFT, STOP], ids=["lift-off", "stop"])
+def test_a_coulomb_stretch_from_rest_rebuilt_here_passes(coulomb_conveyor, end):
+    # the control for the perturbations below: the same rebuild, unperturbed, passes
+    p, runs = coulomb_conveyor
+    ev, j = contact_pair(p, runs, end, held=2e-4)
+    assert failed_on(p, rebuilt(p, ev, j)) == set()
+
+
+@pytest.mark.parametrize("dt,check", [(1e-4, "contact_normal"), (-1e-4, "contact_event")],
+                         ids=["late", "early"])
+def test_a_contact_lift_off_moved_along_its_path_is_flagged(coulomb_conveyor, dt, check):
+    # the end state is the exact one at the moved time: only the event (N = 0) betrays it
+    p, runs = coulomb_conveyor
+    ev, j = contact_pair(p, runs, CONTACT_LIFT)
+    assert check in failed_on(p, rebuilt(p, ev, j, dt_end=dt))
+
+
+def test_friction_along_the_motion_is_flagged(coulomb_conveyor):
+    # friction's sign flipped (μ → −μ) in the rebuilt stretch
+    p, runs = coulomb_conveyor
+    ev, j = contact_pair(p, runs, CONTACT_LIFT)
+    assert "contact_path" in failed_on(p, rebuilt(p, ev, j, mu=-p.mu))
+
+
+@pytest.mark.parametrize("dt", [-1e-4, 1e-4], ids=["early", "late"])
+def test_a_slip_from_rest_at_the_wrong_time_is_flagged(coulomb_conveyor, dt):
+    # held > 2e-4 s: slipping 1e-4 s early is still slipping while static friction holds
+    p, runs = coulomb_conveyor
+    ev, j = contact_pair(p, runs, STOP, held=2e-4)
+    assert "contact_path" in failed_on(p, rebuilt(p, ev, j, dt_slip=dt))
+
+
+def held_to_liftoff(p, ev, j) -> np.ndarray:
+    """Rows j-1 (held at rest, off any cusp) and a lift-off from there where the floor first
+    lets go after it (normal load at rest 0, bisected): a kernel that never let it slip."""
+    fl = Floor(p)
+    a = ev[j - 1]
+    th_a = 2 * math.pi * a[5]
+    d = float(fl.offset(a[1], th_a))
+    th = np.linspace(th_a, th_a + 2 * math.pi, 8193)
+    k = int(np.argmax(_rest_loads(fl, p.mu, d, th)[1] <= 0.0))
+    assert k > 0
+    lo, hi = th[k - 1], th[k]
+    for _ in range(80):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if _rest_loads(fl, p.mu, d, mid)[1] <= 0.0 else (mid, hi)
+    tau = (hi - th_a) / fl.w
+    x = a[1] - fl.xf(th_a) + fl.xf(hi)
+    lift = [a[0] + tau, x, fl.surface(x, hi), fl.vxf(hi), fl.v(hi), (a[5] + tau * p.f) % 1.0, 1.0]
+    return np.vstack([a, lift])
+
+
+def test_a_held_particle_lifting_off_after_friction_let_go_is_flagged(coulomb_conveyor):
+    # held past its slip (it should have slid, the checker's slip search says when), until
+    # the floor lets go.  Under a sideways load any finite μ lets go just before the floor does
+    # (|F_t| > μN as N → 0: 0.34 ms before it at μ = 10 here); with μ = 1e12 that is ~1e-15 s
+    # before, below tol_t, and the same pair passes
+    p, runs = coulomb_conveyor
+    ev, j = contact_pair(p, runs, STOP, held=2e-4)
+    assert abs(abs(Floor(p).offset(ev[j - 1, 1], 2 * math.pi * ev[j - 1, 5])) - 0.5 * p.S) > 1e-6
+    pair = held_to_liftoff(p, ev, j)
+    assert failed_on(dataclasses.replace(p, mu=1e12), pair) == set()
+    assert failed_on(p, pair) == {"liftoff_time"}

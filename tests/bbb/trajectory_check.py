@@ -31,6 +31,13 @@ offset's range from the parabola and the floor's sideways sine), which need no s
 cusps, and, on sub-intervals whose offset range holds no cusp, by the Taylor bounds 3-4 with
 −G'' ≤ g cos φ + A sin ψ ω² max sin + |c'|max |d''|max (d'' = −g sin φ − A cos ψ ω² sin θ);
 without these the range bounds alone leave near-grazing flights on arcs uncertified.
+Sliding on the conveyor (``slide``, ``coulomb``): the stretch is integrated in the floor's
+frame under the effective gravity Gₓ = gₓ + Aₓω² sin θ, G_y = g_y + A_yω² sin θ (states and
+offsets relative to the moving floor); a stretch from rest (a held collision, a stop, a start
+at rest) has no row where it starts to slide, so the checker finds the slip itself: the first
+phase where |F_t| > μN, F_t = G_y sin θ − Gₓ cos θ (in a cusp: where one wall's push up it beyond
+μN; it slides on that wall), by its own sampling and bisection; and a held particle's lift-off
+must not come after that slip.
 
 Tolerances (all derived, none tuned): the kernel finds a collision time to ``tol_t``
 (bbb.Numerics) and puts the particle on the surface at that time, so a collision point may lie
@@ -278,6 +285,17 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
         if np.any(cusp):
             _check_cusp_liftoff(fl, rep, idx[cusp], th_a[cusp], tau[cusp], d_b[cusp],
                                 np.broadcast_to(g2_tol, lift.shape)[cusp])
+        if fl.conveyor and getattr(p, "contact", "stick") != "stick":
+            # under slide and coulomb a held particle slides where static friction lets go
+            # (on a conveyor that depends on the phase): not before the floor let go of it
+            slip_tol = 64.0 * EPS * (fl.g + fl.A * fl.w**2) * (1.0 + fl.mu)
+            slipped = np.zeros_like(lift)
+            for i in np.nonzero(lift & stuck_a)[0]:
+                d_i = float(fl.offset(x_a[i], th_a[i]))
+                in_cusp = not fl.flat and 0.5 * fl.S - abs(d_i) <= dx_c[i]
+                th_s = _slip(fl, fl.mu, d_i, th_a[i], th_a[i] + fl.w * tau[i], in_cusp, -slip_tol)[0]
+                slipped[i] = th_s < th_a[i] + fl.w * (tau[i] - numerics.tol_t)  # nan: never
+            rep.flag("liftoff_time", slipped, idx, tau, np.zeros_like(tau))
 
     # ---- sliding stretches (contact models): from a contact start, a stop or a start at rest
     #      to a lift-off from sliding, a stop or a cusp
@@ -558,15 +576,17 @@ def _check_gap(fl: Floor, numerics, rep: Report, index, x0, y0, vx, vy0, th0, ta
 
 
 def _contact_state(fl: Floor, x, vx, vy, th, at_rest):
-    """(q, v, d, uₙ): the angle θ of the contact point on its arc (on a flat floor: x), the
-    tangential and normal speeds relative to the floor, and the offset d on that arc.  At a
-    cusp the arc is the one the velocity is tangent to (the one it slides on)."""
-    d = x - fl.cell(x) * fl.S
-    ux, uy = vx, vy - fl.v(th)
+    """(q, v, d, uₙ): the angle θ of the contact point on its arc (on a flat floor: the offset
+    relative to the floor), the tangential and normal speeds relative to the floor, and the
+    offset d on that arc (all relative to the moving floor).  At a cusp the arc is the one the
+    velocity is tangent to (the one it slides on)."""
+    r = x - fl.xf(th)  # the place relative to the floor
+    d = r - fl.cell(r) * fl.S
+    ux, uy = vx - fl.vxf(th), vy - fl.v(th)
     nx, ny = fl.normal(d)
     un = ux * nx + uy * ny
     if not fl.flat:
-        dx = 4.0 * np.spacing(np.abs(x) + fl.S)
+        dx = 4.0 * np.spacing(np.abs(x) + fl.S) + 16.0 * EPS * abs(fl.Ax)
         alt = d - np.sign(d) * fl.S
         anx, any_ = fl.normal(alt)
         aun = ux * anx + uy * any_
@@ -574,17 +594,86 @@ def _contact_state(fl: Floor, x, vx, vy, th, at_rest):
         d, nx, ny, un = (np.where(use, alt, d), np.where(use, anx, nx), np.where(use, any_, ny),
                          np.where(use, aun, un))
     v = np.where(at_rest, 0.0, ux * ny - uy * nx)
-    q = x if fl.flat else np.arcsin(np.clip(d / fl.R, -1.0, 1.0))
+    q = r if fl.flat else np.arcsin(np.clip(d / fl.R, -1.0, 1.0))
     return q, v, d, un
 
 
+def _effective_gravity(fl: Floor, th):
+    """(Gₓ, G_y) (mm/s²): gravity minus the floor's acceleration, in the floor's frame:
+    Gₓ = gₓ + Aₓω² sin θ, G_y = g_y + A_yω² sin θ (on the paper's floor Gₓ = 0, G_y = g_eff)."""
+    sw = fl.w**2 * np.sin(th)
+    return fl.gx + fl.Ax * sw, fl.gy + fl.Ay * sw
+
+
 def _contact_rates(fl: Floor, mu, q, v, th, sgn):
-    # R θ̈ = g_eff sin θ − μ N sgn(v), N = g_eff cos θ − v²/R, g_eff = g + Aω² sin(ωt)
-    ge = fl.g + fl.A * fl.w**2 * np.sin(th)
+    # R θ̈ = G_y sin θ − Gₓ cos θ − μ N sgn(v), N = Gₓ sin θ + G_y cos θ − v²/R (docs/physics.md,
+    # "Forces in contact"); flat: d̈ = −Gₓ − μ G_y sgn v, N = G_y.  Paper's floor: Gₓ = 0
+    gxe, ge = _effective_gravity(fl, th)
     if fl.flat:
-        return v, -mu * ge * sgn, ge
-    n = ge * np.cos(q) - v * v / fl.R
-    return v / fl.R, ge * np.sin(q) - mu * n * sgn, n
+        return v, -gxe - mu * ge * sgn, ge
+    sq, cq = np.sin(q), np.cos(q)
+    n = gxe * sq + ge * cq - v * v / fl.R
+    return v / fl.R, ge * sq - gxe * cq - mu * n * sgn, n
+
+
+def _rest_loads(fl: Floor, mu, d, th):
+    """At rest at offset d (floor phase θ): (F_t, N), the tangential pull (towards +x) and the
+    normal load per unit mass (mm/s²) the arc must supply, friction aside."""
+    gxe, ge = _effective_gravity(fl, th)
+    nx, ny = fl.normal(d)
+    return ge * nx - gxe * ny, gxe * nx + ge * ny
+
+
+def _slip_excess(fl: Floor, mu, d, th, cusp):
+    """How far (mm/s²) the pull at rest exceeds static friction (> 0: it slips), and the arc
+    it slips on: |F_t| − μN on one arc; in a cusp (d = ±S/2) the larger of the two walls'
+    pushes up the wall, F_t·(away from the cusp) − μN, and that wall's offset."""
+    ft, n = _rest_loads(fl, mu, d, th)
+    if not cusp:
+        return np.abs(ft) - mu * n, d
+    sg = 1.0 if d > 0 else -1.0
+    other = d - sg * fl.S
+    ft2, n2 = _rest_loads(fl, mu, other, th)
+    own, oth = -sg * ft - mu * n, sg * ft2 - mu * n2
+    return np.maximum(own, oth), np.where(oth > own, other, d)
+
+
+def _slip(fl: Floor, mu, d, th_a, th_b, cusp, tol):
+    """The first floor phase in [θ_a, θ_b] (rad) at which static friction lets go of a particle
+    at rest at offset d (pull beyond μN by more than −tol), the arc's offset it then slides on,
+    and the least normal load before it.  Own search: samples at ≤ 2π/4096, then bisection
+    (nan: held to θ_b)."""
+    n = int(np.ceil((th_b - th_a) / (2 * math.pi) * 4096)) + 2
+    th = np.linspace(th_a, th_b, n)
+    ex, _ = _slip_excess(fl, mu, d, th, cusp)
+    nn = np.minimum(*_loads_both(fl, mu, d, th, cusp))
+    hit = np.nonzero(ex > -tol)[0]
+    if not hit.size:
+        return math.nan, d, float(np.min(nn))
+    j = int(hit[0])
+    if j == 0:
+        th_s = th_a
+    else:
+        lo, hi = th[j - 1], th[j]
+        for _ in range(80):
+            mid = 0.5 * (lo + hi)
+            if mid <= lo or mid >= hi:
+                break
+            if _slip_excess(fl, mu, d, np.array(mid), cusp)[0] > -tol:
+                hi = mid
+            else:
+                lo = mid
+        th_s = hi
+    arc = float(_slip_excess(fl, mu, d, np.array(th_s), cusp)[1])
+    return th_s, arc, float(np.min(nn[: j + 1]))
+
+
+def _loads_both(fl: Floor, mu, d, th, cusp):
+    # the normal loads of the arc at d and (in a cusp) of its neighbour
+    n = _rest_loads(fl, mu, d, th)[1]
+    if not cusp:
+        return n, n
+    return n, _rest_loads(fl, mu, d - (1.0 if d > 0 else -1.0) * fl.S, th)[1]
 
 
 def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> None:
@@ -601,29 +690,49 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     th_a, th_b = 2 * math.pi * ph_a, 2 * math.pi * ph_b
     tf = tau[k]
     vf_tol = 16.0 * EPS * fl.A * fl.w
-    rest_a = (kind_a == STOP) | (kind_a == START_STUCK)
+    # at rest: a stop, a start at rest, or a collision that ended held (no contact start)
+    rest_a = (kind_a == STOP) | (kind_a == START_STUCK) | (kind_a == 0)
     q, v, d_a, un = _contact_state(fl, x_a, vx_a, vy_a, th_a, rest_a)
     # the start: a contact start, a stop or a start at rest, on the surface
-    ux, uy = vx_a, vy_a - fl.v(th_a)
+    ux, uy = vx_a - fl.vxf(th_a), vy_a - fl.v(th_a)
     scale_v = math.sqrt(fl.g * (1.0 if fl.flat else fl.R)) + np.abs(v)
     # rounding, and the normal's uncertainty from the rounding δd of d (√ at a vertical cusp)
-    dd = 4.0 * np.spacing(np.abs(x_a) + fl.S)
+    dd = 4.0 * np.spacing(np.abs(x_a) + fl.S) + 16.0 * EPS * abs(fl.Ax)
     dn = 0.0 if fl.flat else dd / fl.R + np.sqrt(2.0 * fl.R * dd) / fl.R
     # the floor velocity from the recorded phase: rounding of the phase moves it by up to
     # Aω·(a few eps), largest where v_f itself is near 0 (cos ωt ≈ 0), so scale with Aω
     start_tol = 64.0 * EPS * (np.hypot(ux, uy) + fl.A * fl.w) + 2.0 * np.hypot(ux, uy) * dn
     good_kind = (kind_a == CONTACT) | rest_a
-    at_rest_a = (vx_a == 0.0) & (np.abs(uy) <= vf_tol)
+    at_rest_a = (np.abs(ux) <= vf_tol if fl.conveyor else vx_a == 0.0) & (np.abs(uy) <= vf_tol)
     bad = ~good_kind | ((kind_a == CONTACT) & (np.abs(un) > start_tol)) | (rest_a & ~at_rest_a)
     off = np.abs(y_a - fl.surface(x_a, th_a))
     y_tol = 16.0 * EPS * (np.abs(y_a) + fl.A + (0 if fl.flat else fl.R)) \
-        + fl.height_error(d_a, 4 * np.spacing(np.abs(x_a) + fl.S))
+        + fl.height_error(d_a, dd)
     bad |= off > y_tol
+    # from rest the kernel writes no row where it starts to slide: find that phase here, the
+    # first at which the pull exceeds static friction (in a cusp: one wall's push up it
+    # exceeds μN), with the normal load ≥ 0 until then (else the floor lets go first)
+    th0 = th_a.copy()
+    gmax = fl.g + fl.A * fl.w**2
+    slip_tol = 64.0 * EPS * gmax * (1.0 + mu)
+    cusp_a = ~np.full(k.size, fl.flat) & (np.abs(0.5 * fl.S - np.abs(d_a)) <= dd)
+    for i in np.nonzero(rest_a & at_rest_a)[0]:
+        th_s, arc, n_least = _slip(fl, mu, float(d_a[i]), th_a[i], th_a[i] + fl.w * tf[i],
+                                     bool(cusp_a[i]), slip_tol)
+        if math.isnan(th_s) or n_least < -slip_tol:
+            bad[i] = True  # it slid while static friction held it, or after the floor let go
+            continue
+        th0[i] = th_s
+        if arc != d_a[i]:
+            d_a[i] = arc
+            q[i] = math.asin(max(-1.0, min(1.0, arc / fl.R)))
     rep.flag("contact_start", bad, idx[k], np.abs(un), start_tol)
+    tf = tf - (th0 - th_a) / fl.w  # the sliding part: from the slip to the recorded end
     # friction's sign is fixed over a stretch (the kernel ends one at every stop); a start
     # speed within its rounding (start_tol) of 0 has no sign of its own: the particle moves
-    # the way the tangential force pulls it, downhill on the arc
-    sgn = np.where(np.abs(v) <= start_tol, np.where(np.sin(q) > 0, 1.0, -1.0), np.sign(v))
+    # the way the tangential force pulls it (at rest: F_t, downhill on the paper's arcs)
+    ft0 = _rest_loads(fl, mu, d_a, th0)[0] if not fl.flat else -_effective_gravity(fl, th0)[0]
+    sgn = np.where(np.abs(v) <= start_tol, np.where(ft0 > 0, 1.0, -1.0), np.sign(v))
     # the faster of the floor's period and the arc's pendulum period 2π√(R/g_max)
     swing = math.inf if fl.flat else 2 * math.pi * math.sqrt(fl.R / (fl.g + fl.A * fl.w**2))
     fast = min(1.0 / fl.f, swing / 8)
@@ -633,8 +742,7 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     n_min = np.full(k.size, np.inf)
     q_max = np.zeros(k.size)
     v_min = np.full(k.size, np.inf)
-    gmax = fl.g + fl.A * fl.w**2
-    th = th_a.copy()
+    th = th0.copy()
     for i in range(n):
         k1q, k1v, n0 = _contact_rates(fl, mu, q, v, th, sgn)
         if i > 0:
@@ -652,21 +760,24 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     q_b, v_b, d_b, _ = _contact_state(fl, x_b, vx_b, vy_b, th_b, rest_b)
     if not fl.flat:
         # a stretch stays on one arc: the end (a cusp row: d = ±S/2) is on the start's arc
-        d_b = x_b - (x_a - d_a)
+        # (places relative to the floor: x − x_f)
+        d_b = (x_b - fl.xf(th_b)) - (x_a - fl.xf(th_a) - d_a)
         q_b = np.arcsin(np.clip(d_b / fl.R, -1.0, 1.0))
         nxb, nyb = fl.normal(d_b)
-        ub_x, ub_y = vx_b, vy_b - fl.v(th_b)
+        ub_x, ub_y = vx_b - fl.vxf(th_b), vy_b - fl.v(th_b)
         v_b = np.where(rest_b, 0.0, ub_x * nyb - ub_y * nxb)
         un_b = ub_x * nxb + ub_y * nyb
     else:
-        un_b = vy_b - fl.v(th_b)
+        ub_x, ub_y = vx_b - fl.vxf(th_b), vy_b - fl.v(th_b)
+        un_b = ub_y
     # tolerances: the kernel's integration (CONTACT_RTOL per period) and event location
     # (tol_t at the event function's rates), plus the rounding of the numbers involved
     grow = CONTACT_RTOL * (1.0 + periods)
     dt = numerics.tol_t + 16.0 * EPS * (1.0 + tf * fl.f) / fl.f
     v_tol = grow * scale_v + gmax * (1.0 + mu) * dt + 64 * EPS * scale_v
     # θ from d = R sin θ is ill-conditioned at a vertical cusp: δθ ≤ √(2 δd/R)
-    dd_x = 4.0 * np.spacing(np.abs(x_b) + fl.S)
+    dd_x = 4.0 * np.spacing(np.abs(x_b) + fl.S) + 4.0 * np.spacing(np.abs(x_a) + fl.S) \
+        + 32.0 * EPS * abs(fl.Ax)
     q_tol = grow + (np.abs(v) + scale_v) * dt / (1.0 if fl.flat else fl.R) \
         + (16 * EPS * (np.abs(x_b) + fl.S) if fl.flat
            else np.sqrt(2.0 * dd_x / fl.R) + dd_x / fl.R)
@@ -687,12 +798,12 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     n_end_tol = gmax * grow + (fl.A * fl.w**3 + 4 * gmax * scale_v / (1.0 if fl.flat else fl.R)) * dt
     ev_bad = np.zeros(k.size, bool)
     lift = kind_b == CONTACT_LIFT
-    dd_b = 4.0 * np.spacing(np.abs(x_b) + fl.S)
-    dn_b = 0.0 if fl.flat else dd_b / fl.R + np.sqrt(2.0 * fl.R * dd_b) / fl.R
-    un_tol = 64 * EPS * scale_v + 2.0 * np.hypot(vx_b, vy_b - fl.v(th_b)) * dn_b
+    dn_b = 0.0 if fl.flat else dd_x / fl.R + np.sqrt(2.0 * fl.R * dd_x) / fl.R
+    un_tol = 64 * EPS * (scale_v + fl.A * fl.w) + 2.0 * np.hypot(ub_x, ub_y) * dn_b
     ev_bad |= lift & ((n_end > n_end_tol) | (np.abs(un_b - numerics.v_stick) > un_tol))
     ev_bad |= (kind_b == CUSP) & (np.abs(np.abs(q) - q_c) > q_tol)
-    ev_bad |= rest_b & ((mu == 0) | (np.abs(v) > v_tol) | (vx_b != 0.0))
+    still_b = np.abs(ub_x) <= vf_tol if fl.conveyor else vx_b == 0.0
+    ev_bad |= rest_b & ((mu == 0) | (np.abs(v) > v_tol) | ~still_b | (np.abs(ub_y) > vf_tol))
     rep.flag("contact_event", ev_bad, idx[k], n_end, n_end_tol)
 
 

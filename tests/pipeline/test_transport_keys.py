@@ -78,9 +78,12 @@ def test_reduce_adds_transport_columns_only_for_a_conveyor(tmp_path):
     assert (tilted["D_drift"] < tilted["D"]).all()  # the drift's v² Δ² is out of the MSD
 
 
-def test_a_contact_model_on_the_conveyor_is_one_line_naming_both_keys():
+def test_a_contact_model_on_the_conveyor_runs_and_near_vertical_cusps_are_one_line():
+    study = parse_workflow(_with('tilt = 2.0\ncontact = "coulomb"\nmu = 0.3'), source="wf.toml")
+    assert study.params(60.0).contact == "coulomb" and study.params(60.0).transport
     with pytest.raises(WorkflowError) as e:
-        parse_workflow(_with('tilt = 2.0\ncontact = "coulomb"\nmu = 0.3'), source="wf.toml")
+        parse_workflow(_with('tilt = 2.0\ncontact = "coulomb"\nmu = 0.3\nR = 1.0'),
+                       source="wf.toml")
     msg = str(e.value)
-    assert "\n" not in msg and "wf.toml" in msg and "contact" in msg and "tilt" in msg
+    assert "\n" not in msg and "wf.toml" in msg and "contact" in msg and "R = 1.0" in msg
     assert "allowed" in msg and "stick" in msg

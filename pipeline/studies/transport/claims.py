@@ -24,6 +24,10 @@ extrema         bbb.extrema.find_extrema (Bonferroni over all pairs, family-wise
                 minimum is not monotonic) per conveyor scene; the row also gives the count
                 at φ = 0, ψ = 90°.
 no current      at φ = 0, ψ = 90° (mirror symmetric): no frequency with a significant v.
+sliding         on the sliding scenes' floor (φ = 0°, ψ = 30°), below its lift-off frequency
+                (bbb.liftoff: no particle at rest anywhere on the floor can lift off there),
+                the frequencies with a significant v: 0 under stick (a stuck particle rides
+                with the floor, v = 0 up to rounding) and ≥ 1 under Coulomb friction.
 
 k = 2 v_y⁺ f / g needs post-collision states, which these positions-only scenes do not
 record: the extrema are reported by frequency.
@@ -37,20 +41,31 @@ from statistics import NormalDist
 import numpy as np
 import pandas as pd
 
+from bbb import Params
 from bbb.extrema import find_extrema
+from bbb.liftoff import liftoff_frequency
 
 from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, markdown_table, measure
 
-__all__ = ["SCENES", "CONVEYORS", "LABELS", "CLAIMS", "significant_signs", "reversals",
+__all__ = ["SCENES", "HOPPING", "CONVEYORS", "LABELS", "SLIDING", "SLIDING_LABELS",
+           "SLIDING_GEOMETRY", "sliding_liftoff", "CLAIMS", "significant_signs", "reversals",
            "report_lines"]
 
 #: (scene, tilt φ °, throw ψ °); the first one is the paper's symmetric floor
 GEOMETRY = (("transport_t0", 0.0, 90.0), ("transport_t2", 2.0, 90.0),
             ("transport_t5", 5.0, 90.0), ("transport_p60", 0.0, 60.0),
             ("transport_p30", 0.0, 30.0))
-SCENES = tuple(s for s, _, _ in GEOMETRY)
-CONVEYORS = SCENES[1:]
+HOPPING = tuple(s for s, _, _ in GEOMETRY)
+CONVEYORS = HOPPING[1:]
 LABELS = {s: f"φ = {t:g}°, ψ = {p:g}°" for s, t, p in GEOMETRY}
+#: the sliding regime (issue 13): one floor (level, thrown at ψ = 30°, the paper's arcs) from
+#: low Γ to above lift-off, under (scene, contact model, μ)
+SLIDING_GEOMETRY = {"tilt": 0.0, "throw": 30.0}
+SLIDING = (("transport_sliding_stick", "stick", 0.0),
+           ("transport_sliding_coulomb", "coulomb", 0.3))
+SLIDING_LABELS = {"transport_sliding_stick": "stick",
+                  "transport_sliding_coulomb": "Coulomb, μ = 0.3"}
+SCENES = HOPPING + tuple(s for s, _, _ in SLIDING)
 ALPHA = 0.05
 V_MIN = 1e-6  # mm/s
 D_MIN = 1e-6  # mm²/s
@@ -160,18 +175,46 @@ def d_extrema(claim: Claim, ctx) -> Measured:
                           min_depth=D_MIN)
         return ex, _left_out(t)
 
-    ref = count(SCENES[0])
+    ref = count(HOPPING[0])
     parts = [Part(LABELS[sc], Quantity(float(len(ex))), f"{len(ex)} ({_extrema_text(ex)}){lo}")
              for sc in CONVEYORS if (r := count(sc)) is not None for ex, lo in [r]]
     if not parts:
         return Measured(missing="no conveyor scene reduced")
     ref_txt = ("not reduced" if ref is None else f"{len(ref[0])} ({_extrema_text(ref[0])})")
-    return Measured(parts, text=f"at {LABELS[SCENES[0]]}: {ref_txt}")
+    return Measured(parts, text=f"at {LABELS[HOPPING[0]]}: {ref_txt}")
+
+
+def sliding_liftoff() -> float:
+    """The sliding scenes' lift-off frequency (Hz, bbb.liftoff): below it no particle at rest
+    anywhere on their floor can lift off."""
+    return liftoff_frequency(Params.preset("klages2004", f=1.0, **SLIDING_GEOMETRY))
+
+
+@measure("transport_sliding")
+def sliding(claim: Claim, ctx) -> Measured:
+    f_lift = sliding_liftoff()
+    parts = []
+    for sc, contact, _ in SLIDING:
+        t = _table(ctx, sc)
+        if t is None:
+            continue
+        s = significant_signs(t["v"], t["v_lo"], t["v_hi"])  # Bonferroni over the whole curve
+        below = (t["f"] < f_lift).to_numpy()
+        hits = t["f"][below & (s != 0)].tolist()
+        vmax = float(np.abs(t["v"][below]).max()) if below.any() else math.nan
+        band = (Band(0.0, 0.0, "at rest below lift-off, a stuck particle rides with the floor")
+                if contact == "stick" else
+                Band(1.0, math.inf, "friction that lets go carries particles before any hop"))
+        parts.append(Part(SLIDING_LABELS[sc], Quantity(float(len(hits))),
+                          f"{len(hits)} of {int(below.sum())} frequencies below {f_lift:.1f} Hz "
+                          f"with a significant v ({', '.join(f'{x:g}' for x in hits) or 'none'});"
+                          f" max |v| there {vmax:.3g} mm/s{_left_out(t)}", band=band))
+    return Measured(parts) if parts else Measured(missing="no sliding scene reduced")
 
 
 CLAIMS = [
     Claim("Mirror symmetry: a level floor vibrated vertically carries no current",
-          "transport_no_current", SCENES[0],
+          "transport_no_current", HOPPING[0],
           Band(0.0, 0.0, "rule: no frequency with a significant v (Bonferroni, α = 0.05)")),
     Claim("Integer frequency lockings produce extrema of the transport rate (paper's outlook, "
           "after Hongler et al.)", "transport_v_extrema", "",
@@ -185,6 +228,12 @@ CLAIMS = [
           "of control parameters", "transport_d_extrema", "",
           Band(2.0, math.inf, "rule: at least 2 significant extrema of D about the drift "
                "(a maximum and a minimum) per conveyor scene")),
+    Claim("Below lift-off a vibratory conveyor transports by sliding only: the stick model "
+          "carries no current there, Coulomb friction does (conveyor theory's sliding regime; "
+          "issue 13)", "transport_sliding", "",
+          Band(-math.inf, math.inf, "rule: below the lift-off frequency (bbb.liftoff) the "
+               "number of frequencies with a significant v (Bonferroni over the curve) is 0 "
+               "under stick and ≥ 1 under Coulomb friction")),
 ]
 
 
@@ -194,5 +243,7 @@ def report_lines(tables) -> list[str]:
     rows = evaluate(CLAIMS, ctx)
     L = ["", "## Transport on a vibro-conveyor (scenes transport_*)", "",
          "Drift v with its bootstrap CI and D about the drift (bbb.transport) along f per "
-         "(tilt φ, throw ψ); pipeline/studies/transport/claims.py states the rules.", ""]
+         "(tilt φ, throw ψ), and on one floor (φ = 0°, ψ = 30°) per contact model from low Γ "
+         f"to above lift-off ({sliding_liftoff():.1f} Hz, bbb.liftoff); "
+         "pipeline/studies/transport/claims.py states the rules.", ""]
     return L + markdown_table(rows, prefix="T")

@@ -1,6 +1,7 @@
-"""The transport figure: (a) drift v(f) and (b) D(f) about the drift, with their bootstrap
+"""The transport figures: (a) drift v(f) and (b) D(f) about the drift, with their bootstrap
 CIs, one curve per (tilt φ, throw ψ); hollow markers where the drift is not steady (the
-ensemble accelerates: v and D are window means there).  Units: f Hz, v mm/s, D mm²/s."""
+ensemble accelerates: v and D are window means there).  And the sliding regime: v(f) on one
+floor per contact model, with the lift-off frequency marked.  Units: f Hz, v mm/s, D mm²/s."""
 
 from __future__ import annotations
 
@@ -12,9 +13,9 @@ import pandas as pd
 from matplotlib import rc_context
 
 from ..figure_style import STYLE, figure_files, new_figure, save_figure
-from .claims import LABELS, SCENES
+from .claims import HOPPING, LABELS, SLIDING, SLIDING_GEOMETRY, SLIDING_LABELS, sliding_liftoff
 
-__all__ = ["draw", "figure_transport"]
+__all__ = ["draw", "figure_transport", "figure_sliding"]
 
 
 def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLike | None = None,
@@ -24,7 +25,7 @@ def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathL
     with rc_context(STYLE):
         fig = new_figure(name, (7.0, 5.6))
         ax_v, ax_d = fig.subplots(2, 1, sharex=True)
-        for i, sc in enumerate(SCENES):
+        for i, sc in enumerate(HOPPING):
             t = tables.get(sc)
             if t is None or "v" not in t:
                 continue
@@ -54,8 +55,43 @@ def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathL
         return save_figure(fig, out_dir)
 
 
+def figure_sliding(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLike | None = None,
+                   name: str = "fig_transport_sliding"):
+    """Drift v(f) with its CI per contact model on the sliding scenes' floor, the lift-off
+    frequency dashed (sliding regime to its left); returns the Figure (PNG + PDF given
+    ``out_dir``)."""
+    f_lift = sliding_liftoff()
+    with rc_context(STYLE):
+        fig = new_figure(name, (7.0, 3.4))
+        ax = fig.subplots()
+        for i, (sc, _, _) in enumerate(SLIDING):
+            t = tables.get(sc)
+            if t is None or "v" not in t:
+                continue
+            t = t.sort_values("f")
+            ax.errorbar(t["f"], t["v"], yerr=[t["v"] - t["v_lo"], t["v_hi"] - t["v"]], fmt="o-",
+                        ms=3, lw=1, capsize=0, color=f"C{i}", label=SLIDING_LABELS[sc])
+        x0, x1 = ax.get_xlim()
+        ax.axvspan(x0, f_lift, color="0.92", zorder=0)
+        ax.set_xlim(x0, x1)
+        ax.axvline(f_lift, color="0.4", ls="--", lw=0.8)
+        ax.text(f_lift, 0.96, f" lift-off {f_lift:.1f} Hz", transform=ax.get_xaxis_transform(),
+                va="top", fontsize="x-small")
+        ax.text(0.01, 0.96, "sliding regime", transform=ax.transAxes, va="top",
+                fontsize="x-small")
+        ax.axhline(0.0, color="0.6", lw=0.8, zorder=0)
+        ax.set_xlabel("f (Hz)")
+        ax.set_ylabel("drift v (mm/s)")
+        ax.set_title(f"φ = {SLIDING_GEOMETRY['tilt']:g}°, ψ = {SLIDING_GEOMETRY['throw']:g}°, "
+                     "the paper's arcs", fontsize="small")
+        ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(0.0, 0.9))
+        return save_figure(fig, out_dir)
+
+
 def draw(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str],
          out_dir: str | os.PathLike) -> list[Path]:
-    """make_figures' hook: the figure from ``tables["<scene>_diffusion"]``; the files written."""
-    fig = figure_transport({sc: tables.get(f"{sc}_diffusion") for sc in SCENES}, out_dir)
-    return figure_files(out_dir, fig.get_label())
+    """make_figures' hook: the figures from ``tables["<scene>_diffusion"]``; the files
+    written."""
+    figs = [figure_transport({sc: tables.get(f"{sc}_diffusion") for sc in HOPPING}, out_dir),
+            figure_sliding({sc: tables.get(f"{sc}_diffusion") for sc, _, _ in SLIDING}, out_dir)]
+    return [p for fig in figs for p in figure_files(out_dir, fig.get_label())]

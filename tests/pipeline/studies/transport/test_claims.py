@@ -7,7 +7,18 @@ import numpy as np
 import pandas as pd
 
 from pipeline.claims import evaluate
-from pipeline.studies.transport.claims import CLAIMS, CONVEYORS, SCENES, reversals, significant_signs
+from pipeline.scenes import load_scene
+from pipeline.studies.transport.claims import (
+    CLAIMS,
+    CONVEYORS,
+    HOPPING,
+    SCENES,
+    SLIDING,
+    SLIDING_GEOMETRY,
+    reversals,
+    significant_signs,
+    sliding_liftoff,
+)
 
 F = np.arange(50.0, 100.1, 2.0)  # the scenes' 26 frequencies
 SE = 0.5  # mm/s: standard error of each v
@@ -56,12 +67,13 @@ def _table(v, lo, hi, d=None) -> pd.DataFrame:
 def test_the_claim_rows_turn_on_synthetic_tables_with_known_answers():
     bumpy = -5.0 - 4.0 * np.sin(2 * np.pi * (F - 50.0) / 25.0)  # 2 extrema of v, no reversal
     flat = np.zeros(F.size)
-    tables = {SCENES[0]: _table(flat, flat - 1, flat + 1),
+    tables = {HOPPING[0]: _table(flat, flat - 1, flat + 1),
               **{s: _table(bumpy, bumpy - 0.3, bumpy + 0.3, d=20 + 5 * np.sin(F / 4.0))
                  for s in CONVEYORS}}
     rows = evaluate(CLAIMS, {"tables": tables})
-    assert [r.verdict for r in rows] == ["agrees", "agrees", "disagrees", "agrees"], rows
-    tables[SCENES[0]] = _table(bumpy, bumpy - 0.3, bumpy + 0.3)  # a current where none may be
+    assert [r.verdict for r in rows] == ["agrees", "agrees", "disagrees", "agrees",
+                                         "not measured"], rows
+    tables[HOPPING[0]] = _table(bumpy, bumpy - 0.3, bumpy + 0.3)  # a current where none may be
     for s in CONVEYORS:
         tables[s] = _table(-bumpy, -bumpy - 0.3, -bumpy + 0.3)  # reversed sign: still none
     assert [r.verdict for r in evaluate(CLAIMS, {"tables": tables})][:3] == [
@@ -85,3 +97,48 @@ def test_unsteady_frequencies_are_left_out_of_every_rule():
     assert row.verdict == "disagrees" and "left out" in row.measured
     t["steady"] = True
     assert evaluate(CLAIMS, {"tables": tables})[2].verdict == "agrees"
+
+
+F_SLIDE = np.arange(20.0, 80.1, 2.0)  # the sliding scenes' 31 frequencies
+
+
+def _sliding_tables(v_stick, v_coulomb, se=0.3):
+    def tab(v):
+        return pd.DataFrame({"f": F_SLIDE, "v": v, "v_lo": v - 1.96 * se, "v_hi": v + 1.96 * se})
+    return {SLIDING[0][0]: tab(v_stick), SLIDING[1][0]: tab(v_coulomb)}
+
+
+def _sliding_verdict(tables) -> str:
+    return evaluate(CLAIMS, {"tables": tables})[4].verdict
+
+
+def test_the_sliding_claim_agrees_when_only_coulomb_moves_below_lift_off():
+    f_lift = sliding_liftoff()
+    rest = np.where(F_SLIDE < f_lift, 0.0, 4.0)  # stick: at rest until it hops
+    slides = np.where((F_SLIDE > 44) & (F_SLIDE < 60), 5.0, 0.0)  # Coulomb: a sliding window
+    assert _sliding_verdict(_sliding_tables(rest, slides)) == "agrees"
+
+
+def test_the_sliding_claim_fails_when_stick_moves_below_lift_off_or_coulomb_does_not():
+    f_lift = sliding_liftoff()
+    creep = np.where(F_SLIDE == 50.0, 5.0, 0.0)  # one significant v below lift-off
+    assert _sliding_verdict(_sliding_tables(creep, creep)) != "agrees"
+    hop_only = np.where(F_SLIDE > f_lift, 4.0, 0.0)
+    assert _sliding_verdict(_sliding_tables(hop_only, hop_only)) != "agrees"
+
+
+def test_noise_alone_below_lift_off_is_not_a_sliding_current():
+    # the stick part on current-free curves: Bonferroni keeps false 'moves' to ≤ 5 % of curves
+    rng = np.random.default_rng(4)
+    moved = 0
+    for _ in range(500):
+        v = 0.3 * rng.standard_normal(F_SLIDE.size)
+        moved += significant_signs(v, v - 1.96 * 0.3, v + 1.96 * 0.3).any()
+    assert moved / 500 <= 0.07
+
+
+def test_the_sliding_scenes_are_the_floor_and_contact_models_the_claim_assumes():
+    for scene, contact, mu in SLIDING:
+        p = load_scene(scene).params(50.0)
+        assert (p.tilt, p.throw) == (SLIDING_GEOMETRY["tilt"], SLIDING_GEOMETRY["throw"])
+        assert (p.contact, p.mu) == (contact, mu)

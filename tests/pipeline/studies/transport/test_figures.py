@@ -13,5 +13,7 @@ def test_draw_writes_the_figure_files_even_with_a_scene_missing(tmp_path):
                       "D_drift_lo": f, "D_drift_hi": 2.0 + f, "steady": f < 56})
     tables = {f"{sc}_diffusion": t for sc in SCENES[1:]}
     paths = draw(tables, {}, tmp_path)
-    assert sorted(p.suffix for p in paths) == [".pdf", ".png"]
+    assert sorted(p.name for p in paths) == ["fig_transport.pdf", "fig_transport.png",
+                                             "fig_transport_sliding.pdf",
+                                             "fig_transport_sliding.png"]
     assert all(p.stat().st_size > 1000 for p in paths)

@@ -1,0 +1,242 @@
+"""Where a particle touches the conveyor's floor: the collision rule (Eqs. 5-6 relative to the
+moving floor) and, under the ``slide`` and ``coulomb`` contact models, sustained contact.
+
+Frame and symbols as in :mod:`bbb.conveyor`: floor coordinates, gravity (−gx, −gy), floor
+displacement (Ax, Ay)(−sin ωt).  In the floor's frame a particle in contact feels the
+effective gravity −(Gx, Gy) with Gx = gx + Ax ω² sin ωs, Gy = gy + Ay ω² sin ωs (mm/s²).  On
+its arc, at angle θ from the top (normal n = (sin θ, cos θ), tangent (cos θ, −sin θ)):
+
+    R θ̈ = Gy sin θ − Gx cos θ − μ N sgn(v),     N = Gx sin θ + Gy cos θ − v²/R
+
+(flat floor: d̈ = −Gx − μ Gy sgn(v), N = Gy).  :func:`bbb.contact.slide` integrates it with
+its certified event location, given ``side`` = (gx, Ax).  At rest, friction holds the particle
+while |F_t| ≤ μN with F_t = Gy sin θ − Gx cos θ (in a cusp: unless one wall's F_t pushes it up
+that wall by more than μN).  F_t and N are affine in u = sin ωs, so where static friction holds
+is an interval of u; :func:`slip_wait_c` finds when the floor's phase leaves it.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from .contact import CUSP, END, LIFT, normal_force, slide
+from .conveyor_search import times_or_zero
+from .kernel import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row, wrap_period
+from .surface import arc_curvature, arc_depth, arc_normal, arc_slope
+
+# contact_c's verdicts for bbb.conveyor.evolve_c's loop
+NEXT = 0  # the state changed: loop again
+DONE = 1  # t_max reached while sliding
+HELD = 2  # held at rest until lift-off: the stuck branch (bbb.conveyor) takes over
+TWO_PI = 2.0 * math.pi
+
+
+@njit(cache=True)
+def collide_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, alpha, beta, v_stick, allow_kick):
+    """Eqs. (5)-(6) relative to the floor's velocity (Vx, Vy) = −(Ax, Ay) ω cos ωs; returns
+    (vx⁺, vy⁺, outgoing relative normal speed, kicked) as bbb.kernel.collide."""
+    nx, ny = arc_normal(d, R)
+    cw = w * math.cos(w * s)
+    vfx = -Ax * cw
+    vfy = -Ay * cw
+    ux = vx - vfx
+    uy = vy - vfy
+    un = ux * nx + uy * ny
+    ut = ux * ny - uy * nx
+    un_out = alpha * abs(un)
+    ut_out = beta * ut
+    if un_out < v_stick:
+        # bbb.kernel.collide's kick, with the gap's G'' at G = G' = 0 under the tilted forces:
+        # −gy − ÿ_f + c'' d'² + c' (−gx − ẍ_f), d' = ut ny the relative tangential motion
+        sw = w * w * math.sin(w * s)
+        g2 = -gy - Ay * sw + (ut_out * ny) ** 2 * arc_curvature(d, R)
+        g2 += times_or_zero(arc_slope(d, R), -gx - Ax * sw)
+        if allow_kick and g2 > 0.0 and abs(ut_out) >= v_stick:
+            return (vfx + v_stick * nx + ut_out * ny, vfy + v_stick * ny - ut_out * nx,
+                    v_stick, True)
+    return vfx + un_out * nx + ut_out * ny, vfy + un_out * ny - ut_out * nx, un_out, False
+
+
+@njit(cache=True, inline="always")
+def forces_at_rest(nx, ny, gx, gy, Ax, Ay, w):
+    """(F_t, dF_t/du, N, dN/du) (mm/s²) at rest where the normal is (nx, ny), u = sin ωs."""
+    w2 = w * w
+    return gy * nx - gx * ny, (Ay * nx - Ax * ny) * w2, gx * nx + gy * ny, (Ax * nx + Ay * ny) * w2
+
+
+@njit(cache=True, inline="always")
+def cut(lo, hi, c, k):
+    # intersect [lo, hi] with {u : c + k u ≤ 0}
+    if k > 0.0:
+        return lo, min(hi, -c / k)
+    if k < 0.0:
+        return max(lo, -c / k), hi
+    if c > 0.0:
+        return math.inf, -math.inf
+    return lo, hi
+
+
+@njit(cache=True)
+def hold_interval(d, gx, gy, Ax, Ay, w, R, S, mu, flat):
+    """The interval [lo, hi] of u = sin ωs in which static friction holds a particle at rest
+    at offset d (empty: lo > hi); the normal force's sign aside (lift-off is bbb.conveyor's)."""
+    lo = -math.inf
+    hi = math.inf
+    nx, ny = arc_normal(d, R)
+    ft, ftu, n, nu = forces_at_rest(nx, ny, gx, gy, Ax, Ay, w)
+    if flat or abs(d) < 0.5 * S:
+        lo, hi = cut(lo, hi, ft - mu * n, ftu - mu * nu)
+        return cut(lo, hi, -ft - mu * n, -ftu - mu * nu)
+    # in a cusp: up this arc (away from the cusp, by −sg) or up the neighbour's (by +sg)
+    sg = 1.0 if d > 0.0 else -1.0
+    lo, hi = cut(lo, hi, -sg * ft - mu * n, -sg * ftu - mu * nu)
+    ft, ftu, n, nu = forces_at_rest(-nx, ny, gx, gy, Ax, Ay, w)
+    return cut(lo, hi, sg * ft - mu * n, sg * ftu - mu * nu)
+
+
+@njit(cache=True)
+def exit_wait(s, w, lo, hi):
+    """Time (s) until u = sin ω(s+τ) first leaves [lo, hi]: 0 if outside now, inf if never."""
+    u0 = math.sin(w * s)
+    if not (lo <= u0 <= hi):
+        return 0.0
+    ph0 = w * s
+    best = math.inf
+    if hi < 1.0:  # sin rises through hi at asin(hi)
+        r = (math.asin(hi) - ph0) % TWO_PI
+        best = min(best, 0.0 if r > TWO_PI - 1e-9 else r / w)
+    if lo > -1.0:  # and falls through lo at π − asin(lo)
+        r = (math.pi - math.asin(lo) - ph0) % TWO_PI
+        best = min(best, 0.0 if r > TWO_PI - 1e-9 else r / w)
+    return best
+
+
+@njit(cache=True)
+def slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat):
+    """(time until static friction lets go, time until the normal force along the arc's
+    normal at d turns ≤ 0) in s, for a particle at rest at d from floor time s."""
+    lo, hi = hold_interval(d, gx, gy, Ax, Ay, w, R, S, mu, flat)
+    nx, ny = arc_normal(d, R)
+    _, _, n, nu = forces_at_rest(nx, ny, gx, gy, Ax, Ay, w)
+    lo_n, hi_n = cut(-math.inf, math.inf, -n, -nu)
+    return exit_wait(s, w, lo, hi), exit_wait(s, w, lo_n, hi_n)
+
+
+@njit(cache=True)
+def enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, mu, flat):
+    """After a collision that ended a bouncing cascade: the tangential speed v (mm/s)
+    relative to the floor, the angle θ (d on a flat floor), and whether it slides (else it is
+    held: N ≤ 0, left to the lift-off, or at rest where friction holds it)."""
+    nx, ny = arc_normal(d, R)
+    cw = w * math.cos(w * s)
+    v = (vx + Ax * cw) * ny - (vy + Ay * cw) * nx
+    q = d if flat else math.asin(nx)
+    if normal_force(q, v, s, gy, Ay, w, R, flat, (gx, Ax)) <= 0.0:
+        return v, q, False
+    lo, hi = hold_interval(d, gx, gy, Ax, Ay, w, R, S, mu, flat)
+    if v == 0.0 and exit_wait(s, w, lo, hi) > 0.0:
+        return v, q, False
+    return v, q, True
+
+
+@njit(cache=True)
+def contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay, w, R, S, alpha, beta,
+              mu, flat, t_max, sample_times, pos, rec_from, rec, n_rec, tol_t, v_stick):
+    """One step of sustained contact on the conveyor (module doc) for a particle held at rest
+    (``stuck``) or sliding (angle q, tangential speed vt relative to the floor): a slip,
+    a stretch of sliding to its event, or what that event leads to.  Returns (verdict, cell,
+    d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, collisions, sticking
+    episodes, lift-offs) with the verdict NEXT, DONE or HELD (lift-off first: not moved)."""
+    ns = sample_times.shape[0]
+    t_now = tp * T + (s - s0)
+    if stuck:
+        t_f, t_n = slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)
+        # at least tol_t held: a particle sent straight back into a cusp (at a slip's edge)
+        # must not loop without time passing
+        t_f = max(t_f, tol_t)
+        if not t_f < t_n or t_f >= t_max - t_now:
+            return HELD, cell, d, 0.0, 0.0, 0.0, s, tp, isamp, True, False, q, vt, False, \
+                n_rec, 0, 0, 0
+        # carried with the floor until static friction lets go
+        base = cell * S + d
+        while isamp < ns and sample_times[isamp] < t_now + t_f:
+            pos[isamp] = base - Ax * math.sin(w * (s + (sample_times[isamp] - t_now)))
+            isamp += 1
+        s, tp = wrap_period(s + t_f, tp, T)
+        if not flat and abs(d) >= 0.5 * S:
+            # in a cusp: leave along the wall that pushes harder beyond friction
+            sg = 1.0 if d > 0.0 else -1.0
+            u = math.sin(w * s)
+            nx, ny = arc_normal(d, R)
+            ft, ftu, n, nu = forces_at_rest(nx, ny, gx, gy, Ax, Ay, w)
+            own = -sg * (ft + ftu * u) - mu * (n + nu * u)
+            ft, ftu, n, nu = forces_at_rest(-nx, ny, gx, gy, Ax, Ay, w)
+            if sg * (ft + ftu * u) - mu * (n + nu * u) > own:
+                cell += int(sg)
+                d -= sg * S
+        q = d if flat else math.asin(max(-1.0, min(1.0, d / R)))
+        vt = 0.0
+    q, vt, s, tp, cell, isamp, ev, el = slide(q, vt, s, tp, s0, T, gy, Ay, w, R, S, mu, flat,
+                                              t_max, sample_times, pos, isamp, cell, tol_t,
+                                              (gx, Ax))
+    if ev == CUSP:
+        d = math.copysign(0.5 * S, q)
+    else:
+        d = q if flat else R * math.sin(q)
+    nx, ny = arc_normal(d, R)
+    cw = w * math.cos(w * s)
+    vx = -Ax * cw + vt * ny
+    vy = -Ay * cw - vt * nx
+    y = -Ay * math.sin(w * s) - arc_depth(d, R)
+    if ev == END:
+        return DONE, cell, d, y, vx, vy, s, tp, isamp, False, True, q, vt, False, n_rec, 0, 0, 0
+    t_c = tp * T + (s - s0)
+    xl = cell * S + d - Ax * math.sin(w * s)
+    if ev == LIFT:
+        # leave with the normal speed v_stick, as in bbb.kernel.evolve
+        vx += v_stick * nx
+        vy += v_stick * ny
+        n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T,
+                        EV_CONTACT_LIFT, True)
+        return NEXT, cell, d, y, vx, vy, s, tp, isamp, False, False, q, vt, False, n_rec, 0, 0, 1
+    if ev == CUSP:
+        n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T, EV_CUSP, True)
+        # the neighbouring arc's wall: Eqs. (5)-(6) with its normal
+        side = 1 if d > 0.0 else -1
+        cell += side
+        d -= side * S
+        held = el == 0.0  # straight back into the cusp: held there by both walls
+        n_coll = 0
+        kicked = False
+        sliding = False
+        if not held:
+            vx, vy, un_out, kicked = collide_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, alpha, beta,
+                                               v_stick, True)
+            n_coll = 1
+            if un_out < v_stick:
+                vt, q, sliding = enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)
+                held = not sliding or abs(vt) < v_stick
+                sliding = not held
+        code = EV_COLLISION
+        if sliding:
+            nx, ny = arc_normal(d, R)
+            vx = -Ax * cw + vt * ny
+            vy = -Ay * cw - vt * nx
+            code = EV_CONTACT
+        elif held:
+            vx = -Ax * cw
+            vy = -Ay * cw
+        n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d - Ax * math.sin(w * s), y,
+                        vx, vy, s / T, code, False)
+        return NEXT, cell, d, y, vx, vy, s, tp, isamp, held, sliding, q, vt, kicked, n_rec, \
+            n_coll, 1 if held else 0, 0
+    # STOP (Coulomb): at rest relative to the floor; static friction holds it or it slides on
+    vx = -Ax * cw
+    vy = -Ay * cw
+    lo, hi = hold_interval(d, gx, gy, Ax, Ay, w, R, S, mu, flat)
+    held = exit_wait(s, w, lo, hi) > 0.0
+    n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T, EV_STOP, True)
+    return NEXT, cell, d, y, vx, vy, s, tp, isamp, held, not held, q, 0.0, False, n_rec, 0, \
+        1 if held else 0, 0
