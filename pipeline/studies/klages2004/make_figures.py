@@ -143,6 +143,7 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     table_files["finescale_extrema"] = str(write_finescale(tables["finescale"], out))
     paths = [p for fig in figs for p in fg.figure_files(out, fig.get_label())]
     extra_lines: list[str] = []
+    captions: dict[str, str] = {}
     for m in extras:  # each scene's reduce tables, keyed by table name (and scene_table)
         t = {}
         for name in m.SCENES:
@@ -151,12 +152,14 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
                 df.to_csv(out / f"{name}_{tname}.csv", index=False, float_format="%.6g")
         paths += m.draw(t, stores, out)
         extra_lines += m.report_lines(t)
+        captions.update(getattr(m, "CAPTIONS", {}))  # a study's figure captions, if it has them
     log["this_invocation_s"] = time.perf_counter() - t_start
     log["wall_s"] = log.get("cluster_s", 0.0) + sum(
         e.get("wall_s", 0.0) for e in log["scenes"].values()) + sum(
         e.get("reduce_s", 0.0) for e in log["scenes"].values())
     (out / "run_log.json").write_text(json.dumps(log, indent=2) + "\n")
-    report = write_report(out, stores=stores, tables=tables, figures=paths, run_log=log)
+    report = write_report(out, stores=stores, tables=tables, figures=paths, run_log=log,
+                          captions=captions)
     if extra_lines:
         with open(report, "a", encoding="utf-8") as fh:
             fh.write("\n".join(extra_lines) + "\n")

@@ -235,7 +235,7 @@ CAPTIONS = {
 
 def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
                  tables: Mapping[str, pd.DataFrame], figures: Sequence[str | os.PathLike] = (),
-                 run_log: Mapping | None = None) -> Path:
+                 run_log: Mapping | None = None, captions: Mapping[str, str] | None = None) -> Path:
     """Write ``<out_dir>/REPORT.md`` and return its path.
 
     stores  -- scene name -> store path (figure2, ergodicity, figure3, locking, ...)
@@ -243,6 +243,7 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
                "locking", "locking_matyas2004" (locking tables); any may be missing
     figures -- paths of the figures drawn (listed with captions)
     run_log -- make_figures' log: per-scene wall time of this invocation, FAST flag
+    captions -- figure stem -> caption of further studies' figures (beside :data:`CAPTIONS`)
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -349,7 +350,8 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
             p = Path(p)
             if p.suffix != ".png":
                 continue
-            L.append(f"- [`{p.name}`]({p.name}) (and `.pdf`): {CAPTIONS.get(p.stem, '')}")
+            text = {**CAPTIONS, **(captions or {})}.get(p.stem, "")
+            L.append(f"- [`{p.name}`]({p.name}) (and `.pdf`): {text}")
     path = out / "REPORT.md"
     path.write_text("\n".join(L) + "\n", encoding="utf-8")
     return path

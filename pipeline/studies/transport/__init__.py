@@ -9,6 +9,6 @@ The interface make_figures uses: :data:`SCENES`, :func:`draw`, :func:`report_lin
 """
 
 from .claims import CLAIMS, SCENES, report_lines
-from .figures import draw
+from .figures import CAPTIONS, draw
 
-__all__ = ["SCENES", "CLAIMS", "draw", "report_lines"]
+__all__ = ["SCENES", "CLAIMS", "CAPTIONS", "draw", "report_lines"]

@@ -15,7 +15,21 @@ from matplotlib import rc_context
 from ..figure_style import STYLE, figure_files, new_figure, save_figure
 from .claims import HOPPING, LABELS, SLIDING, SLIDING_GEOMETRY, SLIDING_LABELS, sliding_liftoff
 
-__all__ = ["draw", "figure_transport", "figure_sliding"]
+__all__ = ["CAPTIONS", "draw", "figure_transport", "figure_sliding"]
+
+#: REPORT.md's captions of the figures, by file stem
+CAPTIONS = {
+    "fig_transport": (
+        "Transport on a vibro-conveyor at the paper's parameters: (a) drift v(f) and (b) D about "
+        "the drift, bootstrap 95 % CIs over particles, one curve per (tilt φ, throw ψ); hollow "
+        "markers where the drift is not steady (window means). Scenes transport_t0, _t2, _t5, "
+        "_p60, _p30."),
+    "fig_transport_sliding": (
+        "The sliding regime: drift v(f) on a level floor of the paper's arcs thrown at ψ = 30°, "
+        "under the stick model and Coulomb friction μ = 0.3, bootstrap 95 % CIs; dashed: the "
+        "lowest lift-off frequency of this floor (bbb.liftoff), shaded below it. Scenes "
+        "transport_sliding_stick and transport_sliding_coulomb (claim T5)."),
+}
 
 
 def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLike | None = None,
