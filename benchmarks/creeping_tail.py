@@ -26,6 +26,7 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from bbb import stats  # noqa: E402
 from bbb.stats.rare import effective_movers  # noqa: E402
+from benchmarks.agreement import _facing_half as facing_half  # noqa: E402
 from pipeline.store import StudyStore  # noqa: E402
 from pipeline.waves import _ci, stop_seed  # noqa: E402
 
@@ -57,7 +58,7 @@ def main(argv: list[str] | None = None) -> int:
                 continue
             x = st.read_done("positions", fi, 0, np.arange(acc.n_chunks) < n)
             D, lo, hi = _ci(study, x, stop_seed(study, f, study.families[0], n))
-            h = math.hypot((hi0 - d0) if D >= d0 else (d0 - lo0), (hi - D) if d0 >= D else (D - lo))
+            h = math.hypot(facing_half(d0, lo0, hi0, D), facing_half(D, lo, hi, d0))
             z = (D - d0) / h
             agree[n] += abs(z) <= 1.0
             n_eff = effective_movers(stats.per_particle_D(x, study.sample_times(), **fit))

@@ -8,6 +8,7 @@ import pytest
 
 from bbb import Params, simulate
 from bbb.ensemble import InitialState
+from tests.bbb.test_transport import mirrored_runs
 
 G = 9800.0
 STOP, CONTACT_LIFT, CUSP = 6.0, 5.0, 7.0  # bbb.record.EVENT_CODES
@@ -75,22 +76,10 @@ def test_a_frictionless_particle_leaves_a_tilted_arc_where_the_classic_two_third
     assert abs(v2 - v2_pred) <= 1e-9 * 2.0 * G * R
 
 
-def mirror_pair(R: float, contact: str, mu: float, n: int = 6):
+def mirror_pair(R: float, contact: str, mu: float):
     """(φ, ψ) and (−φ, 180° − ψ) from mirrored states (d, vₓ → −d, −vₓ) at low Γ (22 Hz)."""
     p = Params.preset("klages2004", f=22.0, R=R, tilt=3.0, throw=60.0, contact=contact, mu=mu)
-    q = p.with_(tilt=-3.0, throw=120.0)
-    rng = np.random.default_rng(7)
-    d = rng.uniform(-0.9, 0.9, n)
-    s = rng.uniform(0.0, 1 / 22.0, n)
-    y = 0.05 + rng.uniform(0.0, 0.3, n)
-    vx = rng.uniform(-30.0, 30.0, n)
-    vy = rng.uniform(-30.0, 30.0, n)
-    zero, no = np.zeros(n, np.int64), np.zeros(n, bool)
-    times = np.linspace(0.0, 2.0, 201)
-    kw = dict(sample_times=times, record_collisions=400, record_liftoffs=True)
-    a = simulate(p, n, 2.0, 0, InitialState(zero, d, y, vx, vy, s, no, no), **kw)
-    b = simulate(q, n, 2.0, 0, InitialState(zero, -d, y, -vx, vy, s, no, no), **kw)
-    return a, b
+    return mirrored_runs(p, seed=7, y=(0.05, 0.3), v=30.0, record=400)
 
 
 @pytest.mark.parametrize(("contact", "mu"), [("slide", 0.0), ("coulomb", 0.3)])

@@ -84,22 +84,27 @@ def test_free_slide_on_a_motionless_tilted_floor_keeps_energy_books_exactly():
     assert np.allclose(xs, 0.3 + 40.0 * times[early] - 0.5 * gx * times[early] ** 2, atol=1e-9)
 
 
-def mirror_pair(R: float, n: int = 6):
-    """Two runs: (φ, ψ) and (−φ, 180° − ψ) from mirrored initial states (d, vₓ → −d, −vₓ)."""
-    p = Params.preset("klages2004", f=70.0, R=R, tilt=3.0, throw=60.0)
-    q = p.with_(tilt=-3.0, throw=120.0)
-    rng = np.random.default_rng(5)
+def mirrored_runs(p: Params, *, n: int = 6, seed: int = 5, y: tuple[float, float] = (0.1, 1.0),
+                  v: float = 50.0, record: int = 500):
+    """Two 2 s runs: p's (φ, ψ) and (−φ, 180° − ψ) from mirrored initial states (d, vₓ → −d,
+    −vₓ); heights y[0] + U(0, y[1]) mm, velocities U(−v, v) mm/s, phases over one period."""
+    q = p.with_(tilt=-p.tilt, throw=180.0 - p.throw)
+    rng = np.random.default_rng(seed)
     d = rng.uniform(-0.9, 0.9, n)
-    s = rng.uniform(0.0, 1 / 70.0, n)
-    y = 0.1 + rng.uniform(0.0, 1.0, n)
-    vx = rng.uniform(-50.0, 50.0, n)
-    vy = rng.uniform(-50.0, 50.0, n)
+    s = rng.uniform(0.0, 1 / p.f, n)
+    h = y[0] + rng.uniform(0.0, y[1], n)
+    vx = rng.uniform(-v, v, n)
+    vy = rng.uniform(-v, v, n)
     zero, no = np.zeros(n, np.int64), np.zeros(n, bool)
     times = np.linspace(0.0, 2.0, 201)
-    kw = dict(sample_times=times, record_collisions=500, record_liftoffs=True)
-    a = simulate(p, n, 2.0, 0, InitialState(zero, d, y, vx, vy, s, no, no), **kw)
-    b = simulate(q, n, 2.0, 0, InitialState(zero, -d, y, -vx, vy, s, no, no), **kw)
+    kw = dict(sample_times=times, record_collisions=record, record_liftoffs=True)
+    a = simulate(p, n, 2.0, 0, InitialState(zero, d, h, vx, vy, s, no, no), **kw)
+    b = simulate(q, n, 2.0, 0, InitialState(zero, -d, h, -vx, vy, s, no, no), **kw)
     return a, b
+
+
+def mirror_pair(R: float):
+    return mirrored_runs(Params.preset("klages2004", f=70.0, R=R, tilt=3.0, throw=60.0))
 
 
 @pytest.mark.parametrize("R", [15.0, 1.05, math.inf])  # 1.05: near-vertical cusps (S/2 refused)
