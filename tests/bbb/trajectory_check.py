@@ -28,9 +28,12 @@ a carried particle keeps its place relative to the floor and has the floor's vel
 lifts off when the normal contact force, n·(a_floor + g(sin φ, cos φ)), first turns negative.
 Flights on the conveyor are certified by the range bounds (bounds 1-2 of _check_gap, with the
 offset's range from the parabola and the floor's sideways sine), which need no split at
-cusps, and, on sub-intervals whose offset range holds no cusp, by the Taylor bounds 3-4 with
+cusps, and, on sub-intervals whose offset range reaches at most two arcs, by the Taylor bounds
+3-4 on each of their whole circles (the floor is the upper envelope of its circles, so G is the
+smaller of the two circles' gaps, each smooth across the cusp) with
 −G'' ≤ g cos φ + A sin ψ ω² max sin + |c'|max |d''|max (d'' = −g sin φ − A cos ψ ω² sin θ);
-without these the range bounds alone leave near-grazing flights on arcs uncertified.
+without these the range bounds alone leave near-grazing flights on arcs uncertified, and
+flights that start on a cusp (a bounce there) too: their offset range always holds it.
 Sliding on the conveyor (``slide``, ``coulomb``): the stretch is integrated in the floor's
 frame under the effective gravity Gₓ = gₓ + Aₓω² sin θ, G_y = g_y + A_yω² sin θ (states and
 offsets relative to the moving floor); a stretch from rest (a held collision, a stop, a start
@@ -520,7 +523,7 @@ def _check_gap(fl: Floor, numerics, rep: Report, index, x0, y0, vx, vy0, th0, ta
                 fl.depth(fl.offset(x0[fi] + vx[fi] * v - 0.5 * gx * v * v, th0[fi] + w * v))
             gu = gu - fl.depth(du) + cu  # the gap to the nearest arc, not to arc k
             gv = gv - fl.depth(dv) + cv
-            one_arc = fl.cell(lo) == fl.cell(hi)  # no cusp where the offset can go
+            k_lo, k_hi = fl.cell(lo), fl.cell(hi)  # the arcs the offset can reach
         # bound 1, term by term: the parabola is concave (min at an end), sin exact, c ≥ cmin
         pu, pv = gu - A * np.sin(th0[fi] + w * u) - cu, gv - A * np.sin(th0[fi] + w * v) - cv
         lb = np.minimum(pu, pv) + A * smin + cmin
@@ -528,22 +531,29 @@ def _check_gap(fl: Floor, numerics, rep: Report, index, x0, y0, vx, vy0, th0, ta
         hmax = np.maximum(-g - A * w * w * smin, 0.0)
         lb = np.maximum(lb, np.minimum(gu - cu, gv - cv) - hmax * h * h / 8 + cmin)
         if fl.conveyor and not fl.flat:
-            # bounds 3, 4 on one arc: G'' = −g − Aω² sin θ + c''(d) d'² + c'(d) d'' with
-            # d'' = −gₓ − Aₓω² sin θ and c'' ≥ 0, so −G'' ≤ K = g + Aω² smax + |c'|max |d''|max
-            amax = np.maximum(np.abs(dl), np.abs(dh))
+            # bounds 3, 4 on whole circles: the floor is the upper envelope of its arcs' circles,
+            # so G = min_k G_k over the arcs the offset can reach, and each G_k is smooth across
+            # the cusps (the kernel's start step from a cusp bounds the same two circles).  On
+            # circle k: G_k'' = −g − Aω² sin θ + c''(d) d'² + c'(d) d'' with d = offset − kS,
+            # d'' = −gₓ − Aₓω² sin θ and c'' ≥ 0, so −G_k'' ≤ K_k = g + Aω² smax + |c'|max |d''|max.
+            # A range that reaches more than two arcs (a cusp on either side) gets no Taylor bound.
             d2 = np.maximum(np.abs(gx + Ax * w * w * smin), np.abs(gx + Ax * w * w * smax))
+            s_uv = np.stack([u, v])
+            th_uv = th0[fi] + w * s_uv
+            d1_uv = vx[fi] - gx * s_uv + Ax * w * np.cos(th_uv)  # the offset's rate d'
+            taylor = np.full(fi.size, np.inf)
             with np.errstate(invalid="ignore"):
-                K = np.maximum(g + A * w * w * smax + fl.slope(amax) * d2, 0.0)
-
-            # G' at either end on the nearest arc: vy − g s + Aω cos θ + c'(d) d'
-            th_uv = th0[fi] + w * np.stack([u, v])
-            d_uv = fl.offset(x0[fi] + vx[fi] * np.stack([u, v]) - 0.5 * gx * np.stack([u, v]) ** 2, th_uv)
-            d1_uv = vx[fi] - gx * np.stack([u, v]) + Ax * w * np.cos(th_uv)
-            g1 = vy0[fi] - g * np.stack([u, v]) + A * w * np.cos(th_uv) + fl.slope(d_uv) * d1_uv
-            with np.errstate(invalid="ignore"):
-                t_u = np.minimum(gu, gu + g1[0] * h - 0.5 * K * h * h)
-                t_v = np.minimum(gv, gv - g1[1] * h - 0.5 * K * h * h)
-            lb = np.where(one_arc & np.isfinite(K), np.fmax(lb, np.fmax(t_u, t_v)), lb)
+                for kk in (k_lo, k_hi):
+                    amax = np.maximum(np.abs(lo - kk * S), np.abs(hi - kk * S))
+                    K = np.maximum(g + A * w * w * smax + fl.slope(amax) * d2, 0.0)
+                    (gk_u, dk_u), (gk_v, dk_v) = gap(fi, u, kk), gap(fi, v, kk)
+                    # G_k' at either end: vy − g s + Aω cos θ + c'(d) d'
+                    g1 = vy0[fi] - g * s_uv + A * w * np.cos(th_uv) + fl.slope(np.stack([dk_u, dk_v])) * d1_uv
+                    t_u = np.minimum(gk_u, gk_u + g1[0] * h - 0.5 * K * h * h)
+                    t_v = np.minimum(gk_v, gk_v - g1[1] * h - 0.5 * K * h * h)
+                    # np.minimum keeps a nan (a circle the offset leaves, |d| ≥ R): no bound then
+                    taylor = np.minimum(taylor, np.where(np.isfinite(K), np.fmax(t_u, t_v), -np.inf))
+            lb = np.where(k_hi - k_lo <= 1, np.fmax(lb, taylor), lb)
         if not fl.conveyor:
             # bounds 3, 4: Taylor from either end with −G'' ≤ K = g + Aω² smax − vₓ² c''(min |d|)
             dmin = np.where(du * dv <= 0, 0.0, np.minimum(np.abs(du), np.abs(dv)))
