@@ -29,7 +29,7 @@ from bbb.numerics import Numerics
 from bbb.record import COLLISION_FIELDS, COUNTER_NAMES
 from bbb.surface import cell_of, depth, surface_normal
 from tests.bbb.flight_check import gap_along_flights, on_surface_tolerance
-from tests.bbb.trajectory_check import Floor, Report, check_particle, start_event
+from tests.bbb.trajectory_check import Floor, Report, _rest_loads, check_particle, start_event
 
 G = 9800.0
 BASE = dict(g=G, A=0.1, f=60.0, R=15.0, S=2.0, alpha=0.7, beta=0.99)
@@ -601,6 +601,81 @@ def drifts_downhill_on_average(p: Params, st: InitialState, run: SimRun) -> None
     assert np.mean(run.positions[:, -1] - start_x(p, st)) > 10 * p.S
 
 
+def relative_to_floor(p: Params, st: InitialState, run: SimRun) -> np.ndarray:
+    """x − X_f (mm) at the run's sample times: the place relative to the moving floor."""
+    fl = Floor(p)
+    t = np.linspace(0.0, run.t_max, run.positions.shape[1])
+    return run.positions - fl.xf(fl.w * (st.s[:, None] + t[None, :]))
+
+
+def static_friction_holds_everywhere(p: Params, st: InitialState, run: SimRun) -> None:
+    """Coulomb at Γ < 1 with μ above the largest |F_t|/N of a particle at rest anywhere on the
+    tilted, thrown arcs at any phase (the checker's own loads, N > 0 throughout): once the
+    bounce cascade of a dropped particle has brought it to rest, it never slips or lifts off
+    again, so it keeps its place relative to the floor, x − X_f constant, while the floor
+    carries it sideways."""
+    fl = Floor(p)
+    d = np.linspace(-0.5 * p.S, 0.5 * p.S, 401)[:, None]
+    ft, n = _rest_loads(fl, p.mu, d, np.linspace(0.0, 2 * math.pi, 721)[None, :])
+    assert n.min() > 0 and np.max(np.abs(ft) / n) < 0.5 * p.mu  # the premise, with margin
+    assert np.all(run.counters["liftoffs"] == 0)
+    t = np.linspace(0.0, run.t_max, run.positions.shape[1])
+    rel = relative_to_floor(p, st, run)
+    t_rest = np.array([events_of(run, i)[-1, 0] for i in range(run.n_particles)])
+    late = t > t_rest.max()
+    assert np.count_nonzero(late) > 10
+    assert np.all(np.abs(rel[:, late] - rel[:, -1:]) <= 1e-9)
+    assert np.ptp(run.positions[:, late], axis=1).min() > fl.Ax  # it did move with the floor
+
+
+def slides_downhill_without_equilibrium(p: Params, st: InitialState, run: SimRun) -> None:
+    """Frictionless, tilted by φ < 0 beyond the arcs' steepest slope even when the floor's
+    normal acceleration adds to gravity, tan|φ| > (1 + Γ) tan θc with Γ = Aω²/g: no place on
+    the floor holds a particle at any phase, so every particle from rest ends far downhill."""
+    th_c = math.asin(0.5 * p.S / p.R)
+    assert math.tan(abs(math.radians(p.tilt))) > (1 + p.A * p.omega**2 / p.g) * math.tan(th_c)
+    every_particle_goes_downhill(p, st, run)
+
+
+def bounces_off_cusps(p: Params, st: InitialState, run: SimRun) -> None:
+    """Sliding particles reach cusps, and there (the model's rule, docs/physics.md) meet the
+    neighbouring arc at the same instant: every cusp event is followed by a collision at the
+    same t and x, which leaves the floor or starts contact on that arc; some particle did it."""
+    bounces = 0
+    for i in range(run.n_particles):
+        ev = events_of(run, i)
+        k = np.nonzero(ev[:-1, 6] == 7.0)[0]
+        assert np.all(np.isin(ev[k + 1, 6], (0.0, 4.0)))
+        assert np.all(ev[k + 1, 0] == ev[k, 0]) and np.all(ev[k + 1, 1] == ev[k, 1])
+        bounces += k.size
+    assert bounces >= 10
+
+
+def never_lets_go_below_liftoff(p: Params, st: InitialState, run: SimRun) -> None:
+    """Below the lift-off frequency (bbb.liftoff: no particle at rest anywhere can lift off)
+    and with sliding speeds far below those whose centripetal v²/R would eat the normal
+    load's margin, particles from rest slide (Coulomb lets go) but the floor never lets go
+    of them: no lift-off from rest, no lift-off from sliding.  They fly only where sliding
+    brings them into a cusp and the other wall bounces them (Eqs. (5)-(6)): every run of
+    collisions in the record starts at a cusp event."""
+    from bbb.liftoff import liftoff_frequency
+
+    assert p.f < 0.8 * liftoff_frequency(p)  # margin ≥ 1 − 0.8² = 36 % of the normal load
+    rel = relative_to_floor(p, st, run)
+    assert np.max(np.abs(rel - rel[:, :1])) > 1e-3  # friction did let go: some particle slid
+    assert np.all(run.counters["liftoffs"] == 0)
+    bounces = 0
+    for i in range(run.n_particles):
+        kinds = events_of(run, i)[:, 6]
+        assert not np.any(np.isin(kinds, (1.0, 5.0))), np.unique(kinds)
+        # the last event before each collision that is not itself a collision
+        last = np.maximum.accumulate(np.where(kinds != 0.0, np.arange(kinds.size), -1))
+        opened = last[1:][kinds[1:] == 0.0]
+        assert np.all(opened >= 0) and np.all(kinds[opened] == 7.0)
+        bounces += int(np.count_nonzero(kinds == 7.0))
+    assert bounces >= 1
+
+
 CASES += [
     Case("tilt=30 A=0 alpha=beta=1 flat: energy kept, speeds up downhill",
          params(A=0.0, R=FLAT, alpha=1.0, beta=1.0, tilt=30.0), "dropped",
@@ -623,6 +698,16 @@ CASES += [
          params(A=0.4, tilt=-30.0, throw=60.0), "launched", every_particle_goes_downhill),
     Case("throw=90 tilt=-30 R=1.05 S/2 driven: the mean drift is downhill",
          params(R=1.05, tilt=-30.0), "launched", drifts_downhill_on_average),
+    # contact models on the conveyor (issue 13 item 4; near-vertical cusps are refused)
+    Case("coulomb mu=2 Gamma=0.64 (40 Hz) tilt=3 throw=60 dropped: once at rest never slips",
+         params(f=40.0, contact="coulomb", mu=2.0, tilt=3.0, throw=60.0), "dropped",
+         static_friction_holds_everywhere, family_kw=dict(drop_height=(0.1, 1.0))),
+    Case("coulomb mu=0.3 throw=30 at 50 Hz (lift-off 66.7 Hz) from rest: slides, never lifts off",
+         params(f=50.0, contact="coulomb", mu=0.3, throw=30.0), "rest", never_lets_go_below_liftoff),
+    Case("slide tilt=-10 Gamma=0.64 (40 Hz): no equilibrium, every particle goes downhill",
+         params(f=40.0, contact="slide", tilt=-10.0), "rest", slides_downhill_without_equilibrium),
+    Case("slide tilt=3 throw=60 at 55 Hz launched: bounces off cusps (the soak's row)",
+         params(f=55.0, contact="slide", tilt=3.0, throw=60.0), "launched", bounces_off_cusps),
     Case("f=1000 Hz Gamma=3 throw=30 tilt=15: many periods per flight, none missed",
          params(f=1000.0, A=A_1000HZ, tilt=15.0, throw=30.0), "launched",
          many_floor_periods_pass_during_a_flight,
