@@ -143,11 +143,12 @@ def liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry):
 @njit(cache=True)
 def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta, tilt,
              throw, t_max, sample_times, pos, rec_from, rec, tol_t, v_stick, h_max_periods,
-             stack, counters, friction):
+             stack, counters, friction, times):
     """bbb.kernel.evolve on the conveyor (angles ``tilt``, ``throw`` in degrees).  Positions
     and recorded x are the lab's, along the floor's plane: cell·S + d + X_f.  ``friction``:
     None (stick) or μ (slide: 0, coulomb), compile-time specialised as in bbb.kernel.evolve;
-    sustained contact is bbb.conveyor_contact's."""
+    sustained contact is bbb.conveyor_contact's.  ``times`` receives the time (s) held at
+    rest relative to the floor and the time sliding, as bbb.kernel.evolve's."""
     gx = g * math.sin(math.radians(tilt))
     gy = g * math.cos(math.radians(tilt))
     # from ψ − 90° so that ψ → 180° − ψ flips Ax's sign bit-exactly and ψ = 90 gives Ay = A
@@ -173,6 +174,8 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
     sliding = False
     q = 0.0
     vt = 0.0
+    t_held = 0.0
+    t_slid = 0.0
     if stuck:
         vx = -Ax * w * math.cos(w * s)
         vy = -Ay * w * math.cos(w * s)
@@ -182,12 +185,15 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
             break
         if friction is not None and (stuck or sliding):
             verdict, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, \
-                dc, ds, dl = contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay,
+                dc, ds, dl, el = contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay,
                                        w, R, S, alpha, beta, friction, flat, t_max,
                                        sample_times, pos, rec_from, rec, n_rec, tol_t, v_stick)
             n_coll += dc
             n_stick += ds
             n_lift += dl
+            # the call moved the clock by a hold until friction let go, then el of sliding
+            t_slid += el
+            t_held += min(tp * T + (s - s0), t_max) - t_now - el
             if verdict == DONE:
                 break
             if verdict != HELD:
@@ -197,6 +203,7 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
         if stuck:
             wait = liftoff_wait_c(s, d, gx, gy, Ax, Ay, w, R, S, retry)
             t_lift = t_now + wait
+            t_held += min(wait, t_max - t_now)
             base = cell * S + d
             while isamp < ns and sample_times[isamp] < t_lift:
                 pos[isamp] = base - Ax * math.sin(w * (s + (sample_times[isamp] - t_now)))
@@ -298,18 +305,20 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
     counters[2] = n_lift
     counters[3] = n_rec
     counters[4] = n_anom
+    times[0] = t_held
+    times[1] = t_slid
 
 
 @njit(cache=True)
 def evolve_ensemble_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta,
                       tilt, throw, t_max, sample_times, pos, rec_from, rec, tol_t, v_stick,
-                      h_max_periods, counters, friction):
-    """Run every particle of an ensemble independently on the conveyor; ``friction`` as in
-    :func:`evolve_c`."""
+                      h_max_periods, counters, friction, times):
+    """Run every particle of an ensemble independently on the conveyor; ``friction`` and
+    ``times`` (one row per particle) as in :func:`evolve_c`."""
     stack = np.empty(STACK_DEPTH)
     for i in range(cell.shape[0]):
         evolve_c(cell[i], d[i], y[i], vx[i], vy[i], s[i], stuck[i], from_surface[i], g, A, w,
                  R, S, alpha, beta, tilt, throw, t_max, sample_times, pos[i], rec_from, rec[i],
-                 tol_t, v_stick, h_max_periods, stack, counters[i], friction)
+                 tol_t, v_stick, h_max_periods, stack, counters[i], friction, times[i])
 
 

@@ -148,7 +148,8 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay, w, R, 
     (``stuck``) or sliding (angle q, tangential speed vt relative to the floor): a slip,
     a stretch of sliding to its event, or what that event leads to.  Returns (verdict, cell,
     d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, collisions, sticking
-    episodes, lift-offs) with the verdict NEXT, DONE or HELD (lift-off first: not moved)."""
+    episodes, lift-offs, time slid in s) with the verdict NEXT, DONE or HELD (lift-off first:
+    not moved); for the rest of the time the call moved the clock the particle was held."""
     ns = sample_times.shape[0]
     t_now = tp * T + (s - s0)
     if stuck:
@@ -158,7 +159,7 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay, w, R, 
         t_f = max(t_f, tol_t)
         if not t_f < t_n or t_f >= t_max - t_now:
             return HELD, cell, d, 0.0, 0.0, 0.0, s, tp, isamp, True, False, q, vt, False, \
-                n_rec, 0, 0, 0
+                n_rec, 0, 0, 0, 0.0
         # carried with the floor until static friction lets go
         base = cell * S + d
         while isamp < ns and sample_times[isamp] < t_now + t_f:
@@ -191,7 +192,7 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay, w, R, 
     vy = -Ay * cw - vt * nx
     y = -Ay * math.sin(w * s) - arc_depth(d, R)
     if ev == END:
-        return DONE, cell, d, y, vx, vy, s, tp, isamp, False, True, q, vt, False, n_rec, 0, 0, 0
+        return DONE, cell, d, y, vx, vy, s, tp, isamp, False, True, q, vt, False, n_rec, 0, 0, 0, el
     t_c = tp * T + (s - s0)
     xl = cell * S + d - Ax * math.sin(w * s)
     if ev == LIFT:
@@ -200,7 +201,7 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay, w, R, 
         vy += v_stick * ny
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T,
                         EV_CONTACT_LIFT, True)
-        return NEXT, cell, d, y, vx, vy, s, tp, isamp, False, False, q, vt, False, n_rec, 0, 0, 1
+        return NEXT, cell, d, y, vx, vy, s, tp, isamp, False, False, q, vt, False, n_rec, 0, 0, 1, el
     if ev == CUSP:
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T, EV_CUSP, True)
         # the neighbouring arc's wall: Eqs. (5)-(6) with its normal
@@ -231,7 +232,7 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay, w, R, 
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d - Ax * math.sin(w * s), y,
                         vx, vy, s / T, code, False)
         return NEXT, cell, d, y, vx, vy, s, tp, isamp, held, sliding, q, vt, kicked, n_rec, \
-            n_coll, 1 if held else 0, 0
+            n_coll, 1 if held else 0, 0, el
     # STOP (Coulomb): at rest relative to the floor; static friction holds it or it slides on
     vx = -Ax * cw
     vy = -Ay * cw
@@ -239,4 +240,4 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay, w, R, 
     held = exit_wait(s, w, lo, hi) > 0.0
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T, EV_STOP, True)
     return NEXT, cell, d, y, vx, vy, s, tp, isamp, held, not held, q, 0.0, False, n_rec, 0, \
-        1 if held else 0, 0
+        1 if held else 0, 0, el

@@ -49,8 +49,8 @@ class SimRun:
     n_recorded       -- int64 (n_particles,): valid rows of ``collisions_dense``.
     liftoffs         -- whether lift-off rows were recorded.
     counters         -- int64 arrays (n_particles,) named by ``COUNTER_NAMES``.
-    contact_time     -- float64 arrays (n_particles,) named by ``CONTACT_TIME_NAMES``, s;
-                        None from the conveyor kernel (tilt/throw), which does not time them.
+    contact_time     -- float64 arrays (n_particles,) named by ``CONTACT_TIME_NAMES``, s
+                        (the paper's floor and the conveyor alike).
     """
 
     params: Params

@@ -96,15 +96,14 @@ def simulate(
                           p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, p.tilt, p.throw,
                           float(t_max), times, pos, float(record_from), rec, numerics.tol_t,
                           numerics.v_stick, numerics.max_step, counters,
-                          None if p.contact == "stick" else p.mu)
-        contact_time = None  # the conveyor kernel does not time contact
+                          None if p.contact == "stick" else p.mu, held)
     else:
         evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
                         p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, float(t_max), times,
                         pos, float(record_from), rec, numerics.tol_t, numerics.v_stick,
                         numerics.max_step, counters, None if p.contact == "stick" else p.mu,
                         held)
-        contact_time = {name: held[:, i].copy() for i, name in enumerate(CONTACT_TIME_NAMES)}
+    contact_time = {name: held[:, i].copy() for i, name in enumerate(CONTACT_TIME_NAMES)}
     return SimRun(
         params=params,
         numerics=numerics,

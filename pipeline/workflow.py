@@ -128,11 +128,6 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
             r.fail(path, f"invalid parameters at f = {f:g} Hz: {e}")
     acc = _accuracy(r, doc)
     obs = _observables(r, doc, acc)
-    conveyor = {"tilt": 0.0, "throw": 90.0}  # their values on the paper's floor
-    moved = [k for k, v in conveyor.items() if overrides.get(k, v) != v]
-    if obs.contact and moved:  # the conveyor kernel does not time contact (bbb.simulate)
-        r.fail(("observables", "contact"), f"not recorded on a conveyor (params {moved[0]} = "
-               f"{overrides[moved[0]]:g})", "[observables.contact] only at tilt = 0, throw = 90")
     return Study(name=name, source=source, seed=st["seed"], preset=preset, overrides=overrides,
                  frequencies=freqs, families=_families(r, doc), accuracy=acc,
                  observables=obs, analysis=_analysis(r, doc), refine=refine, text=text)

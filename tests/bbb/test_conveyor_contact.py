@@ -166,3 +166,57 @@ def test_a_bounce_exactly_at_a_cusp_leaving_both_arcs_flies(side):
     tau = next_collision_c(y, vy, vx, d0, s, True, False, gx, gy, Ax, Ay, w, p.R, p.S, 1.0, 1e-12,
                            1.0 / p.f, np.empty(STACK_DEPTH))
     assert tau > 1e-4
+
+
+@pytest.mark.parametrize(("phi", "mu", "held"), [(10.0, 0.3, True), (10.0, 0.1, False), (-25.0, 0.0, False)])
+def test_on_a_motionless_tilted_flat_floor_contact_time_is_all_held_or_all_sliding(phi, mu, held):
+    # tan φ < μ: held at rest the whole run; tan φ > μ: sliding the whole run (never flies)
+    assert (math.tan(math.radians(abs(phi))) < mu) == held
+    run = simulate(tilted(phi, mu), 1, 0.6, seed=0, initial=at_rest(0.3))
+    got = (run.contact_time["held"][0], run.contact_time["sliding"][0])
+    assert got == pytest.approx((0.6, 0.0) if held else (0.0, 0.6), abs=1e-12)
+
+
+def flight_time(p: Params, ev: np.ndarray, t_max: float) -> float:
+    """Seconds in flight by the record alone (every event from t = 0 of a particle that starts
+    at rest): each collision (event 0 or 4) ends a flight from the event before it; the run
+    ends in flight after a lift-off (1, 5) or a collision that left the particle moving
+    relative to the floor (a lift-off has a row only if its flight ends in a collision)."""
+    ends = np.isin(ev[1:, 6], (0.0, 4.0))
+    t = float(np.sum(ev[1:, 0][ends] - ev[:-1, 0][ends]))
+    last = ev[-1]
+    th = 2 * math.pi * last[5]
+    dev = math.radians(p.throw - 90.0)
+    vf = (p.A * math.sin(dev) * p.omega * math.cos(th), -p.A * math.cos(dev) * p.omega * math.cos(th))
+    moving = abs(last[3] - vf[0]) + abs(last[4] - vf[1]) > 1e-9
+    flying = last[6] in (1.0, 5.0) or (last[6] == 0.0 and moving)
+    return t + (t_max - last[0] if flying else 0.0)
+
+
+@pytest.mark.parametrize("kw", [dict(contact="coulomb", mu=0.3, throw=30.0, f=50.0),
+                                dict(contact="slide", tilt=3.0, throw=60.0, f=55.0),
+                                dict(contact="coulomb", mu=0.3, tilt=3.0, throw=60.0, f=55.0),
+                                dict(contact="stick", tilt=3.0, throw=60.0, f=55.0)],
+                         ids=["coulomb 0/30 50 Hz", "slide 3/60 55 Hz", "coulomb 3/60 55 Hz",
+                              "stick 3/60 55 Hz"])
+def test_conveyor_contact_time_is_the_time_not_in_flight_by_the_record(kw):
+    # held + sliding = t_max − the flights' time read off the record (independent of the
+    # kernel's clocks); stick never slides, and the contact models do slide here
+    p = Params.preset("klages2004", **kw)
+    run = simulate(p, 4, 1.0, seed=2, initial="rest", record_collisions=20_000, record_liftoffs=True)
+    assert np.all(run.n_recorded < 20_000)
+    held, sliding = run.contact_time["held"], run.contact_time["sliding"]
+    complete = 0
+    for i in range(4):
+        ev = run.collisions_dense[i, : run.n_recorded[i]]
+        contact = 1.0 - flight_time(p, ev, 1.0)
+        # a lift-off whose flight is still in the air at t_max has no row (bbb.record): the
+        # record then counts that last flight as contact
+        if run.counters["liftoffs"][i] == np.count_nonzero(np.isin(ev[:, 6], (1.0, 5.0))):
+            assert held[i] + sliding[i] == pytest.approx(contact, abs=1e-9)
+            complete += 1
+        else:
+            assert held[i] + sliding[i] < contact
+    assert complete >= 2
+    assert (np.sum(sliding) == 0.0) == (p.contact == "stick")
+    assert np.all(held >= 0.0) and np.all(sliding >= 0.0)

@@ -50,18 +50,50 @@ n_resamples = 200
 """
 
 
-@pytest.fixture(scope="module")
-def contact_store(tmp_path_factory):
-    study = parse_workflow(CONTACT, source="tinycontact.toml")
-    path = tmp_path_factory.mktemp("contact") / "tinycontact.zarr"
+# the same on a conveyor: the paper's arcs thrown at 30 deg, 50 Hz (below lift-off at 66.7 Hz)
+CONVEYOR = CONTACT.replace('name = "tinycontact"', 'name = "tinyconveyor"').replace(
+    "mu = 0.3\n", "mu = 0.3\nthrow = 30.0\n").replace("values = [54.0]", "values = [50.0]")
+
+
+def _store(tmp_path_factory, text: str, name: str):
+    study = parse_workflow(text, source=f"{name}.toml")
+    path = tmp_path_factory.mktemp(name) / f"{name}.zarr"
     run_study(study, path, workers=1, **QUIET)
     return study, path
 
 
+@pytest.fixture(scope="module")
+def contact_store(tmp_path_factory):
+    return _store(tmp_path_factory, CONTACT, "tinycontact")
+
+
+@pytest.fixture(scope="module")
+def conveyor_store(tmp_path_factory):
+    return _store(tmp_path_factory, CONVEYOR, "tinyconveyor")
+
+
 def test_contact_fractions_are_the_simulated_times_over_t_max(contact_store):
+    assert_fractions_are_the_simulated_times(*contact_store)
+
+
+def test_contact_fractions_on_a_conveyor_are_the_simulated_times_over_t_max(conveyor_store):
+    study, path = conveyor_store
+    assert study.params(50.0).throw == 30.0
+    assert_fractions_are_the_simulated_times(study, path)
+
+
+def test_below_liftoff_on_a_conveyor_particles_from_rest_stay_in_contact(conveyor_store):
+    # 50 Hz on the floor thrown at 30 deg: the floor never lets go of a particle at rest
+    # (bbb.liftoff); Coulomb particles slide and fly only off the other wall of a cusp
+    _, path = conveyor_store
+    table = reduce_store(path, path.parent / "tables", echo=lambda s: None)["contact"]
+    rest = table[table.family == "rest"].iloc[0]
+    assert rest.contact_frac > 0.9 and rest.slide_frac > 0.01
+
+
+def assert_fractions_are_the_simulated_times(study, path) -> None:
     from bbb.simulate import simulate
 
-    study, path = contact_store
     table = reduce_store(path, path.parent / "tables", echo=lambda s: None)["contact"]
     assert len(table) == 2
     acc = study.accuracy
@@ -69,9 +101,11 @@ def test_contact_fractions_are_the_simulated_times_over_t_max(contact_store):
     for fam in study.families:
         held, sliding = [], []
         for ci in range(acc.n_chunks):
+            # on the store's sampling grid: a sliding stretch ends its steps on the sample
+            # times (bbb.contact.slide), so another grid takes other steps (docs/physics.md)
             run = simulate(study.params(f), acc.chunk_size, acc.t_max,
                            study.seed_sequence(f, fam, ci), numerics=acc.numerics(),
-                           **fam.simulate_kwargs())
+                           sample_times=study.sample_times(), **fam.simulate_kwargs())
             held.append(run.contact_time["held"])
             sliding.append(run.contact_time["sliding"])
         row = table[table.family == fam.name].iloc[0]

@@ -11,7 +11,6 @@ from pipeline.make_figures import SCENES as PAPER_SCENES
 from pipeline.scenes import load_scene, scene_label, shipped_draft
 from pipeline.studies.contact import SCENES
 from pipeline.studies.contact.claims import MODELS
-from pipeline.workflow import WorkflowError, parse_workflow
 
 from ..klages2004.test_make_figures import _run_outside, installed  # noqa: F401 (fixture)
 
@@ -54,13 +53,3 @@ def test_the_wheel_ships_the_contact_scenes_and_their_drafts(installed, tmp_path
             "print(json.dumps([load_scene(n, fast=True).source for n in SCENES]))")
     got = json.loads(_run_outside(installed, code, tmp_path).strip().splitlines()[-1])
     assert got == [f"pipeline/studies/contact/scenes/draft/{n}.toml" for n in SCENES]
-
-
-@pytest.mark.parametrize("moved", ["tilt = 2.0", "throw = 60.0"])
-def test_contact_times_are_refused_on_a_conveyor(moved):
-    """The conveyor kernel does not time contact (its SimRun has contact_time None): a scene
-    asking for [observables.contact] on a tilted or thrown floor fails at parsing, naming the
-    key, not at the first chunk's write."""
-    text = shipped_draft("contact_stick")[1].read_text(encoding="utf-8")
-    with pytest.raises(WorkflowError, match=r":\d+: observables\.contact: not recorded on a conveyor"):
-        parse_workflow(text.replace("[params]\n", f"[params]\n{moved}\n"), source="x.toml")
