@@ -1,7 +1,8 @@
 """The transport figures: (a) drift v(f) and (b) D(f) about the drift, with their bootstrap
 CIs, one curve per (tilt φ, throw ψ); hollow markers where the drift is not steady (the
 ensemble accelerates: v and D are window means there).  And the sliding regime: v(f) on one
-floor per contact model, with the lift-off frequency marked.  Units: f Hz, v mm/s, D mm²/s."""
+floor per contact model, with the lift-off frequency marked, and the time held and sliding.
+Units: f Hz, v mm/s, D mm²/s."""
 
 from __future__ import annotations
 
@@ -27,7 +28,9 @@ CAPTIONS = {
     "fig_transport_sliding": (
         "The sliding regime: drift v(f) on a level floor of the paper's arcs thrown at ψ = 30°, "
         "under the stick model and Coulomb friction μ = 0.3, bootstrap 95 % CIs; dashed: the "
-        "lowest lift-off frequency of this floor (bbb.liftoff), shaded below it. Scenes "
+        "lowest lift-off frequency of this floor (bbb.liftoff), shaded below it; (b) the "
+        "fraction of the run each model spends held at rest on the floor (dashed) and sliding "
+        "(solid), bootstrap 95 % CIs over particles, the rest in flight. Scenes "
         "transport_sliding_stick and transport_sliding_coulomb (claim T5)."),
 }
 
@@ -70,14 +73,18 @@ def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathL
 
 
 def figure_sliding(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLike | None = None,
-                   name: str = "fig_transport_sliding"):
-    """Drift v(f) with its CI per contact model on the sliding scenes' floor, the lift-off
-    frequency dashed (sliding regime to its left); returns the Figure (PNG + PDF given
-    ``out_dir``)."""
+                   name: str = "fig_transport_sliding",
+                   contact: Mapping[str, pd.DataFrame] | None = None):
+    """(a) Drift v(f) with its CI per contact model on the sliding scenes' floor, the lift-off
+    frequency dashed (sliding regime to its left); (b), given ``contact`` (the scenes' contact
+    tables), the fraction of time held at rest (dashed) and sliding (solid) per model, with
+    their CIs: what is left is flight.  Returns the Figure (PNG + PDF given ``out_dir``)."""
     f_lift = sliding_liftoff()
+    contact = {sc: t for sc, t in (contact or {}).items() if t is not None and len(t)}
     with rc_context(STYLE):
-        fig = new_figure(name, (7.0, 3.4))
-        ax = fig.subplots()
+        fig = new_figure(name, (7.0, 5.6 if contact else 3.4))
+        axes = fig.subplots(2, 1, sharex=True) if contact else [fig.subplots()]
+        ax = axes[0]
         for i, (sc, _, _) in enumerate(SLIDING):
             t = tables.get(sc)
             if t is None or "v" not in t:
@@ -85,20 +92,41 @@ def figure_sliding(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLik
             t = t.sort_values("f")
             ax.errorbar(t["f"], t["v"], yerr=[t["v"] - t["v_lo"], t["v_hi"] - t["v"]], fmt="o-",
                         ms=3, lw=1, capsize=0, color=f"C{i}", label=SLIDING_LABELS[sc])
-        x0, x1 = ax.get_xlim()
-        ax.axvspan(x0, f_lift, color="0.92", zorder=0)
-        ax.set_xlim(x0, x1)
-        ax.axvline(f_lift, color="0.4", ls="--", lw=0.8)
+        if contact:
+            ax_c = axes[1]
+            for i, (sc, _, _) in enumerate(SLIDING):
+                t = contact.get(sc)
+                if t is None:
+                    continue
+                t = t.sort_values("f")
+                for col, ls, what in (("slide_frac", "-", "sliding"), ("held_frac", "--", "held")):
+                    ax_c.plot(t["f"], t[col], ls, lw=1, color=f"C{i}",
+                              label=f"{SLIDING_LABELS[sc]}: {what}")
+                    ax_c.fill_between(t["f"], t[f"{col}_lo"], t[f"{col}_hi"], color=f"C{i}",
+                                      alpha=0.2, lw=0)
+            ax_c.set_ylim(-0.02, 1.02)
+            ax_c.set_ylabel("fraction of time")
+            ax_c.legend(fontsize="x-small", loc="center left", ncols=2)
+            ax_c.text(0.99, 0.5, "the rest: in flight", transform=ax_c.transAxes, ha="right",
+                      fontsize="x-small", color="0.4")
+        for a in axes:
+            x0, x1 = a.get_xlim()
+            a.axvspan(x0, f_lift, color="0.92", zorder=0)
+            a.set_xlim(x0, x1)
+            a.axvline(f_lift, color="0.4", ls="--", lw=0.8)
         ax.text(f_lift, 0.96, f" lift-off {f_lift:.1f} Hz", transform=ax.get_xaxis_transform(),
                 va="top", fontsize="x-small")
         ax.text(0.01, 0.96, "sliding regime", transform=ax.transAxes, va="top",
                 fontsize="x-small")
         ax.axhline(0.0, color="0.6", lw=0.8, zorder=0)
-        ax.set_xlabel("f (Hz)")
+        axes[-1].set_xlabel("f (Hz)")
         ax.set_ylabel("drift v (mm/s)")
         ax.set_title(f"φ = {SLIDING_GEOMETRY['tilt']:g}°, ψ = {SLIDING_GEOMETRY['throw']:g}°, "
                      "the paper's arcs", fontsize="small")
         ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(0.0, 0.9))
+        if contact:
+            ax.text(0.01, 0.06, "(a)", transform=ax.transAxes)
+            axes[1].text(0.01, 0.92, "(b)", transform=axes[1].transAxes)
         return save_figure(fig, out_dir)
 
 
@@ -107,5 +135,6 @@ def draw(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str],
     """make_figures' hook: the figures from ``tables["<scene>_diffusion"]``; the files
     written."""
     figs = [figure_transport({sc: tables.get(f"{sc}_diffusion") for sc in HOPPING}, out_dir),
-            figure_sliding({sc: tables.get(f"{sc}_diffusion") for sc, _, _ in SLIDING}, out_dir)]
+            figure_sliding({sc: tables.get(f"{sc}_diffusion") for sc, _, _ in SLIDING}, out_dir,
+                           contact={sc: tables.get(f"{sc}_contact") for sc, _, _ in SLIDING})]
     return [p for fig in figs for p in figure_files(out_dir, fig.get_label())]

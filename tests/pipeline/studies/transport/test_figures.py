@@ -17,3 +17,25 @@ def test_draw_writes_the_figure_files_even_with_a_scene_missing(tmp_path):
                                              "fig_transport_sliding.pdf",
                                              "fig_transport_sliding.png"]
     assert all(p.stat().st_size > 1000 for p in paths)
+
+
+def test_the_sliding_figure_draws_each_models_held_and_sliding_fractions_below_v(tmp_path):
+    from pipeline.studies.transport.claims import SLIDING, SLIDING_LABELS
+    from pipeline.studies.transport.figures import figure_sliding
+
+    f = np.arange(20.0, 80.1, 10.0)
+    v = pd.DataFrame({"f": f, "v": f / 10, "v_lo": f / 10 - 0.1, "v_hi": f / 10 + 0.1})
+    contact = {}
+    for k, (sc, _, _) in enumerate(SLIDING):
+        held, slid = np.linspace(0.9, 0.1, f.size) / (k + 1), np.linspace(0.0, 0.5, f.size) * k
+        contact[sc] = pd.DataFrame({"f": f[::-1], "held_frac": held[::-1], "slide_frac": slid[::-1],
+                                    "held_frac_lo": held[::-1] - 0.01, "held_frac_hi": held[::-1] + 0.01,
+                                    "slide_frac_lo": slid[::-1], "slide_frac_hi": slid[::-1] + 0.01})
+    fig = figure_sliding({sc: v for sc, _, _ in SLIDING}, tmp_path, contact=contact)
+    assert len(fig.axes) == 2 and (tmp_path / "fig_transport_sliding.png").stat().st_size > 1000
+    lines = {ln.get_label(): ln for ln in fig.axes[1].get_lines()}
+    for sc, _, _ in SLIDING:
+        for col, what in (("held_frac", "held"), ("slide_frac", "sliding")):
+            ln = lines[f"{SLIDING_LABELS[sc]}: {what}"]
+            t = contact[sc].sort_values("f")
+            assert np.array_equal(ln.get_xdata(), t["f"]) and np.array_equal(ln.get_ydata(), t[col])
