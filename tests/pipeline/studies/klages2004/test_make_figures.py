@@ -142,6 +142,11 @@ def test_a_wheel_ships_every_scene_and_module(installed, tmp_path):
     source = {p.relative_to(ROOT) for d in ("bbb", "pipeline") for p in (ROOT / d).rglob("*.py")}
     missing = sorted(str(p) for p in source if not (site / p).exists())
     assert not missing, f"not in the wheel (add the package to pyproject.toml): {missing}"
+    # and every scene file, drafts included (a draft missing from the wheel is not an error
+    # there: load_scene(fast=True) quietly falls back to the whole scene at draft accuracy)
+    scenes = {p.relative_to(ROOT) for p in (ROOT / "pipeline" / "studies").rglob("*.toml")}
+    missing = sorted(str(p) for p in scenes if not (site / p).exists())
+    assert not missing, f"not in the wheel (add them to package-data in pyproject.toml): {missing}"
 
 
 @pytest.mark.slow
