@@ -573,15 +573,26 @@ def rides_with_the_floor_once_stuck(p: Params, st: InitialState, run: SimRun) ->
     """A sin ψ ω² < g cos φ (and on the arcs the normal contact force stays positive): the
     bounce cascade ends in sticking and the floor never lets go; a stuck particle keeps its
     place relative to the floor, so x(t) − X_f(t) is constant, X_f = −A cos ψ sin 2πft."""
-    fl = Floor(p)
     assert np.all(run.counters["sticks"] == 1) and np.all(run.counters["liftoffs"] == 0)
+    carried_after(p, st, run, max(rows_of(run, i)[-1, 0] for i in range(run.n_particles)))
+
+
+def relative_to_floor(p: Params, st: InitialState, run: SimRun) -> np.ndarray:
+    """x − X_f (mm) at the run's sample times: the place relative to the moving floor."""
+    fl = Floor(p)
     t = np.linspace(0.0, run.t_max, run.positions.shape[1])
-    rel = run.positions - fl.xf(fl.w * (st.s[:, None] + t[None, :]))
-    t_stuck = np.array([rows_of(run, i)[-1, 0] for i in range(run.n_particles)])
-    late = t > t_stuck.max()
+    return run.positions - fl.xf(fl.w * (st.s[:, None] + t[None, :]))
+
+
+def carried_after(p: Params, st: InitialState, run: SimRun, t_last: float) -> None:
+    """After t_last (s) every particle keeps its place relative to the floor (x − X_f constant
+    at more than 10 sample times) while the floor carries it sideways by more than Aₓ."""
+    t = np.linspace(0.0, run.t_max, run.positions.shape[1])
+    rel = relative_to_floor(p, st, run)
+    late = t > t_last
     assert np.count_nonzero(late) > 10
     assert np.all(np.abs(rel[:, late] - rel[:, -1:]) <= 1e-9)
-    assert np.ptp(run.positions[:, late], axis=1).min() > fl.Ax  # it did move with the floor
+    assert np.ptp(run.positions[:, late], axis=1).min() > Floor(p).Ax  # it did move with the floor
 
 
 def every_particle_goes_downhill(p: Params, st: InitialState, run: SimRun) -> None:
@@ -601,13 +612,6 @@ def drifts_downhill_on_average(p: Params, st: InitialState, run: SimRun) -> None
     assert np.mean(run.positions[:, -1] - start_x(p, st)) > 10 * p.S
 
 
-def relative_to_floor(p: Params, st: InitialState, run: SimRun) -> np.ndarray:
-    """x − X_f (mm) at the run's sample times: the place relative to the moving floor."""
-    fl = Floor(p)
-    t = np.linspace(0.0, run.t_max, run.positions.shape[1])
-    return run.positions - fl.xf(fl.w * (st.s[:, None] + t[None, :]))
-
-
 def static_friction_holds_everywhere(p: Params, st: InitialState, run: SimRun) -> None:
     """Coulomb at Γ < 1 with μ above the largest |F_t|/N of a particle at rest anywhere on the
     tilted, thrown arcs at any phase (the checker's own loads, N > 0 throughout): once the
@@ -619,13 +623,7 @@ def static_friction_holds_everywhere(p: Params, st: InitialState, run: SimRun) -
     ft, n = _rest_loads(fl, p.mu, d, np.linspace(0.0, 2 * math.pi, 721)[None, :])
     assert n.min() > 0 and np.max(np.abs(ft) / n) < 0.5 * p.mu  # the premise, with margin
     assert np.all(run.counters["liftoffs"] == 0)
-    t = np.linspace(0.0, run.t_max, run.positions.shape[1])
-    rel = relative_to_floor(p, st, run)
-    t_rest = np.array([events_of(run, i)[-1, 0] for i in range(run.n_particles)])
-    late = t > t_rest.max()
-    assert np.count_nonzero(late) > 10
-    assert np.all(np.abs(rel[:, late] - rel[:, -1:]) <= 1e-9)
-    assert np.ptp(run.positions[:, late], axis=1).min() > fl.Ax  # it did move with the floor
+    carried_after(p, st, run, max(events_of(run, i)[-1, 0] for i in range(run.n_particles)))
 
 
 def slides_downhill_without_equilibrium(p: Params, st: InitialState, run: SimRun) -> None:
