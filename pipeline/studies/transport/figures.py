@@ -106,8 +106,10 @@ def figure_sliding(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLik
                                       alpha=0.2, lw=0)
             ax_c.set_ylim(-0.02, 1.02)
             ax_c.set_ylabel("fraction of time")
-            ax_c.legend(fontsize="x-small", loc="center left", ncols=2)
-            ax_c.text(0.99, 0.5, "the rest: in flight", transform=ax_c.transAxes, ha="right",
+            # both in the band where contact fractions sit at 0 or 1 (sliding regime, above
+            # the low-Γ slips): clear of every curve
+            ax_c.legend(fontsize="x-small", loc="center", bbox_to_anchor=(0.5, 0.55), ncols=2)
+            ax_c.text(0.5, 0.3, "the rest: in flight", transform=ax_c.transAxes, ha="center",
                       fontsize="x-small", color="0.4")
         for a in axes:
             x0, x1 = a.get_xlim()
