@@ -184,6 +184,7 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
         if t_now >= t_max:
             break
         if friction is not None and (stuck or sliding):
+            was_held = stuck
             verdict, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, \
                 dc, ds, dl, el = contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay,
                                        w, R, S, alpha, beta, friction, flat, t_max,
@@ -191,9 +192,11 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
             n_coll += dc
             n_stick += ds
             n_lift += dl
-            # the call moved the clock by a hold until friction let go, then el of sliding
+            # the call moved the clock by el of sliding, after a hold until friction let go
+            # if it began held (a call that began sliding holds nothing: no rounding residue)
             t_slid += el
-            t_held += min(tp * T + (s - s0), t_max) - t_now - el
+            if was_held:
+                t_held += min(tp * T + (s - s0), t_max) - t_now - el
             if verdict == DONE:
                 break
             if verdict != HELD:
