@@ -17,7 +17,8 @@ The cost model, and where each number comes from:
 * Kernel rate r (collisions per CPU-second of one core): the pilot's collisions over its own
   process CPU time (not wall time, so a load from other users while planning does not enter
   it); a pilot of less than TIMING_FLOOR_S CPU-s is timed again until its repeats reach it,
-  and each cell keeps its fastest time (a short timing on a shared VM can read 35 % slow).  The prediction is for the cores being ours: on a shared machine the wall time grows
+  and each cell keeps its fastest time (a short timing on a shared VM can read 35 % slow).
+  The prediction is for the cores being ours: on a shared machine the wall time grows
   by the load.
 * Task CPU = chunk_size x t_max x c / r; a task's wall adds the per-task overhead
   PER_TASK_S (store write + dispatch, measured) and the run adds START_UP_S (LocalCluster,
