@@ -24,7 +24,8 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from benchmarks.kernel import cpu_name  # noqa: E402
-from pipeline.plan import benchmark_rate, pilot_rates, plan_table, predict  # noqa: E402
+from pipeline.pilot import benchmark_rate, pilot_rates  # noqa: E402
+from pipeline.plan import plan_table, predict  # noqa: E402
 from pipeline.workflow import load_workflow, parse_workflow  # noqa: E402
 
 KERNEL_TABLE = "benchmarks/results/kernel-2026-11-22.txt"

@@ -90,7 +90,7 @@ def _build_parser() -> argparse.ArgumentParser:
     a.add_argument("--quick", action="store_true", help="draft and two knobs only")
 
     pl = sub.add_parser("plan", help="predict CPU and wall time of a workflow before it runs "
-                                     "(a cached pilot of a few particles; pipeline/plan.py)")
+                                     "(a cached pilot of a few particles; pipeline/pilot.py)")
     pl.add_argument("workflow", metavar="WORKFLOW", help="workflow TOML file")
     pl.add_argument("--workers", metavar="N", type=_positive_int,
                     help="worker processes to plan for (default: number of cores)")
@@ -299,7 +299,8 @@ def _cmd_accuracy(args) -> int:
 
 
 def _cmd_plan(args) -> int:
-    from .plan import benchmark_rate, pilot_rates, plan_table, predict
+    from .pilot import benchmark_rate, pilot_rates
+    from .plan import plan_table, predict
     from .workflow import load_workflow
 
     study = load_workflow(args.workflow)

@@ -13,7 +13,8 @@ from types import SimpleNamespace
 import pytest
 
 from pipeline.cli import main
-from pipeline.plan import Cell, makespan, particles_needed, pilot_rates, predict
+from pipeline.pilot import pilot_rates
+from pipeline.plan import Cell, makespan, particles_needed, predict
 from pipeline.workflow import load_workflow, parse_workflow
 
 from .helpers import QUIET
@@ -161,33 +162,3 @@ def test_bad_input_exits_2_in_one_line(args, needle, tmp_path):
     assert run.stderr.count("\n") == 1 and run.stderr.startswith("bbb: error: ")
     assert needle in run.stderr and run.stdout == ""
 
-
-def test_a_short_pilot_keeps_each_cells_fastest_repeat_and_its_exact_collisions(monkeypatch):
-    """A pilot under TIMING_FLOOR_S of CPU is timed again: each cell's cpu_s is the least of
-    its timings (a slow first one, inflated here by 0.3 s at 54 Hz, is dropped), the repeats
-    add up to the floor, and the collisions and D are those of the single pilot run."""
-    import pipeline.plan as plan
-
-    study = parse_workflow(PLAN_TINY)
-    first, repeats = {}, {}
-    real_cell, real_cpu = plan._pilot_cell, plan._pilot_cpu
-
-    def slow_first(study, f, fam, n):
-        cell = real_cell(study, f, fam, n)
-        first[f] = cell
-        return plan.replace(cell, cpu_s=cell.cpu_s + 0.3 * (f == 54.0))
-
-    def recorded(study, f, fam, n):
-        cpu = real_cpu(study, f, fam, n)
-        repeats.setdefault(f, []).append(cpu)
-        return cpu
-
-    monkeypatch.setattr(plan, "_pilot_cell", slow_first)
-    monkeypatch.setattr(plan, "_pilot_cpu", recorded)
-    rates = pilot_rates(study, cache_dir=None)
-    assert sum(map(sum, repeats.values())) + sum(c.cpu_s for c in first.values()) + 0.3 \
-        >= plan.TIMING_FLOOR_S
-    for f in study.frequencies:
-        cell = rates.cells[(round(f * 1000), "rest")]
-        assert cell.cpu_s == min(repeats[f])
-        assert (cell.collisions, cell.D) == (first[f].collisions, first[f].D)
