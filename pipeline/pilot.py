@@ -88,21 +88,10 @@ def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
         if echo:
             echo(f"{study.name}: pilot of {n} particles x {acc.t_max:g} s at {len(todo)} "
                  "(frequency, family) pairs ...")
-        measured = {(f, fam.name): _pilot_cell(study, f, fam, n) for f, fam in todo}
-        timed = sum(c.cpu_s for c in measured.values())
-        for _ in range(20):  # the collisions are exact; only the timing is repeated
-            if timed >= TIMING_FLOOR_S:
-                break
-            for f, fam in todo:
-                cell = measured[(f, fam.name)]
-                cpu = _pilot_cpu(study, f, fam, n)
-                timed += cpu
-                measured[(f, fam.name)] = replace(cell, cpu_s=min(cell.cpu_s, cpu))
-        for f, fam in todo:
-            cell = measured[(f, fam.name)]
-            cells[(round(f * 1000), fam.name)] = cell
-            path, stored = caches[fam.name]
-            stored[str(round(f * 1000))] = {"cell": vars(cell)}
+        measured = _fastest_timings(study, todo, n)
+        cells.update(measured)
+        for (mhz, name), cell in measured.items():
+            caches[name][1][str(mhz)] = {"cell": vars(cell)}
         now = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
         for path, stored in caches.values():
             if path is not None:
@@ -131,6 +120,23 @@ def benchmark_rate(path: str | os.PathLike) -> float:
     if wall <= 0:
         raise ValueError(f"{path}: no rows 'f family collisions wall rate' of a kernel benchmark")
     return coll / wall
+
+
+def _fastest_timings(study: Study, todo, n: int) -> dict[tuple[int, str], Cell]:
+    """The pilot cell at each (f, family) of ``todo``, keyed (f in mHz, family name), its
+    cpu_s the least of its timings: the pilot is timed again (same seeds, so the same
+    collisions) until all its timings add up to TIMING_FLOOR_S, at most 20 rounds."""
+    cells = {(round(f * 1000), fam.name): _pilot_cell(study, f, fam, n) for f, fam in todo}
+    timed = sum(c.cpu_s for c in cells.values())
+    for _ in range(20):
+        if timed >= TIMING_FLOOR_S:
+            break
+        for f, fam in todo:
+            key = (round(f * 1000), fam.name)
+            cpu = _pilot_cpu(study, f, fam, n)
+            timed += cpu
+            cells[key] = replace(cells[key], cpu_s=min(cells[key].cpu_s, cpu))
+    return cells
 
 
 def _pilot_run(study: Study, f: float, fam, n: int):
