@@ -77,6 +77,7 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     from ...reduce import reduce_store
     from ...run import run_study
     from . import figures as fg
+    from .committed import TABLE_FILES, read_study_tables, read_tables, study_file, study_key, write_csv
     from .finescale import figure_finescale
     from .finescale import write_table as write_finescale
     from .report import write_report
@@ -122,9 +123,7 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     for name in ("locking", "locking_matyas2004"):
         tables[name] = locking_table(stores[name])
     for name, df in tables.items():
-        p = out / f"{'diffusion_' if not name.startswith('locking') else ''}{name}.csv"
-        df.to_csv(p, index=False, float_format="%.6g")
-        table_files[name] = str(p)
+        table_files[name] = str(write_csv(df, out / TABLE_FILES[name]))
 
     echo("drawing figures ...")
     figs = [
@@ -145,21 +144,21 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     extra_lines: list[str] = []
     captions: dict[str, str] = {}
     for m in extras:  # each scene's reduce tables, keyed by table name (and scene_table)
-        t = {}
-        for name in m.SCENES:
-            for tname, df in reduce_store(stores[name], echo=echo).items():
-                t[tname if tname == name else f"{name}_{tname}"] = df
-                df.to_csv(out / f"{name}_{tname}.csv", index=False, float_format="%.6g")
-        paths += m.draw(t, stores, out)
-        extra_lines += m.report_lines(t)
+        t = {study_key(name, tname): df for name in m.SCENES
+             for tname, df in reduce_store(stores[name], echo=echo).items()}
+        paths += m.draw(t, stores, out)  # may add tables read off the stores (claim inputs)
+        for key, df in t.items():
+            table_files[key] = str(write_csv(df, out / study_file(key, m.SCENES)))
+        # the report reads the tables back from their CSVs: REPORT.md is what they give
+        extra_lines += m.report_lines(read_study_tables(out, m.SCENES))
         captions.update(getattr(m, "CAPTIONS", {}))  # a study's figure captions, if it has them
     log["this_invocation_s"] = time.perf_counter() - t_start
     log["wall_s"] = log.get("cluster_s", 0.0) + sum(
         e.get("wall_s", 0.0) for e in log["scenes"].values()) + sum(
         e.get("reduce_s", 0.0) for e in log["scenes"].values())
     (out / "run_log.json").write_text(json.dumps(log, indent=2) + "\n")
-    report = write_report(out, stores=stores, tables=tables, figures=paths, run_log=log,
-                          captions=captions)
+    report = write_report(out, stores=stores, tables=read_tables(out), figures=paths,
+                          run_log=log, captions=captions)
     if extra_lines:
         with open(report, "a", encoding="utf-8") as fh:
             fh.write("\n".join(extra_lines) + "\n")

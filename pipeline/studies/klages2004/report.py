@@ -28,6 +28,7 @@ from ...claim_measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity
 from ...claims import Row, markdown_table, md_cell
 from ...collisions import as_store
 from .claims import CLAIMS, period1_limit
+from .committed import CLAIMS_HEADING, claim_rows
 from .measures import MAIN, families, spiral_closeness
 
 __all__ = ["Row", "CLAIMS", "curve_extrema", "onset", "evaluate", "write_report",
@@ -247,13 +248,8 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    f_gamma1 = params = None
-    if stores.get("figure2"):
-        p = as_store(stores["figure2"]).study.params(60.0)
-        f_gamma1 = math.sqrt(p.g / p.A) / (2 * math.pi) if p.A > 0 else None
-        params = p.as_dict() if p.A > 0 else None
-    rows, extrema = evaluate(tables, stores, f_gamma1, params)
     fast = bool((run_log or {}).get("fast"))
+    rows, extrema = claim_rows(tables, stores, fast)  # the Fig. 2 scene's params for the notes
     L = ["# Klages, Barna & Mátyás (2004): the claims beside our measurements", ""]
     L.append(f"Written {_dt.datetime.now(_dt.UTC).isoformat(timespec='seconds')} by "
              f"`python -m pipeline.make_figures{' --fast' if fast else ''}`"
@@ -263,7 +259,7 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
     if run_log and "wall_s" in run_log:
         L.append(f"\nWall time of the runs and reductions behind it: {run_log['wall_s']:.0f} s "
                  f"({run_log['wall_s'] / 60:.1f} min; per scene below).")
-    L += ["", "## Claims", "",
+    L += ["", CLAIMS_HEADING, "",
           "Each measured number carries its 95 % CI; each claim is judged against the tolerance "
           "band in the 'judged by' column, with the reason for its width. Verdicts: **agrees** "
           "(the whole CI inside the band), **agrees within the CI** (the value inside, the CI "
