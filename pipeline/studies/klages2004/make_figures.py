@@ -24,10 +24,11 @@ scenes share one LocalCluster (unless ``--scheduler`` names one), started once. 
 ``<runs>/draft/`` and writes to ``figures/draft/``: the same pictures in a few minutes.
 
 Outputs in the output folder: every figure as PNG and PDF, the tables the figures were drawn
-from (CSV), ``run_log.json`` (wall times of the runs that computed each store) and
-``REPORT.md``.  A scene that this invocation only resumed (nothing left to compute) keeps the
-wall time logged by the invocation that computed it, if ``run_log.json`` in the output folder
-has it for the same store.
+and the claims judged from (CSV, :mod:`.committed`), ``run_log.json`` (wall times of the runs
+that computed each store) and ``REPORT.md``; writing the repository's ``figures/``, also the
+README's table of run times (:mod:`.run_times`).  A scene that this invocation only resumed
+(nothing left to compute) keeps the wall time logged by the invocation that computed it, if
+``run_log.json`` in the output folder has it for the same store.
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ import os
 import sys
 import time
 from collections.abc import Callable, Iterator
+from datetime import UTC, datetime
 from pathlib import Path
 
 from ...scenes import ROOT, load_scene, scene_label
@@ -81,6 +83,7 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     from .finescale import figure_finescale
     from .finescale import write_table as write_finescale
     from .report import write_report
+    from .run_times import update_readme
 
     t_start = time.perf_counter()
     out = Path(out_dir if out_dir is not None else ("figures/draft" if fast else "figures"))
@@ -156,7 +159,12 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     log["wall_s"] = log.get("cluster_s", 0.0) + sum(
         e.get("wall_s", 0.0) for e in log["scenes"].values()) + sum(
         e.get("reduce_s", 0.0) for e in log["scenes"].values())
+    log["written"] = datetime.now(UTC).isoformat(timespec="seconds")
+    log["cpus"] = os.cpu_count()
     (out / "run_log.json").write_text(json.dumps(log, indent=2) + "\n")
+    readme = ROOT / "README.md"
+    if out.resolve() == (ROOT / "figures").resolve() and readme.is_file():
+        update_readme(readme, log)  # the committed figures: the README's table of run times
     report = write_report(out, stores=stores, tables=read_tables(out), figures=paths,
                           run_log=log, captions=captions)
     if extra_lines:
