@@ -31,8 +31,8 @@ import pandas as pd
 from ...claims import markdown_table
 
 __all__ = ["TABLE_FILES", "FLOAT_FORMAT", "CLAIMS_HEADING", "write_csv", "read_tables",
-           "study_key", "study_file", "read_study_tables", "figure2_params", "claim_rows",
-           "claim_sections"]
+           "study_key", "study_file", "read_study_tables", "write_study_tables", "figure2_params",
+           "claim_rows", "claim_sections"]
 
 #: this study's tables (as write_report reads them) -> the CSV beside REPORT.md
 TABLE_FILES = {"figure2": "diffusion_figure2.csv", "ergodicity": "diffusion_ergodicity.csv",
@@ -69,18 +69,34 @@ def study_file(key: str, scenes: Sequence[str]) -> str:
     return f"{key}_{key}.csv" if key in scenes else f"{key}.csv"
 
 
-def read_study_tables(out_dir: str | os.PathLike, scenes: Sequence[str]
-                      ) -> dict[str, pd.DataFrame]:
-    """A further study's tables read back from ``out_dir``: every ``<scene>_<table>.csv`` of
-    its scenes (the longest scene name that prefixes the file wins), keyed by
-    :func:`study_key`."""
-    out: dict[str, pd.DataFrame] = {}
+def _study_files(out_dir: str | os.PathLike, scenes: Sequence[str]) -> dict[str, Path]:
+    """{key: path} of every ``<scene>_<table>.csv`` of the scenes in ``out_dir`` (the longest
+    scene name that prefixes the file wins)."""
+    out: dict[str, Path] = {}
     by_length = sorted(scenes, key=len, reverse=True)
     for path in sorted(Path(out_dir).glob("*.csv")):
         scene = next((s for s in by_length if path.stem.startswith(f"{s}_")), None)
         if scene is not None:
-            out[study_key(scene, path.stem[len(scene) + 1:])] = pd.read_csv(path)
+            out[study_key(scene, path.stem[len(scene) + 1:])] = path
     return out
+
+
+def read_study_tables(out_dir: str | os.PathLike, scenes: Sequence[str]
+                      ) -> dict[str, pd.DataFrame]:
+    """A further study's tables read back from ``out_dir``: every ``<scene>_<table>.csv`` of
+    its scenes, keyed by :func:`study_key`."""
+    return {key: pd.read_csv(path) for key, path in _study_files(out_dir, scenes).items()}
+
+
+def write_study_tables(out_dir: str | os.PathLike, tables: Mapping[str, pd.DataFrame],
+                       scenes: Sequence[str]) -> list[Path]:
+    """Write a further study's tables (keyed by :func:`study_key`) into ``out_dir`` and delete
+    the CSVs of its scenes that are not among them (left by an earlier version of the study),
+    so that :func:`read_study_tables` gives exactly ``tables``.  Returns the paths written."""
+    for key, path in _study_files(out_dir, scenes).items():
+        if key not in tables:
+            path.unlink()
+    return [write_csv(df, Path(out_dir) / study_file(key, scenes)) for key, df in tables.items()]
 
 
 def figure2_params(stores: Mapping[str, str] | None = None, fast: bool = False

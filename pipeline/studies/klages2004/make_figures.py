@@ -79,7 +79,14 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     from ...reduce import reduce_store
     from ...run import run_study
     from . import figures as fg
-    from .committed import TABLE_FILES, read_study_tables, read_tables, study_file, study_key, write_csv
+    from .committed import (
+        TABLE_FILES,
+        read_study_tables,
+        read_tables,
+        study_key,
+        write_csv,
+        write_study_tables,
+    )
     from .finescale import figure_finescale
     from .finescale import write_table as write_finescale
     from .report import write_report
@@ -150,8 +157,7 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
         t = {study_key(name, tname): df for name in m.SCENES
              for tname, df in reduce_store(stores[name], echo=echo).items()}
         paths += m.draw(t, stores, out)  # may add tables read off the stores (claim inputs)
-        for key, df in t.items():
-            table_files[key] = str(write_csv(df, out / study_file(key, m.SCENES)))
+        table_files.update((p.stem, str(p)) for p in write_study_tables(out, t, m.SCENES))
         # the report reads the tables back from their CSVs: REPORT.md is what they give
         extra_lines += m.report_lines(read_study_tables(out, m.SCENES))
         captions.update(getattr(m, "CAPTIONS", {}))  # a study's figure captions, if it has them

@@ -96,7 +96,8 @@ def test_the_claims_not_regenerable_from_the_tables_are_exactly_these():
     have = {_cells(r)[0]: _cells(r) for r in sections(REPORT.read_text(encoding="utf-8"))[
         committed.CLAIMS_HEADING] if r.startswith("| ")}
     lost = {_cells(r)[0] for r in regenerated[2:]
-            if _cells(r)[3] == "**not measured**" and have[_cells(r)[0]][3] != "**not measured**"}
+            if _cells(r)[3] == "**not measured**"
+            and have.get(_cells(r)[0], [""] * 4)[3] != "**not measured**"}
     assert lost == _skipped_rows(), NOT_REGENERABLE
 
 
@@ -145,16 +146,18 @@ def test_a_further_studys_section_changes_when_its_tables_do(study, tmp_path):
 
 def test_a_further_studys_tables_read_back_under_the_keys_make_figures_gives_them(tmp_path):
     """Tables named after their scene ('mechanisms', and 'mechanisms_fine' of a scene whose
-    name the first prefixes), a scene's table and a table a draw hook added: written under
-    study_file, read back under the same keys."""
+    name the first prefixes), a scene's table and a table a draw hook added: written, read
+    back under the same keys; a CSV of a scene's table that is no longer made is deleted, a
+    CSV of no scene of the study kept."""
     scenes = ("contact_stick", "contact_proj_stick", "mechanisms", "mechanisms_fine")
     tables = {"mechanisms": pd.DataFrame({"f": [60.5]}),
               "mechanisms_fine": pd.DataFrame({"f": [60.25]}),
               "contact_stick_diffusion": pd.DataFrame({"f": [54.5], "D": [0.5]}),
               "contact_proj_stick_locking": pd.DataFrame({"f": [54.5], "k_peak": [1.5]})}
-    for key, df in tables.items():
-        committed.write_csv(df, tmp_path / committed.study_file(key, scenes))
-    committed.write_csv(pd.DataFrame({"f": [1.0]}), tmp_path / "locking.csv")  # not a scene's
+    committed.write_csv(pd.DataFrame({"f": [1.5]}), tmp_path / "mechanisms_old.csv")
+    committed.write_csv(pd.DataFrame({"f": [1.5]}), tmp_path / "locking.csv")  # not a scene's
+    committed.write_study_tables(tmp_path, tables, scenes)
+    assert not (tmp_path / "mechanisms_old.csv").exists() and (tmp_path / "locking.csv").exists()
     back = committed.read_study_tables(tmp_path, scenes)
     assert set(back) == set(tables)
     for key, df in tables.items():
