@@ -15,7 +15,8 @@
 * Kernel rate r (collisions per CPU-second of one core): the pilot's collisions over its own
   process CPU time (not wall time, so a load from other users while planning does not enter
   it); a pilot of less than TIMING_FLOOR_S CPU-s is timed again until its repeats reach it,
-  and each cell keeps its fastest time (a short timing on a shared VM can read 35 % slow).
+  and each cell keeps its fastest time (a short timing on a shared VM can read slow:
+  benchmarks/results/pilot-timing-2026-11-24.md).
 
 :func:`pilot_rates` returns a :class:`pipeline.plan.Rates` table; :func:`benchmark_rate`
 reads a kernel rate from a committed benchmark instead.
@@ -45,8 +46,8 @@ PILOT_PARTICLES = 8
 PILOT_CHUNK = 2**31
 #: a pilot that measured less CPU than this, s, is timed again (same seeds) until its repeats
 #: add up to it, and each cell keeps its fastest repeat: on a shared 2-core VM a 0.3 s pilot
-#: timed once read up to 35 % slow (1 of 8 processes, 2026-11-24), enough to push the tiny
-#: scene of tests/pipeline/test_plan.py past its 30 % band; a slow spell lasts < 1 s
+#: timed once can read slow enough to push the tiny scene of tests/pipeline/test_plan.py past
+#: its band (benchmarks/results/pilot-timing-2026-11-24.md)
 TIMING_FLOOR_S = 1.5
 #: a cached pilot older than its format is recomputed
 CACHE_VERSION = 1

@@ -14,7 +14,7 @@ import pytest
 
 from pipeline.cli import main
 from pipeline.pilot import pilot_rates
-from pipeline.plan import Cell, makespan, particles_needed, predict
+from pipeline.plan import Cell, Overheads, Rates, makespan, particles_needed, predict
 from pipeline.workflow import load_workflow, parse_workflow
 
 from .helpers import QUIET
@@ -67,9 +67,34 @@ def test_plan_prints_a_table_for_every_workflow(workflow, tmp_path, monkeypatch,
     assert "predicted:" in out and "on 2 workers" in out
 
 
+def test_the_plan_of_a_tiny_scene_is_its_arithmetic_on_fixed_rates():
+    """Pilot cells of 1000, 500, 100, 50 collisions per particle-s at 54, 55, 60, 72 Hz and a
+    kernel rate of 1e6 per CPU-s, half of it inside tasks, 0.01 s per task, 4 s start-up: each
+    f is 128 particles x 30 s in 4 chunks of 32, a chunk 32 x 30 x c / 5e5 CPU-s (1.92, 0.96,
+    0.192, 0.096 s); the tasks in order on 2 workers pair up, so the makespan is 2 x the sum
+    of one chunk per f plus 2 tasks' overhead each."""
+    study = parse_workflow(PLAN_TINY)
+    per_s = {54.0: 1000, 55.0: 500, 60.0: 100, 72.0: 50}
+    cells = {(round(f * 1000), "rest"): Cell(f, "rest", 8, 30.0, c * 8 * 30, c * 8 * 30 / 1e6)
+             for f, c in per_s.items()}
+    plan = predict(study, Rates(cells), workers=2,
+                   overheads=Overheads(start_up=4.0, per_task=0.01, in_task=0.5))
+    chunk = {f: 32 * 30.0 * c / 5e5 for f, c in per_s.items()}
+    assert [(r.f, r.particles, r.chunks, r.why) for r in plan.rows] == [
+        (f, 128, 4, "fixed") for f in per_s]
+    assert plan.collisions == pytest.approx(sum(128 * 30.0 * c for c in per_s.values()))
+    assert plan.cpu_s == pytest.approx(4 * sum(chunk.values()))
+    assert plan.busy_s == pytest.approx(plan.cpu_s + 16 * 0.01)
+    assert plan.makespan == pytest.approx(2 * sum(d + 0.01 for d in chunk.values()))
+    assert plan.longest_task == pytest.approx(chunk[54.0] + 0.01)
+    assert plan.wall_s == pytest.approx(4.0 + plan.makespan)
+
+
+@pytest.mark.slow
 def test_prediction_of_a_tiny_scene_matches_its_measured_run(tmp_path):
     """Collisions within 10 %, worker CPU within 30 %, and the compute wall within 1.5x once
     the load of other processes is taken out, of a real run on a 2-worker LocalCluster.
+    A wall-time band on a shared machine: marked slow (`make test-slow`), not in `make test`.
 
     The worker CPU is the workers' process time (not the tasks' wall clocks), so a loaded
     machine does not inflate it; the compute wall is compared with the predicted makespan

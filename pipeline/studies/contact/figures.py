@@ -13,16 +13,39 @@ import numpy as np
 import pandas as pd
 from matplotlib import rc_context
 
-from bbb.locking import creep_speed
+from bbb.locking import CREEP_MARGIN, creep_speed
 
 from ...collisions import as_store, states
 from ..figure_style import PAGE, STYLE, figure_files, new_figure, save_figure
 from .claims import LABELS, MODELS, ONSET_RANGE, PROJ_F
 
-__all__ = ["draw", "figure_contact", "figure_contact_high"]
+__all__ = ["CAPTIONS", "draw", "figure_contact", "figure_contact_high"]
 
 COLORS = {"stick": "black", "slide": "tab:blue", "coulomb005": "tab:orange",
           "coulomb03": "tab:red"}
+#: the band of the paper's 1/1 spot at 54 Hz drawn in panel (c), v_y⁺ in mm/s
+SPOT = (90.0, 100.0)
+_MODELS = ", ".join(f"{LABELS[m]} ({COLORS[m].removeprefix('tab:')})" for m in MODELS)
+_CI = "bootstrap 95 % CIs over particles"
+
+#: REPORT.md's captions of the figures, by file stem
+CAPTIONS = {
+    "fig_contact": (
+        f"The onset claims under each contact model, {_MODELS}: (a) D(f) at "
+        f"{ONSET_RANGE[0]:g}–{ONSET_RANGE[1]:g} Hz from rest (filled) and launched upward "
+        f"(open), {_CI}; (b) the share of the run a particle started at rest spends held at "
+        f"rest on the floor (solid) and sliding on an arc (dashed), {_CI} (bands), the rest in "
+        f"flight; (c) post-collision states (y, v_y⁺) at {PROJ_F:g} Hz from rest, one panel per "
+        f"model (Fig. 3a style), dotted: the upper edge of the creeping band "
+        f"(1 + {CREEP_MARGIN:g}) A 2πf, green: v_y⁺ = {SPOT[0]:g}–{SPOT[1]:g} mm/s, where the "
+        "paper's 1/1 spot lies. Scenes contact_<model> (a, b; each (f, family) to its target "
+        "CI, the TOMLs say which) and contact_proj_<model> (c); claims 1–4 and 16 per model in "
+        "the contact section below."),
+    "fig_contact_high": (
+        f"D(f) from rest under each contact model over the whole grid of the contact_<model> "
+        f"scenes, {_MODELS}, {_CI}: above {ONSET_RANGE[1]:g} Hz the models' D part where the "
+        "contact section below says they differ beyond their CIs (family-wise 5 %)."),
+}
 
 
 def _errorbar(ax, t: pd.DataFrame, cols: tuple[str, str, str], color: str, filled: bool,
@@ -93,7 +116,7 @@ def figure_contact(tables: Mapping[str, pd.DataFrame | None],
             ax.plot(y[ok], v[ok], ".", color=COLORS[m], ms=0.8, mew=0, alpha=0.5,
                     rasterized=True)
             ax.axhline(creep_speed(0.1, PROJ_F), color="0.6", lw=0.4, ls=":")
-            ax.axhspan(90.0, 100.0, color="tab:green", alpha=0.12, lw=0)
+            ax.axhspan(*SPOT, color="tab:green", alpha=0.12, lw=0)
             ax.locator_params(axis="x", nbins=3)
         return save_figure(fig, out_dir, dpi=200)
 

@@ -24,10 +24,11 @@ scenes share one LocalCluster (unless ``--scheduler`` names one), started once. 
 ``<runs>/draft/`` and writes to ``figures/draft/``: the same pictures in a few minutes.
 
 Outputs in the output folder: every figure as PNG and PDF, the tables the figures were drawn
-from (CSV), ``run_log.json`` (wall times of the runs that computed each store) and
-``REPORT.md``.  A scene that this invocation only resumed (nothing left to compute) keeps the
-wall time logged by the invocation that computed it, if ``run_log.json`` in the output folder
-has it for the same store.
+and the claims judged from (CSV, :mod:`.committed`), ``run_log.json`` (wall times of the runs
+that computed each store) and ``REPORT.md``; writing the repository's ``figures/``, also the
+README's table of run times (:mod:`.run_times`).  A scene that this invocation only resumed
+(nothing left to compute) keeps the wall time logged by the invocation that computed it, if
+``run_log.json`` in the output folder has it for the same store.
 """
 
 from __future__ import annotations
@@ -40,6 +41,7 @@ import os
 import sys
 import time
 from collections.abc import Callable, Iterator
+from datetime import UTC, datetime
 from pathlib import Path
 
 from ...scenes import ROOT, load_scene, scene_label
@@ -77,9 +79,18 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     from ...reduce import reduce_store
     from ...run import run_study
     from . import figures as fg
+    from .committed import (
+        TABLE_FILES,
+        read_study_tables,
+        read_tables,
+        study_key,
+        write_csv,
+        write_study_tables,
+    )
     from .finescale import figure_finescale
     from .finescale import write_table as write_finescale
     from .report import write_report
+    from .run_times import update_readme
 
     t_start = time.perf_counter()
     out = Path(out_dir if out_dir is not None else ("figures/draft" if fast else "figures"))
@@ -122,9 +133,7 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     for name in ("locking", "locking_matyas2004"):
         tables[name] = locking_table(stores[name])
     for name, df in tables.items():
-        p = out / f"{'diffusion_' if not name.startswith('locking') else ''}{name}.csv"
-        df.to_csv(p, index=False, float_format="%.6g")
-        table_files[name] = str(p)
+        table_files[name] = str(write_csv(df, out / TABLE_FILES[name]))
 
     echo("drawing figures ...")
     figs = [
@@ -145,21 +154,25 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     extra_lines: list[str] = []
     captions: dict[str, str] = {}
     for m in extras:  # each scene's reduce tables, keyed by table name (and scene_table)
-        t = {}
-        for name in m.SCENES:
-            for tname, df in reduce_store(stores[name], echo=echo).items():
-                t[tname if tname == name else f"{name}_{tname}"] = df
-                df.to_csv(out / f"{name}_{tname}.csv", index=False, float_format="%.6g")
-        paths += m.draw(t, stores, out)
-        extra_lines += m.report_lines(t)
+        t = {study_key(name, tname): df for name in m.SCENES
+             for tname, df in reduce_store(stores[name], echo=echo).items()}
+        paths += m.draw(t, stores, out)  # may add tables read off the stores (claim inputs)
+        table_files.update((p.stem, str(p)) for p in write_study_tables(out, t, m.SCENES))
+        # the report reads the tables back from their CSVs: REPORT.md is what they give
+        extra_lines += m.report_lines(read_study_tables(out, m.SCENES))
         captions.update(getattr(m, "CAPTIONS", {}))  # a study's figure captions, if it has them
     log["this_invocation_s"] = time.perf_counter() - t_start
     log["wall_s"] = log.get("cluster_s", 0.0) + sum(
         e.get("wall_s", 0.0) for e in log["scenes"].values()) + sum(
         e.get("reduce_s", 0.0) for e in log["scenes"].values())
+    log["written"] = datetime.now(UTC).isoformat(timespec="seconds")
+    log["cpus"] = os.cpu_count()
     (out / "run_log.json").write_text(json.dumps(log, indent=2) + "\n")
-    report = write_report(out, stores=stores, tables=tables, figures=paths, run_log=log,
-                          captions=captions)
+    readme = ROOT / "README.md"
+    if out.resolve() == (ROOT / "figures").resolve() and readme.is_file():
+        update_readme(readme, log)  # the committed figures: the README's table of run times
+    report = write_report(out, stores=stores, tables=read_tables(out), figures=paths,
+                          run_log=log, captions=captions)
     if extra_lines:
         with open(report, "a", encoding="utf-8") as fh:
             fh.write("\n".join(extra_lines) + "\n")

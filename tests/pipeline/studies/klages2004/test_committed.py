@@ -1,0 +1,188 @@
+"""The committed REPORT.md against the committed tables beside it: every claim verdict (and its
+measured text) regenerates from figures/*.csv, and every figure has a caption."""
+
+from __future__ import annotations
+
+import importlib
+import re
+import shutil
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from pipeline.studies.klages2004 import committed
+from pipeline.studies.klages2004.claims import CLAIMS
+from pipeline.studies.klages2004.make_figures import EXTRA_STUDIES
+from pipeline.studies.klages2004.report import CAPTIONS
+
+FIGURES = Path(__file__).resolve().parents[4] / "figures"
+REPORT = FIGURES / "REPORT.md"
+
+#: claims whose verdict needs more than the committed tables, by measure, and why: their rows
+#: are not compared (test_the_claims_not_regenerable_from_the_tables_are_exactly_these)
+NOT_REGENERABLE = {
+    "klages2004.spiral_approx": (
+        "claim 15 reads the post-collision states of the figure3 and locking stores (distances "
+        "of every state to the curve of Eqs. (8)-(9)), which are not committed; its measure "
+        "(pipeline/studies/klages2004/measures.py) would have to read a table of those "
+        "distances instead"),
+}
+
+
+def sections(text: str) -> dict[str, list[str]]:
+    """{'## heading': its non-empty lines} of a markdown document."""
+    out: dict[str, list[str]] = {}
+    heading = None
+    for line in text.splitlines():
+        if line.startswith("## "):
+            heading = line
+            out[heading] = []
+        elif heading is not None and line.strip():
+            out[heading].append(line)
+    return out
+
+
+def _cells(row: str) -> list[str]:
+    return [c.strip() for c in re.split(r"(?<!\\)\|", row.strip())[1:-1]]
+
+
+def _skipped_rows() -> set[str]:
+    """The first cells ('15', ...) of this study's rows that are not regenerable."""
+    return {str(i) for i, c in enumerate(CLAIMS, 1) if c.quantity in NOT_REGENERABLE}
+
+
+def mismatches(report: str, regenerated: dict[str, list[str]]) -> list[str]:
+    """What differs between the committed report and the regenerated claim sections: this
+    study's claims table row by row (by its '#'), each further study's section line by line."""
+    have = sections(report)
+    out = []
+    for heading, lines in regenerated.items():
+        if heading not in have:
+            out.append(f"{heading}: not in REPORT.md")
+            continue
+        if heading == committed.CLAIMS_HEADING:
+            rows = {_cells(r)[0]: r for r in have[heading] if r.startswith("| ")}
+            skip = _skipped_rows()
+            for r in lines[2:]:
+                key = _cells(r)[0]
+                if key in skip:
+                    continue
+                if rows.get(key) != r:
+                    out.append(f"claim {key}:\n  REPORT.md:   {rows.get(key)}\n  regenerated: {r}")
+            continue
+        want = [line for line in lines if line.strip()]
+        for i in range(max(len(want), len(have[heading]))):
+            a = have[heading][i] if i < len(have[heading]) else None
+            b = want[i] if i < len(want) else None
+            if a != b:
+                out.append(f"{heading}, line {i + 1}:\n  REPORT.md:   {a}\n  regenerated: {b}")
+    return out
+
+
+def test_every_claim_section_of_the_report_regenerates_from_the_committed_tables():
+    """The klages2004 claims table (but the rows of NOT_REGENERABLE) and the whole section of
+    every further study (mechanisms M rows, transport T rows, the contact table and its text),
+    regenerated from figures/*.csv, equal what REPORT.md says."""
+    diff = mismatches(REPORT.read_text(encoding="utf-8"), committed.claim_sections(FIGURES))
+    assert not diff, "\n".join(diff)
+
+
+def test_the_claims_not_regenerable_from_the_tables_are_exactly_these():
+    """Regenerated without stores, exactly the claims of NOT_REGENERABLE come out 'not
+    measured' where REPORT.md has a verdict: a claim that becomes regenerable must leave the
+    list (and be compared), a claim that needs a store must say so here."""
+    regenerated = committed.claim_sections(FIGURES, studies=())[committed.CLAIMS_HEADING]
+    have = {_cells(r)[0]: _cells(r) for r in sections(REPORT.read_text(encoding="utf-8"))[
+        committed.CLAIMS_HEADING] if r.startswith("| ")}
+    lost = {_cells(r)[0] for r in regenerated[2:]
+            if _cells(r)[3] == "**not measured**"
+            and have.get(_cells(r)[0], [""] * 4)[3] != "**not measured**"}
+    assert lost == _skipped_rows(), NOT_REGENERABLE
+
+
+def _copy(tmp_path: Path) -> Path:
+    out = tmp_path / "figures"
+    out.mkdir()
+    for p in FIGURES.glob("*.csv"):
+        shutil.copy(p, out)
+    return out
+
+
+def test_a_perturbed_number_that_a_claim_reads_changes_its_regenerated_verdict(tmp_path):
+    """k_max of the rest family at 60 Hz set to 2.0 in locking.csv: claim 11 (k ≈ 1.47
+    around 60 Hz) regenerates as 'disagrees', and the comparison says so."""
+    out = _copy(tmp_path)
+    lock = pd.read_csv(out / "locking.csv")
+    at = (lock["family"] == "rest") & ((lock["f"] - 60.0).abs() < 1e-6)
+    assert at.sum() == 1
+    lock.loc[at, ["k_max", "k_max_lo", "k_max_hi"]] = 2.0
+    lock.to_csv(out / "locking.csv", index=False)
+    regenerated = committed.claim_sections(out, studies=())
+    row = next(r for r in regenerated[committed.CLAIMS_HEADING] if r.startswith("| 11 |"))
+    assert _cells(row)[3] == "**disagrees**"
+    assert any(d.startswith("claim 11:") for d in mismatches(REPORT.read_text(encoding="utf-8"),
+                                                           regenerated))
+
+
+@pytest.mark.parametrize("study", EXTRA_STUDIES)
+def test_a_further_studys_section_changes_when_its_tables_do(study, tmp_path):
+    """Every number (but f) of every committed table of the study's scenes times 1.5: its
+    regenerated section no longer matches REPORT.md (its claims read the committed tables)."""
+    out = _copy(tmp_path)
+    scenes = importlib.import_module(f"pipeline.studies.{study}").SCENES
+    files = [out / committed.study_file(k, scenes)
+             for k in committed.read_study_tables(out, scenes)]
+    assert files
+    for p in files:
+        t = pd.read_csv(p)
+        num = [c for c in t.select_dtypes("number").columns if c != "f"]
+        t[num] = t[num] * 1.5
+        t.to_csv(p, index=False)
+    regenerated = committed.claim_sections(out, studies=(study,))
+    del regenerated[committed.CLAIMS_HEADING]
+    assert mismatches(REPORT.read_text(encoding="utf-8"), regenerated)
+
+
+def test_a_further_studys_tables_read_back_under_the_keys_make_figures_gives_them(tmp_path):
+    """Tables named after their scene ('mechanisms', and 'mechanisms_fine' of a scene whose
+    name the first prefixes), a scene's table and a table a draw hook added: written, read
+    back under the same keys; a CSV of a scene's table that is no longer made is deleted, a
+    CSV of no scene of the study kept."""
+    scenes = ("contact_stick", "contact_proj_stick", "mechanisms", "mechanisms_fine")
+    tables = {"mechanisms": pd.DataFrame({"f": [60.5]}),
+              "mechanisms_fine": pd.DataFrame({"f": [60.25]}),
+              "contact_stick_diffusion": pd.DataFrame({"f": [54.5], "D": [0.5]}),
+              "contact_proj_stick_locking": pd.DataFrame({"f": [54.5], "k_peak": [1.5]})}
+    committed.write_csv(pd.DataFrame({"f": [1.5]}), tmp_path / "mechanisms_old.csv")
+    committed.write_csv(pd.DataFrame({"f": [1.5]}), tmp_path / "locking.csv")  # not a scene's
+    committed.write_study_tables(tmp_path, tables, scenes)
+    assert not (tmp_path / "mechanisms_old.csv").exists() and (tmp_path / "locking.csv").exists()
+    back = committed.read_study_tables(tmp_path, scenes)
+    assert set(back) == set(tables)
+    for key, df in tables.items():
+        pd.testing.assert_frame_equal(back[key], df)
+
+
+def _figure_captions() -> dict[str, str]:
+    """{figure stem: caption} of the '## Figures' list of REPORT.md."""
+    lines = sections(REPORT.read_text(encoding="utf-8"))["## Figures"]
+    return {m["stem"]: m["caption"].strip() for line in lines
+            if (m := re.match(r"- \[`(?P<stem>[^`]+)\.png`\]\([^)]*\) \(and `\.pdf`\):(?P<caption>.*)",
+                              line))}
+
+
+def test_every_figure_listed_in_the_report_has_a_caption():
+    figures = _figure_captions()
+    assert len(figures) == len(sections(REPORT.read_text(encoding="utf-8"))["## Figures"])
+    assert not [stem for stem, caption in figures.items() if not caption]
+
+
+def test_every_figure_listed_in_the_report_has_a_caption_declared_in_code():
+    """Each figure of REPORT.md has a non-empty caption in report.CAPTIONS or in its study's
+    CAPTIONS (what make_figures writes beside it)."""
+    declared = dict(CAPTIONS)
+    for study in EXTRA_STUDIES:
+        declared.update(getattr(importlib.import_module(f"pipeline.studies.{study}"),
+                                "CAPTIONS", {}))
+    assert not [stem for stem in _figure_captions() if not declared.get(stem, "").strip()]
