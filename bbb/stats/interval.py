@@ -19,10 +19,12 @@ status                the interval [lo, hi]
                       diffusion coefficient (e.g. particles still settling within the fit
                       window, so their MSD falls with the lag): D is not measured and (D, lo,
                       hi) must not be shown as a value with a CI; coverage NaN
+``no spread``         every particle has the same D_i > 0 (identical trajectories): the
+                      sample holds no spread to bound D by: lo = hi = NaN; coverage NaN
 ====================  ====================================================================
 
-A zero-width interval cannot come out of here: k = 0 movers is ``no mover``, and an interval
-of a sample with any spread has width.
+A zero-width interval cannot come out of here: k = 0 movers is ``no mover``, identical D_i
+``no spread``, and the interval of a sample with any spread has width.
 """
 
 from __future__ import annotations
@@ -38,11 +40,12 @@ from numpy.typing import ArrayLike
 
 from .rare import effective_movers, is_rare, mover_share_bound, rare_mover_interval
 
-__all__ = ["OK", "RARE", "NO_MOVER", "FAILED", "STATUSES", "DInterval", "d_interval",
+__all__ = ["OK", "RARE", "NO_MOVER", "FAILED", "NO_SPREAD", "STATUSES", "DInterval", "d_interval",
            "rare_coverage", "CALIBRATION"]
 
-OK, RARE, NO_MOVER, FAILED = "ok", "rare movers", "no mover", "estimator failed"
-STATUSES = (OK, RARE, NO_MOVER, FAILED)
+OK, RARE, NO_MOVER, FAILED, NO_SPREAD = ("ok", "rare movers", "no mover", "estimator failed",
+                                         "no spread")
+STATUSES = (OK, RARE, NO_MOVER, FAILED, NO_SPREAD)
 #: the rare-mover rule's calibration (benchmarks/rare_movers.py --json), read by rare_coverage
 CALIBRATION = Path(__file__).with_name("rare_movers_calibration.json")
 
@@ -81,6 +84,9 @@ class DInterval(NamedTuple):
         if self.status == FAILED:
             return (f"estimator failed: fit D = {self.D:.3g} [{self.lo:.3g}, {self.hi:.3g}] "
                     "mm²/s < 0 significantly (the MSD falls with the lag); D not measured")
+        if self.status == NO_SPREAD:
+            return (f"no spread: all {self.n} particles have D_i = {self.D:.4g} mm²/s; no "
+                    "interval from the sample")
         if self.status == RARE:
             cov = "not calibrated" if math.isnan(self.coverage) else f"{self.coverage:.2f}"
             return f"rare movers (n_eff {self.n_eff:.3g}): calibrated coverage {cov}"
@@ -100,6 +106,8 @@ def d_interval(d_i: ArrayLike, boot: tuple[float, float, float], ci: float, *,
         return DInterval(D, lo, math.nan, NO_MOVER, d.size, 0.0, math.nan,
                          mover_share_bound(d.size, ci))
     n_eff = effective_movers(d)
+    if not np.ptp(d) > 0.0:
+        return DInterval(D, math.nan, math.nan, NO_SPREAD, d.size, n_eff, math.nan, math.nan)
     status, coverage = OK, ci
     if rare and is_rare(d):
         r_lo, r_hi = rare_mover_interval(d, ci)
