@@ -29,6 +29,7 @@ __all__ = [
     "RULES",
     "RULE_ERROR_RATES",
     "calibrated_error_rates",
+    "cv2_ci_coverage",
     "ErgodicVerdict",
     "ergodicity_breaking",
     "eb_brownian",
@@ -66,6 +67,14 @@ def _read_rates() -> dict[str, dict[tuple[int, int], dict[str, float]]]:
 
 
 RULE_ERROR_RATES: dict[str, dict[tuple[int, int], dict[str, float]]] = _read_rates()
+
+
+def cv2_ci_coverage() -> tuple[float, float]:
+    """(least, most) measured coverage of the 95 % CI of CV² (``cv2_lo``, ``cv2_hi``) over the
+    calibration's populations and sizes (dimensionless; from CALIBRATION)."""
+    cov = json.loads(CALIBRATION.read_text())["cv2_ci_coverage"]
+    values = [c for pops in cov.values() for c in pops.values()]
+    return min(values), max(values)
 
 
 def calibrated_error_rates(rule: str, n_particles: int, n_families: int) -> dict[str, float]:

@@ -218,3 +218,20 @@ def test_the_ergodicity_table_shows_cv2_signed_with_its_ci_and_no_clipped_zero(
     row = next(ln for ln in section.splitlines() if ln.startswith(f"| {ergo['f'].iloc[0]:g} |"))
     assert "| -0.0126 [-0.0581, 0.0342] |" in row and "| none (CV² bound ≤ 0) |" in row
     assert "0 %" not in row
+
+
+def test_the_ergodicity_rule_line_quotes_the_cv2_ci_coverage_from_its_calibration(
+        tmp_path_factory, tmp_path):
+    import json
+    from pathlib import Path
+
+    import bbb.stats
+
+    cal = json.loads((Path(bbb.stats.__file__).parent / "ergodicity_calibration.json")
+                     .read_text())["cv2_ci_coverage"]
+    values = [c for pops in cal.values() for c in pops.values()]
+    store, t = tiny_store(tmp_path_factory)
+    text = write_report(tmp_path, stores={"figure2": store},
+                        tables={"ergodicity": t["diffusion"]}).read_text()
+    want = f"covered the true CV² in {100 * min(values):.0f} %–{100 * max(values):.0f} %"
+    assert want in text
