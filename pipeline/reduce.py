@@ -91,10 +91,10 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from .adaptive import OPEN, STOP_LEGEND
-from .waves import row_intervals
 from .store import StudyStore, package_version
 from .store_layout import COUNTERS
 from .study import Study
+from .waves import row_intervals
 
 __all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir", "column_unit",
            "table_metadata", "write_table"]

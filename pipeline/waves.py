@@ -26,8 +26,17 @@ import numpy as np
 
 from bbb.stats.interval import DInterval
 
-from .adaptive import (OPEN, STOP_LEGEND, ZERO, StoppingRule, UnitState, advance, decide,
-                       refine_frequencies, remaining)
+from .adaptive import (
+    OPEN,
+    STOP_LEGEND,
+    ZERO,
+    StoppingRule,
+    UnitState,
+    advance,
+    decide,
+    refine_frequencies,
+    remaining,
+)
 from .store import StudyStore
 from .study import Study
 

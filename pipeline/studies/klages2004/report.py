@@ -21,8 +21,8 @@ import numpy as np
 import pandas as pd
 
 from bbb.extrema import Extremum, find_extrema
-from bbb.stats.ergodicity import cv2_ci_coverage
 from bbb.locking import CREEP_MARGIN, FLIGHT_TOL, MAX_QUANTILE, TMAX_QUANTILE
+from bbb.stats.ergodicity import cv2_ci_coverage
 
 from ... import claims as _claims
 from ...claim_measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark

@@ -12,8 +12,7 @@ import pytest
 
 from bbb.stats import bootstrap_D
 from bbb.stats.bootstrap import _bootstrap_mean
-from bbb.stats.interval import (CALIBRATION, FAILED, NO_MOVER, NO_SPREAD, OK, RARE, d_interval,
-                                rare_coverage)
+from bbb.stats.interval import CALIBRATION, FAILED, NO_MOVER, NO_SPREAD, OK, RARE, d_interval, rare_coverage
 from bbb.stats.rare import mover_share_bound
 from bbb.stats.synthetic import rare_movers
 
