@@ -71,7 +71,10 @@ class Stationarity:
     """First half vs second half of the analysed run.
 
     D_half1, D_half2 -- D of each half, mm²/s
-    dD, dD_lo, dD_hi -- D_half2 − D_half1 and its paired bootstrap CI, mm²/s
+    dD, dD_lo, dD_hi -- D_half2 − D_half1 and its paired bootstrap CI, mm²/s; the CI is NaN
+                        when every particle's difference is the same (e.g. none moves): such a
+                        sample has no spread to bound it with, and [dD, dD] would claim
+                        certainty (the point then counts as stationary: nothing to flag)
     tolerance        -- what the CI must clear to flag, mm²/s (TOLERANCE·|D_ref| + D_FLOOR)
     half_duration    -- length of each half, s;  fit_lags: (lo, hi) fit lags of a half, s
     """
@@ -163,6 +166,8 @@ def stationarity(x: ArrayLike, sample_times: ArrayLike, *, n_resamples: int,
         boot[s:s + m] = diff[rng.integers(0, n, size=(m, n))].mean(axis=1)
     a = 1.0 - ci
     lo, hi = (float(v) for v in np.quantile(boot, [a / 2, 1 - a / 2]))
+    if not np.ptp(diff) > 0:  # no spread: no interval (module docstring of Stationarity)
+        lo = hi = math.nan
     D1, D2 = float(d1.mean()), float(d2.mean())
     return Stationarity(D_half1=D1, D_half2=D2, dD=D2 - D1, dD_lo=lo, dD_hi=hi,
                         tolerance=tolerance * abs(0.5 * (D1 + D2)) + floor,

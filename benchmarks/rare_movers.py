@@ -1,7 +1,10 @@
 """Coverage of D's 95 % CI when only a few particles move: the bootstrap alone vs the rare-mover
 rule (bbb/stats/rare.py).  Prints the calibration table of docs/statistics.md.
 
-    python benchmarks/rare_movers.py [--reps 200] [--reps-4096 100]
+    python benchmarks/rare_movers.py [--reps 200] [--reps-4096 100] [--json PATH]
+
+With --json the calibration is also written as JSON (the coverage by the sample's n_eff that
+`bbb reduce` puts in its D_cover column reads bbb/stats/rare_movers_calibration.json, made so).
 
 Populations (bbb.stats.synthetic.rare_movers): N particles, each a mover with probability
 p = m / N (m: expected movers), light tails (Brownian, D_i ~ Gamma CV 0.5) or heavy tails
@@ -14,6 +17,7 @@ without the rule; the rule's threshold n_eff < t is scanned over t (coverage at 
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import platform
 import sys
@@ -69,6 +73,7 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--reps", type=int, default=200)
     ap.add_argument("--reps-4096", type=int, default=100)
     ap.add_argument("--seed", type=int, default=2026)
+    ap.add_argument("--json", help="also write the calibration to this JSON file")
     a = ap.parse_args(argv)
     t0 = time.perf_counter()
     print("# m: expected movers; m_eff: the population's effective movers N E[c]²/E[c²]\n"
@@ -83,6 +88,7 @@ def main(argv: list[str] | None = None) -> int:
     head = (f"{'tails':>5} {'N':>5} {'m':>5} {'m_eff':>6} {'k':>5} {'n_eff':>6} {'boot':>5} {'lo/hi':>9}"
             f" {'rule':>5} {'lo/hi':>9} {'hw×':>5}" + "".join(f" {f'cov@{t:g}':>7}" for t in THRESHOLDS))
     pooled = []
+    cells = []
     ratio = {}
     for tails in ("light", "heavy"):  # E[D_i²] / E[D_i]² of a mover, from 20480 movers
         rng = np.random.default_rng([a.seed, tails == "heavy"])
@@ -108,6 +114,8 @@ def main(argv: list[str] | None = None) -> int:
                 ok = base > 0
                 hw = float(np.median(widen[ok] / base[ok])) if ok.any() else float("nan")
                 m_eff = min(m, n) / ratio[tails]
+                cells.append({"tails": tails, "N": n, "m": m, "m_eff": round(m_eff, 3),
+                              "bootstrap": round(cb, 3), "rule": round(cr, 3), "samples": reps})
                 print(f"{tails:>5} {n:5d} {m:5g} {m_eff:6.2f} {r[:, 1].mean():5.1f}"
                       f" {np.median(r[:, 2]):6.1f}"
                       f" {cb:5.2f} {bl:4.2f}/{ba:4.2f} {cr:5.2f} {rl:4.2f}/{ra:4.2f} {hw:5.2f}"
@@ -118,14 +126,30 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{'n_eff':>11} {'samples':>7} {'boot':>5} {'rule':>5}")
     edges = (0, 1.5, 3, 5, 10, 20, 40, 100, np.inf)
     seen = allr[:, 1] >= 1
+    by_n_eff = []
     for lo_e, hi_e in zip(edges[:-1], edges[1:], strict=True):
         sel = seen & (allr[:, 2] >= lo_e) & (allr[:, 2] < hi_e)
         if sel.any():
-            print(f"[{lo_e:g}, {hi_e:g}) {sel.sum():7d} {coverage(allr[sel], None)[0]:5.2f}"
-                  f" {coverage(allr[sel], RARE_N_EFF)[0]:5.2f}")
-    print(f"{'no mover':>11} {np.sum(~seen):7d} {coverage(allr[~seen], None)[0]:5.2f}"
-          f" {coverage(allr[~seen], RARE_N_EFF)[0]:5.2f}")
+            cb, cr = coverage(allr[sel], None)[0], coverage(allr[sel], RARE_N_EFF)[0]
+            print(f"[{lo_e:g}, {hi_e:g}) {sel.sum():7d} {cb:5.2f} {cr:5.2f}")
+            by_n_eff.append({"n_eff_from": lo_e, "n_eff_to": None if np.isinf(hi_e) else hi_e,
+                             "samples": int(sel.sum()), "bootstrap": round(cb, 3),
+                             "rule": round(cr, 3)})
+    none = (coverage(allr[~seen], None)[0], coverage(allr[~seen], RARE_N_EFF)[0])
+    print(f"{'no mover':>11} {np.sum(~seen):7d} {none[0]:5.2f} {none[1]:5.2f}")
     print(f"\n# {time.perf_counter() - t0:.0f} s")
+    if a.json:
+        out = {"benchmark": "benchmarks/rare_movers.py", "date": str(date.today()), "ci": CI,
+               "n_resamples": N_BOOT, "reps": a.reps, "reps_4096": a.reps_4096, "seed": a.seed,
+               "rule": {"n_eff": RARE_N_EFF, "share": RARE_SHARE},
+               "mover_ratio": {k: round(v, 3) for k, v in ratio.items()},
+               "coverage_by_n_eff": by_n_eff,
+               "no_mover_seen": {"samples": int(np.sum(~seen)), "bootstrap": round(none[0], 3),
+                                 "rule": round(none[1], 3)},
+               "cells": cells}
+        with open(a.json, "w") as fh:
+            json.dump(out, fh, indent=1)
+            fh.write("\n")
     return 0
 
 

@@ -38,7 +38,8 @@ TABLE_UNITS = {
     "t_max": "s", "fit_from": "s", "fit_to": "s", "eb_lag": "s", "EB": "1",
     "EB_threshold": "1", "EB_decay": "1", "EB_decay_threshold": "1",
     "collisions_per_s": "1/s", "sticks_per_s": "1/s", "liftoffs_per_s": "1/s",
-    "anomalies_per_s": "1/s", "task_seconds": "s",
+    "anomalies_per_s": "1/s", "task_seconds": "s", "D_status": "", "D_cover": "1",
+    "mover_share_hi": "1",
 }
 
 

@@ -185,7 +185,8 @@ def work_left(study, store_path) -> bool:
 
     An adaptive store never has every chunk done (a (frequency, family) stops short of the
     cap): it is finished when the wave rule, replayed as the run would (recorded stops are
-    read, not recomputed), leaves no (frequency, family) open and refinement adds nothing."""
+    read, not recomputed, except a "resolved zero" where nothing moved, which reopens),
+    leaves no (frequency, family) open and refinement adds nothing."""
     from .lock import run_lock
     from .store import StudyStore, normalize_path
     from .waves import Waves

@@ -6,6 +6,16 @@ f            floor frequency, Hz
 Gamma        peak floor acceleration A (2 pi f)^2 / g
 D, D_lo, D_hi  D of all families pooled, mm^2/s, from the fit MSD(lag) = 2 D lag + c to the
              time-and-ensemble averaged MSD (bbb.stats), with its bootstrap CI over particles
+             (pipeline.waves.row_intervals: with one family the very CI its stopping rule read);
+             D_hi NaN where no particle moved (the data bound the share of movers, not D); all
+             three NaN where the estimator failed (CI below 0)
+D_status     what the CI means (bbb.stats.interval): "ok", or per pooled/family the notes
+             "rare movers (n_eff ..): calibrated coverage ..", "no mover among N: mover share
+             < .. %", "estimator failed: fit D = .. [.., ..] mm^2/s < 0 significantly"
+D_cover      the pooled CI's coverage: the nominal level, or the rare-mover rule's calibrated
+             coverage at the sample's n_eff (bbb/stats/rare_movers_calibration.json) where it
+             applies; NaN where no mover or the estimator failed
+mover_share_hi  (no mover only) the one-sided upper bound on the share of moving particles
 D_last       the single-origin MSD(t_end) / (2 t_end), mm^2/s, over the whole run (paper Eq. 10)
 n_particles, n_moving  particles analysed (of done chunks), and those whose x ever changed
 t_max        simulated time, s
@@ -20,11 +30,15 @@ ergodic      bbb.stats.ergodic_verdict under its rule (docs/statistics.md): by d
 families_agree, eb_ok  the outcomes of (a) and of the rule's EB part (b) ((a) is true with a
              single family)
 rule         the rule's name;  level_ok, decay_ok, spread_ok  each EB component on its own
-CV_D, CV_D_upper  estimated CV of the per-particle D, sqrt(2 EB - EB(T/2)), pooled, and its
-             95 % bootstrap upper bound (a larger spread is excluded); cv_max the rule's limit
+CV2_D, CV2_D_lo, CV2_D_hi  estimated squared CV of the per-particle D, 2 EB - EB(T/2), pooled,
+             signed (noise takes it below 0), with its two-sided bootstrap CI over particles
+CV_D, CV_D_upper  sqrt(CV2_D) where CV2_D > 0 (else NaN), and the square root of CV2_D's
+             one-sided 95 % upper bound (a larger spread is excluded; NaN where that bound is
+             <= 0); cv_max the rule's limit on CV
 rule_fp, rule_fn  the rule's worst measured false-positive / false-negative rates on
              synthetic populations of the nearest calibrated size
 D_<fam>, D_<fam>_lo, D_<fam>_hi, EB_<fam>, EB_decay_<fam>  the same per initial-condition family
+             (D's CI: the one the family's stopping rule read; NaN / D_status as for D)
 D_half1, D_half2  D of the first and the second half of the analysed run (pooled), mm^2/s,
              fitted over the same fractions of a half (bbb.stationarity)
 dD, dD_lo, dD_hi  D_half2 - D_half1 with its paired bootstrap CI over particles, mm^2/s
@@ -80,12 +94,14 @@ from .adaptive import OPEN, STOP_LEGEND
 from .store import StudyStore, package_version
 from .store_layout import COUNTERS
 from .study import Study
+from .waves import row_intervals
 
 __all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir", "column_unit",
            "table_metadata", "write_table"]
 
 # (pattern, unit) by column name, first match wins; see the module docstring
-_UNITS = ((r"f", "Hz"), (r"lam(_lo|_hi)?", "1/s"), (r"lag_s", "s"),
+_UNITS = ((r"f", "Hz"), (r"D_status", ""), (r"(D_cover|CV.*|mover_share_hi)", "1"),
+          (r"lam(_lo|_hi)?", "1/s"), (r"lag_s", "s"),
           (r"(lam_coll.*|lag|max_lag|frac_creep)", "1"), (r"D(_.*)?", "mm^2/s"),
           (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),
           (r".*_per_s", "1/s"), (r"d?v(_lo|_hi)?", "mm/s"), (r"(Gamma|EB.*|Pe)", "1"), (r"n_.*", "1"),
@@ -181,11 +197,10 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
     stops = store.stops()
     rows = []
     for fi, f in enumerate(study.frequencies):
-        fams = {}
-        for mi, fam in enumerate(study.families):
-            pos = store.read_done("positions", fi, mi, done[fi, mi])  # (particle, time)
-            if pos.shape[0] >= 2:
-                fams[fam.name] = pos
+        parts = {mi: (store.read_done("positions", fi, mi, done[fi, mi]),  # (particle, time)
+                      int(done[fi, mi].sum())) for mi in range(len(study.families))}
+        fam_ci, pooled = row_intervals(study, fi, parts)
+        fams = {study.families[mi].name: parts[mi][0] for mi in fam_ci}
         row: dict = {"f": f, "Gamma": study.params(f).gamma}
         if not fams:
             rows.append(row)
@@ -193,30 +208,34 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
         x = np.concatenate(list(fams.values()))
         seed = _reduce_seed(study, f)
         est = stats.diffusion_coefficient(x, times, **fit)
-        ci = stats.bootstrap_D(x, times, n_resamples=acc.n_resamples, ci=an.ci, seed=seed,
-                               method=an.ci_method, **fit)
+        named = {study.families[mi].name: r for mi, r in fam_ci.items()}
         verdict = stats.ergodic_verdict(
             fams, times, lag=eb_lag, tolerance=an.eb_tolerance, ci=an.ci,
-            n_resamples=acc.n_resamples, seed=int(seed.generate_state(1)[0]), **fit)
+            n_resamples=acc.n_resamples, seed=int(seed.generate_state(1)[0]), family_ci=named,
+            **fit)
         eb_pooled = verdict.eb.get("(pooled)", next(iter(verdict.eb.values())))
         key = "(pooled)" if "(pooled)" in verdict.eb else next(iter(verdict.eb))
         decay = _ratio(verdict.eb_half.get(key, math.nan), verdict.eb[key])
+        row.update(_d_columns("D", pooled))
         row.update(
-            D=ci.D, D_lo=ci.lo, D_hi=ci.hi, D_last=est.D_last, n_particles=x.shape[0],
+            D_status=_status_text(pooled, named), D_cover=pooled.coverage,
+            mover_share_hi=pooled.mover_share_hi,
+            D_last=est.D_last, n_particles=x.shape[0],
             n_moving=int(np.count_nonzero(np.ptp(x, axis=1) > 0)), t_max=acc.t_max,
             fit_from=est.fit_from, fit_to=est.fit_to, eb_lag=verdict.lag, EB=eb_pooled,
             EB_threshold=verdict.eb_threshold, EB_decay=decay,
             EB_decay_threshold=verdict.eb_decay_threshold, ergodic=bool(verdict.ergodic),
             families_agree=bool(verdict.agreement_ok), eb_ok=bool(verdict.eb_ok),
             rule=verdict.rule, level_ok=bool(verdict.level_ok), decay_ok=bool(verdict.decay_ok),
-            spread_ok=bool(verdict.spread_ok), CV_D=verdict.cv_hat.get(key, math.nan),
-            CV_D_upper=verdict.cv_upper, cv_max=verdict.cv_max,
-            rule_fp=verdict.error_rates.get("fp", math.nan),
+            spread_ok=bool(verdict.spread_ok), CV2_D=verdict.cv2_hat.get(key, math.nan),
+            CV2_D_lo=verdict.cv2_lo, CV2_D_hi=verdict.cv2_hi,
+            CV_D=verdict.cv_hat.get(key, math.nan), CV_D_upper=verdict.cv_upper,
+            cv_max=verdict.cv_max, rule_fp=verdict.error_rates.get("fp", math.nan),
             rule_fn=verdict.error_rates.get("fn", math.nan),
         )
         for name, d in verdict.D.items():
-            row.update({f"D_{name}": d.D, f"D_{name}_lo": d.lo, f"D_{name}_hi": d.hi,
-                        f"EB_{name}": verdict.eb.get(name, math.nan),
+            row.update(_d_columns(f"D_{name}", d))
+            row.update({f"EB_{name}": verdict.eb.get(name, math.nan),
                         f"EB_decay_{name}": _ratio(verdict.eb_half.get(name, math.nan),
                                                    verdict.eb.get(name, math.nan))})
         row["verdict"] = "; ".join(verdict.reasons)
@@ -231,6 +250,25 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
         if col in df:
             df[col] = df[col].astype("boolean")
     return df
+
+
+def _d_columns(prefix: str, r) -> dict:
+    """D and its CI as columns ``prefix``, ``prefix_lo``, ``prefix_hi``: NaN where the
+    estimator failed (its numbers stay in D_status), never a value with a CI then."""
+    if not r.valued:
+        return {prefix: math.nan, f"{prefix}_lo": math.nan, f"{prefix}_hi": math.nan}
+    return {prefix: r.D, f"{prefix}_lo": r.lo, f"{prefix}_hi": r.hi}
+
+
+def _status_text(pooled, families: dict) -> str:
+    """D_status: "ok", or the notes of the pooled CI and of each family whose CI is not plain
+    (one family: its CI is the pooled one, noted once)."""
+    from bbb.stats.interval import OK
+
+    if len(families) == 1:
+        return pooled.note()
+    notes = [(name, r) for name, r in (("pooled", pooled), *families.items()) if r.status != OK]
+    return "; ".join(f"{name}: {r.note()}" for name, r in notes) or OK
 
 
 def _stop_text(study: Study, reasons: np.ndarray) -> str:

@@ -4,9 +4,15 @@ refinement rounds, every decision taken on the client by the rules of :mod:`pipe
 While one (frequency, family) waits for its wave, the others keep the workers busy: the next
 wave of a (frequency, family) is submitted as soon as its current wave is complete.  A
 decision reads the first n chunks of the store (never the ones that happened to finish first)
-and computes D's CI with the bootstrap of `bbb reduce` (same estimator, fit range, level,
-method and resamples), seeded by (f in mHz, family, "stop", n): the store is the same whatever
-the worker count, and a re-run replays the decisions from the done chunks (:meth:`Waves.plan`).
+and computes D's CI with :func:`interval_of`, seeded by (f in mHz, family, "stop", n): the
+store is the same whatever the worker count, and a re-run replays the decisions from the done
+chunks (:meth:`Waves.plan`).
+
+**One CI.**  :func:`row_intervals` is the only place D's CI of a (frequency, family) and of a
+frequency's pooled families is computed: the stopping rule decides on it, `bbb reduce` reports
+it (columns D_<family>_lo/hi, and D_lo/hi, which with a single family are the same interval),
+and refinement reads it.  So a (frequency, family) that stopped as "target met" shows in the
+table the very half-width that met the target.
 """
 
 from __future__ import annotations
@@ -18,11 +24,24 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .adaptive import OPEN, STOP_LEGEND, StoppingRule, UnitState, advance, refine_frequencies, remaining
+from bbb.stats.interval import DInterval
+
+from .adaptive import (
+    OPEN,
+    STOP_LEGEND,
+    ZERO,
+    StoppingRule,
+    UnitState,
+    advance,
+    decide,
+    refine_frequencies,
+    remaining,
+)
 from .store import StudyStore
 from .study import Study
 
-__all__ = ["Waves", "rule_of", "stop_seed", "unit_ci", "pooled_ci"]
+__all__ = ["Waves", "rule_of", "stop_seed", "interval_of", "row_intervals", "unit_ci",
+           "pooled_ci"]
 
 Unit = tuple[int, int]  # (frequency index, family index)
 
@@ -35,44 +54,67 @@ def rule_of(study: Study) -> StoppingRule:
 
 
 def stop_seed(study: Study, f: float, family, n: int) -> np.random.SeedSequence:
-    """The bootstrap seed of the decision after the first n chunks: keyed by values, apart
-    from the chunk seeds and the reduction's by the extra key crc32("stop")."""
+    """The bootstrap seed of D's CI of a (frequency, family) from its first n chunks (the
+    decision after them, and the table's CI when it ends there): keyed by values, apart from
+    the chunk seeds and the reduction's by the extra key crc32("stop")."""
     return np.random.SeedSequence(study.seed, spawn_key=(round(f * 1000), family.key,
                                                          zlib.crc32(b"stop"), n))
 
 
-def _ci(study: Study, x: np.ndarray, seed) -> tuple[float, float, float]:
+def interval_of(study: Study, x: np.ndarray, seed) -> DInterval | None:
+    """D's CI (:class:`bbb.stats.interval.DInterval`, mm²/s) of positions x (particle, time)
+    with the study's estimator, fit range, level, method and resamples; None below 2
+    particles."""
     from bbb import stats
 
     if x.shape[0] < 2:
-        return (np.nan, np.nan, np.nan)
+        return None
     an = study.analysis
     T = an.duration(study.accuracy.t_max)
-    r = stats.bootstrap_D(x, study.sample_times(), n_resamples=study.accuracy.n_resamples,
-                          ci=an.ci, seed=seed, method=an.ci_method, fit_from=an.fit_from * T,
-                          fit_to=an.fit_to * T, discard=an.discard)
-    return (r.D, r.lo, r.hi)
+    return stats.bootstrap_D(x, study.sample_times(), n_resamples=study.accuracy.n_resamples,
+                             ci=an.ci, seed=seed, method=an.ci_method, fit_from=an.fit_from * T,
+                             fit_to=an.fit_to * T, discard=an.discard, detail=True)
+
+
+def row_intervals(study: Study, fi: int, parts: dict[int, tuple[np.ndarray, int]]
+                  ) -> tuple[dict[int, DInterval], DInterval | None]:
+    """D's CIs at frequency index fi from ``parts`` = {family index: (positions, chunks
+    used)}: (per family with >= 2 particles, pooled).  A family's CI is seeded by
+    :func:`stop_seed` with its chunk count, so it is the CI its last stopping decision read;
+    the pooled CI is that same CI when one family has data, else the bootstrap of all pooled
+    (seeded by the reduction's key)."""
+    from .reduce import _reduce_seed
+
+    f = study.frequencies[fi]
+    fams = {mi: interval_of(study, x, stop_seed(study, f, study.families[mi], n))
+            for mi, (x, n) in parts.items() if x.shape[0] >= 2}
+    if len(fams) == 1:
+        return fams, next(iter(fams.values()))
+    if not fams:
+        return fams, None
+    x = np.concatenate([parts[mi][0] for mi in fams])
+    return fams, interval_of(study, x, _reduce_seed(study, f))
+
+
+def _as_ci(r: DInterval | None) -> tuple[float, float, float]:
+    return (np.nan, np.nan, np.nan) if r is None else (r.D, r.lo, r.hi)
 
 
 def unit_ci(store: StudyStore, fi: int, mi: int, n: int) -> tuple[float, float, float]:
-    """(D, lo, hi), mm²/s, of (frequency fi, family mi) from its first n chunks."""
+    """(D, lo, hi), mm²/s, of (frequency fi, family mi) from its first n chunks (hi NaN when
+    no particle moved: that leaves the unit open, :func:`pipeline.adaptive.decide`)."""
     study = store.study
     first = np.arange(study.accuracy.n_chunks) < n
     x = store.read_done("positions", fi, mi, first)
-    return _ci(study, x, stop_seed(study, study.frequencies[fi], study.families[mi], n))
+    return _as_ci(row_intervals(study, fi, {mi: (x, n)})[0].get(mi))
 
 
 def pooled_ci(store: StudyStore, fi: int, done: np.ndarray) -> tuple[float, float, float]:
-    """(D, lo, hi) of all families pooled at frequency fi, as `bbb reduce` computes its D."""
-    from .reduce import _reduce_seed
-
+    """(D, lo, hi) of all families pooled at frequency fi, as `bbb reduce` reports D_lo/hi."""
     study = store.study
-    parts = [store.read_done("positions", fi, mi, done[fi, mi])
-             for mi in range(len(study.families))]
-    parts = [p for p in parts if p.shape[0] >= 2]
-    if not parts:
-        return (np.nan, np.nan, np.nan)
-    return _ci(study, np.concatenate(parts), _reduce_seed(study, study.frequencies[fi]))
+    parts = {mi: (store.read_done("positions", fi, mi, done[fi, mi]), int(done[fi, mi].sum()))
+             for mi in range(len(study.families))}
+    return _as_ci(row_intervals(study, fi, parts)[1])
 
 
 def _prefix(done_fm: np.ndarray) -> int:
@@ -100,10 +142,31 @@ class Waves:
                 if stops is not None and stops[1][fi, mi] != OPEN:  # decided and recorded
                     n = int(stops[0][fi, mi])
                     state = UnitState(n, [n], int(stops[1][fi, mi]))
+                    if state.reason == ZERO:
+                        state = self._recheck_zero(fi, mi, state, done[fi, mi])
                 else:
                     state = self._advance(None, fi, mi, _prefix(done[fi, mi]))
                 self.states[(fi, mi)] = state
                 self._drop_beyond(fi, mi, done[fi, mi])
+
+    def _recheck_zero(self, fi, mi, state: UnitState, done_fm: np.ndarray) -> UnitState:
+        """A recorded "resolved zero" stands only if the rule still takes it: a store decided
+        before a sample with no mover had an unbounded CI (it had [0, 0], "resolved") is
+        reopened and sampled on.  One bootstrap per such unit, so cheap; other stops are
+        unaffected by that change and are not re-derived."""
+        if _prefix(done_fm) < state.n:
+            return state
+        reason, n_next = decide(self.rule, state.n, unit_ci(self.store, fi, mi, state.n))
+        if reason != OPEN:
+            return state
+        study = self.store.study
+        self.echo(f"{study.name}: f = {study.frequencies[fi]:g} Hz, {study.families[mi].name}: "
+                  f"recorded as resolved zero after {state.n} chunks, but no particle moved "
+                  f"(D has no upper bound yet): reopened, next wave {n_next} chunks")
+        g = self.store.group("r+")
+        g["stop_reason"][fi, mi] = OPEN  # first: an interrupted reopening stays open
+        g["n_chunks_used"][fi, mi] = 0
+        return UnitState(n_next, [state.n, n_next], OPEN, n_next)
 
     def _advance(self, state, fi, mi, prefix) -> UnitState:
         state = advance(self.rule, state, prefix,

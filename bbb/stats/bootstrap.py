@@ -10,7 +10,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from .fit import DEFAULT_DISCARD, _per_particle_fit, _regime
 from .inputs import _as_positions, _as_times
-from .rare import is_rare, rare_mover_interval
+from .interval import DInterval, d_interval
 
 __all__ = ["BootstrapCI", "bootstrap_D", "bootstrap_mean", "with_rare_movers"]
 
@@ -42,7 +42,8 @@ def bootstrap_D(
     fit_to: float | None = None,
     discard: float = DEFAULT_DISCARD,
     rare: bool = True,
-) -> BootstrapCI:
+    detail: bool = False,
+) -> BootstrapCI | DInterval:
     """D, mm²/s, with a bootstrap confidence interval over particles.
 
     Particles are resampled with replacement (they are independent; time origins within a
@@ -63,8 +64,10 @@ def bootstrap_D(
                    n_eff = (Σ c_i)² / Σ c_i² (c_i = max(D_i, 0)) is below 40 and 25 % of the
                    particles, the CI is the hull of the bootstrap CI and the Fay-Feuer gamma
                    interval (:mod:`bbb.stats.rare`; the bootstrap alone covers < 90 % there)
+    detail      -- return the :class:`~bbb.stats.interval.DInterval` (status, coverage) instead
 
-    Returns ``BootstrapCI(D, lo, hi)``.
+    Returns ``BootstrapCI(D, lo, hi)``: hi is NaN when no particle has D_i > 0 (no mover: the
+    data bound the share of movers, not D; :mod:`bbb.stats.interval`).
     """
     if method not in _METHODS:
         raise ValueError(f"method = {method!r}; allowed: {', '.join(_METHODS)}")
@@ -79,17 +82,16 @@ def bootstrap_D(
     reg = _regime(xs.shape[1], times, fit_from, fit_to, discard)
     d_i, _ = _per_particle_fit(xs, reg)
     boot = _bootstrap_mean(d_i, int(n_resamples), ci, _rng(seed), method)
-    return with_rare_movers(d_i, boot, ci) if rare else boot
+    res = d_interval(d_i, boot, ci, rare=rare)
+    return res if detail else BootstrapCI(res.D, res.lo, res.hi)
 
 
 def with_rare_movers(d_i: ArrayLike, boot: BootstrapCI, ci: float) -> BootstrapCI:
     """``boot`` (the bootstrap CI of mean(D_i), mm²/s), widened to the hull with the
-    Fay-Feuer gamma interval when few particles carry D (:func:`bbb.stats.rare.is_rare`)."""
-    d = np.asarray(d_i, dtype=np.float64)
-    if not is_rare(d):
-        return boot
-    lo, hi = rare_mover_interval(d, ci)
-    return BootstrapCI(boot.D, min(boot.lo, lo), max(boot.hi, hi))
+    Fay-Feuer gamma interval when few particles carry D (:func:`bbb.stats.rare.is_rare`);
+    hi NaN when no D_i > 0 (:func:`bbb.stats.interval.d_interval`)."""
+    res = d_interval(d_i, boot, ci)
+    return BootstrapCI(res.D, res.lo, res.hi)
 
 
 def bootstrap_mean(values: ArrayLike, *, n_resamples: int, ci: float = 0.95,

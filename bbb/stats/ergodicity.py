@@ -6,17 +6,20 @@ Size: one idea, the calibrated ergodicity rule; EB and its Brownian value are th
 
 from __future__ import annotations
 
+import json
 import math
 import zlib
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .bootstrap import BootstrapCI, _bootstrap_mean
+from .bootstrap import _bootstrap_mean
 from .fit import DEFAULT_DISCARD, _per_particle_fit, _regime
 from .inputs import _as_positions, _as_times, _spacing
+from .interval import NO_MOVER, DInterval, d_interval
 from .msd import _tamsd
 
 __all__ = [
@@ -26,6 +29,7 @@ __all__ = [
     "RULES",
     "RULE_ERROR_RATES",
     "calibrated_error_rates",
+    "cv2_ci_coverage",
     "ErgodicVerdict",
     "ergodicity_breaking",
     "eb_brownian",
@@ -50,18 +54,27 @@ DEFAULT_RULE = "spread"
 #: Worst measured error rates of each rule, per calibrated size (particles per family,
 #: families): "fp" = fraction declared ergodic of the non-ergodic populations (CV 50 %,
 #: bouncing/creeping mixtures, families' D differing by 10 %), "fn" = fraction declared
-#: non-ergodic at CV 0, worst over Brownian, persistent and jumpy motion; 100 seeds each
-#: (benchmarks/results/ergodicity-calibration-2026-11-23.txt, docs/statistics.md).
-RULE_ERROR_RATES: dict[str, dict[tuple[int, int], dict[str, float]]] = {
-    "level": {(64, 3): {"fp": 0.87, "fn": 1.00}, (1024, 3): {"fp": 0.01, "fn": 1.00},
-              (4096, 1): {"fp": 0.00, "fn": 1.00}},
-    "level_or_decay": {(64, 3): {"fp": 0.87, "fn": 0.35}, (1024, 3): {"fp": 0.69, "fn": 0.04},
-                       (4096, 1): {"fp": 1.00, "fn": 0.00}},
-    "decay": {(64, 3): {"fp": 0.74, "fn": 0.35}, (1024, 3): {"fp": 0.69, "fn": 0.04},
-              (4096, 1): {"fp": 1.00, "fn": 0.00}},
-    "spread": {(64, 3): {"fp": 0.87, "fn": 0.67}, (1024, 3): {"fp": 0.01, "fn": 0.09},
-               (4096, 1): {"fp": 0.00, "fn": 0.00}},
-}
+#: non-ergodic at CV 0, worst over Brownian, persistent and jumpy motion; 100 seeds each.
+#: Read from CALIBRATION, written by ``benchmarks/ergodicity_calibration.py --json``
+#: (its table: benchmarks/results/ergodicity-calibration-*.txt; docs/statistics.md).
+CALIBRATION = Path(__file__).with_name("ergodicity_calibration.json")
+
+
+def _read_rates() -> dict[str, dict[tuple[int, int], dict[str, float]]]:
+    worst = json.loads(CALIBRATION.read_text())["worst_error_rates"]
+    return {rule: {tuple(int(v) for v in size.split("x")): dict(r) for size, r in sizes.items()}
+            for rule, sizes in worst.items()}
+
+
+RULE_ERROR_RATES: dict[str, dict[tuple[int, int], dict[str, float]]] = _read_rates()
+
+
+def cv2_ci_coverage() -> tuple[float, float]:
+    """(least, most) measured coverage of the 95 % CI of CV² (``cv2_lo``, ``cv2_hi``) over the
+    calibration's populations and sizes (dimensionless; from CALIBRATION)."""
+    cov = json.loads(CALIBRATION.read_text())["cv2_ci_coverage"]
+    values = [c for pops in cov.values() for c in pops.values()]
+    return min(values), max(values)
 
 
 def calibrated_error_rates(rule: str, n_particles: int, n_families: int) -> dict[str, float]:
@@ -84,7 +97,8 @@ class ErgodicVerdict:
     agreement_ok -- rule (a): D agrees between all pairs of families
     eb_ok        -- rule (b): for every family and the pooled ensemble, EB within tolerance of
                     the Brownian level or EB decaying like 1/T (see :func:`ergodic_verdict`)
-    D            -- family name -> BootstrapCI (mm²/s)
+    D            -- family name -> :class:`~bbb.stats.interval.DInterval` (mm²/s): the CI of
+                    its D as `bbb.stats.bootstrap_D(..., detail=True)` gives it
     eb           -- family name -> EB at ``lag``; key ``"(pooled)"`` for all families together
     eb_brownian  -- EB expected for Brownian motion at this lag and run length
     eb_threshold -- ``tolerance * eb_brownian``
@@ -96,13 +110,18 @@ class ErgodicVerdict:
     rule         -- name of the rule that decided ``ergodic`` (a key of :data:`RULES`)
     level_ok, decay_ok, spread_ok -- each EB component on its own, over every family and
                     the pool: level EB ≤ eb_threshold; decay EB½/EB ≥ eb_decay_threshold;
-                    spread cv_hat ≤ cv_max
-    cv_hat       -- family name (and "(pooled)") -> estimated coefficient of variation of the
-                    per-particle D: sqrt(max(0, 2 EB - EB½)) (the part of EB that does not
-                    fall like 1/T; dimensionless)
-    cv_upper     -- one-sided ``ci`` upper bootstrap bound (over particles) of the pooled
-                    cv_hat: a spread of per-particle D larger than this is excluded, smaller
-                    ones are not
+                    spread CV² ≤ cv_max²
+    cv2_hat      -- family name (and "(pooled)") -> estimated squared coefficient of variation
+                    of the per-particle D, CV² = 2 EB - EB½ (the part of EB that does not fall
+                    like 1/T; dimensionless), signed: noise makes it negative where the spread
+                    is small, and clipping it at 0 would hide that noise
+    cv2_lo, cv2_hi -- two-sided ``ci`` percentile-bootstrap CI (over particles) of the pooled
+                    CV²; an interval wholly below 0 means the model EB = CV² + K/T fails
+    cv_hat       -- sqrt(CV²) where CV² > 0, NaN where it is not (no spread is estimated)
+    cv_upper     -- sqrt of the one-sided ``ci`` upper bootstrap bound of the pooled CV²: a
+                    spread of per-particle D larger than this is excluded, smaller ones are
+                    not; NaN when that bound is ≤ 0 (the estimate lies below its model's range,
+                    so it excludes nothing honestly)
     cv_max       -- the spread rule's threshold on cv_hat
     error_rates  -- :func:`calibrated_error_rates`: the rule's worst measured "fp" (declared
                     ergodic: CV 50 %, mixtures, families differing) and "fn" (declared
@@ -114,7 +133,7 @@ class ErgodicVerdict:
     reasons: tuple[str, ...]
     agreement_ok: bool
     eb_ok: bool
-    D: dict[str, BootstrapCI] = field(default_factory=dict)
+    D: dict[str, DInterval] = field(default_factory=dict)
     eb: dict[str, float] = field(default_factory=dict)
     eb_brownian: float = math.nan
     eb_threshold: float = math.nan
@@ -127,6 +146,9 @@ class ErgodicVerdict:
     decay_ok: bool = True
     spread_ok: bool = True
     cv_hat: dict[str, float] = field(default_factory=dict)
+    cv2_hat: dict[str, float] = field(default_factory=dict)
+    cv2_lo: float = math.nan
+    cv2_hi: float = math.nan
     cv_upper: float = math.nan
     cv_max: float = math.nan
     error_rates: dict[str, float] = field(default_factory=dict)
@@ -207,6 +229,7 @@ def ergodic_verdict(
     discard: float = DEFAULT_DISCARD,
     rule: str | None = None,
     cv_max: float = DEFAULT_CV_MAX,
+    family_ci: Mapping[str, DInterval] | None = None,
 ) -> ErgodicVerdict:
     """Is the diffusion ergodic?  A calibrated rule over initial-condition families.
 
@@ -221,6 +244,9 @@ def ergodic_verdict(
     fit_from, fit_to, discard -- the D fit regime of :func:`diffusion_coefficient`
     rule         -- which rule decides (a key of :data:`RULES`; default :data:`DEFAULT_RULE`)
     cv_max       -- the spread rule's threshold on the estimated CV of per-particle D
+    family_ci    -- family name -> the DInterval of its D, if the caller already has it (`bbb
+                    reduce` passes the one its stopping rule decided on); else computed here
+                    as ``bootstrap_D(..., detail=True)`` does, with the seeds above
 
     Operationally, "ergodic" means: the initial-condition families diffuse alike, and the
     particles share one D — a spread of the per-particle D_i with coefficient of variation
@@ -228,19 +254,22 @@ def ergodic_verdict(
 
     (a) agree: D agrees between initial-condition families.  For every pair (i, j) with
         D_i ≥ D_j, let h_i = D_i - lo_i and h_j = hi_j - D_j be the half-widths of their
-        ``ci`` percentile-bootstrap intervals on the sides facing each other.  The pair
-        agrees iff D_i - D_j ≤ h_i + h_j, i.e. iff the two intervals overlap (≈ 2.77
-        standard errors of the difference: ≈ 0.6 % false alarms per pair).  With a single
-        family (a) is not tested and counts as passed.
+        ``ci`` bootstrap intervals (with the rare-mover rule) on the sides facing each other.
+        The pair agrees iff D_i - D_j ≤ h_i + h_j, i.e. iff the two intervals overlap (≈ 2.77
+        standard errors of the difference: ≈ 0.6 % false alarms per pair).  A family with no
+        mover (no D_i > 0; its D has no upper bound) agrees with another iff that one's share
+        of particles with D_i > 0 is within the no-mover family's bound on its mover share;
+        two families without movers agree.  With a single family (a) is not tested and counts
+        as passed.
     (b) For every family and the pool of all families, at the lag Δ (L = round(Δ/dt)
         spacings, n samples after the transient, EB_BM = eb_brownian(L, n) ≈ 4/3 · Δ/T):
         level   EB ≤ tolerance · EB_BM (assumes Brownian increments);
         decay   EB½ / EB ≥ (1 + r_BM) / 2, EB½ over the first half of the run and
                 r_BM = eb_brownian(L, n½) / EB_BM ≈ 2 (EB falls like 1/T);
-        spread  CV(D_i) = sqrt(max(0, 2 EB - EB½)) ≤ cv_max.  A population whose ergodic
-                part of EB falls like 1/T has EB = CV² + K/T, whatever K (Brownian,
-                correlated flights, rare jumps), so 2 EB(T) - EB(T/2) = CV²: the spread is
-                measured, not compared with a Brownian model.
+        spread  CV²(D_i) = 2 EB - EB½ ≤ cv_max².  A population whose ergodic part of EB
+                falls like 1/T has EB = CV² + K/T, whatever K (Brownian, correlated flights,
+                rare jumps), so 2 EB(T) - EB(T/2) = CV²: the spread is measured, not compared
+                with a Brownian model.  CV² is reported signed (its noise reaches below 0).
         A family whose ⟨δ²⟩ is 0 (no particle moves) has no EB; it is "n/a" and passes.
 
     Why the default rule is "spread" (docs/statistics.md, calibrated on synthetic
@@ -282,7 +311,8 @@ def ergodic_verdict(
     else:  # the lag does not fit into half the run: only the level rule applies
         n_half, decay_threshold = 0, math.nan
 
-    d_ci: dict[str, BootstrapCI] = {}
+    d_ci: dict[str, DInterval] = {}
+    movers: dict[str, float] = {}  # share of particles with D_i > 0
     eb: dict[str, float] = {}
     eb_half: dict[str, float] = {}
     pooled: list[_FLOAT] = []
@@ -291,9 +321,14 @@ def ergodic_verdict(
         if xs.shape[0] < 2:
             raise ValueError(f"family {name!r} has {xs.shape[0]} particle(s); need at least 2")
         d_i, _ = _per_particle_fit(xs, reg)
-        key = zlib.crc32(name.encode())
-        rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(key,)))
-        d_ci[name] = _bootstrap_mean(d_i, n_resamples, ci, rng, "percentile")
+        movers[name] = float(np.mean(d_i > 0.0))
+        if family_ci is not None and name in family_ci:
+            d_ci[name] = family_ci[name]
+        else:
+            key = zlib.crc32(name.encode())
+            rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(key,)))
+            d_ci[name] = d_interval(d_i, _bootstrap_mean(d_i, n_resamples, ci, rng,
+                                                         "percentile"), ci)
         delta2 = _tamsd(xs[:, start:], np.array([lag_idx]))[:, 0]
         eb[name] = _eb(delta2)
         pooled.append(delta2)
@@ -315,18 +350,21 @@ def ergodic_verdict(
         for name_b in names[a_i + 1 :]:
             hi_n, lo_n = (name_a, name_b) if d_ci[name_a].D >= d_ci[name_b].D else (name_b, name_a)
             upper, lower = d_ci[hi_n], d_ci[lo_n]
-            diff = upper.D - lower.D
-            combined = (upper.D - upper.lo) + (lower.hi - lower.D)
-            ok = diff <= combined
+            if NO_MOVER in (upper.status, lower.status):
+                ok, text = _agree_movers(d_ci, movers, hi_n, lo_n)
+            else:
+                diff = upper.D - lower.D
+                combined = (upper.D - upper.lo) + (lower.hi - lower.D)
+                ok = bool(diff <= combined)
+                text = (f"D[{hi_n}] = {upper.D:.4g} [{upper.lo:.4g}, {upper.hi:.4g}] vs "
+                        f"D[{lo_n}] = {lower.D:.4g} [{lower.lo:.4g}, {lower.hi:.4g}] mm²/s: "
+                        f"difference {diff:.3g} {'≤' if ok else '>'} sum of facing {ci:.0%} "
+                        f"half-widths {combined:.3g}")
             agreement_ok &= ok
-            reasons.append(
-                f"{'ok' if ok else 'FAIL'}: (a) D[{hi_n}] = {upper.D:.4g} "
-                f"[{upper.lo:.4g}, {upper.hi:.4g}] vs D[{lo_n}] = {lower.D:.4g} "
-                f"[{lower.lo:.4g}, {lower.hi:.4g}] mm²/s: difference {diff:.3g} "
-                f"{'≤' if ok else '>'} sum of facing {ci:.0%} half-widths {combined:.3g}"
-            )
+            reasons.append(f"{'ok' if ok else 'FAIL'}: (a) {text}")
     level_ok = decay_ok = spread_ok = True
     cv_hat: dict[str, float] = {}
+    cv2_hat: dict[str, float] = {}
     for name, value in eb.items():
         if math.isnan(value):
             reasons.append(f"n/a: (b) EB[{name}] undefined: no particle moves at lag {lag_s:g} s")
@@ -335,8 +373,9 @@ def ergodic_verdict(
         half = eb_half.get(name, math.nan)
         ratio = half / value if value > 0 else math.nan
         dec = ratio >= decay_threshold  # False when NaN
-        cv_hat[name] = _cv_from_eb(value, half)
-        spr = cv_hat[name] <= cv_max  # False when NaN (no half-run EB)
+        cv2_hat[name] = _cv2_from_eb(value, half)
+        cv_hat[name] = math.sqrt(cv2_hat[name]) if cv2_hat[name] > 0 else math.nan
+        spr = cv2_hat[name] <= cv_max**2  # False when NaN (no half-run EB)
         level_ok &= lvl
         decay_ok &= dec
         spread_ok &= spr
@@ -344,23 +383,26 @@ def ergodic_verdict(
             f"{_mark(lvl)}: (b) level EB[{name}] = {value:.3g} {'≤' if lvl else '>'} {tolerance:g}"
             f" × Brownian {eb_bm:.3g} = {threshold:.3g}"
             f"; {_mark(dec)}: decay EB(T/2)/EB(T) = {ratio:.3g} {'≥' if dec else '<'} "
-            f"{decay_threshold:.3g}; {_mark(spr)}: spread CV(D_i) = sqrt(2 EB - EB(T/2)) = "
-            f"{cv_hat[name]:.3g} {'≤' if spr else '>'} {cv_max:g}"
+            f"{decay_threshold:.3g}; {_mark(spr)}: spread CV²(D_i) = 2 EB - EB(T/2) = "
+            f"{cv2_hat[name]:.3g} {'≤' if spr else '>'} {cv_max:g}² = {cv_max**2:.3g}"
             f" (lag {lag_idx * reg.dt:g} s, T = {(n_kept - 1) * reg.dt:g} s)"
         )
     key = "(pooled)" if "(pooled)" in eb else next(iter(eb))
-    cv_upper = math.nan
+    cv_upper = cv2_lo = cv2_hi = math.nan
     if n_half and pooled_half:
         rng = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(zlib.crc32(b"cv"),)))
-        full = np.concatenate(pooled)
-        half_all = np.concatenate(pooled_half)
-        cv_upper = _cv_upper(full, half_all, n_resamples, ci, rng)
+        boot = _cv2_boot(np.concatenate(pooled), np.concatenate(pooled_half), n_resamples, rng)
+        cv2_lo, cv2_hi, up = (float(q) for q in np.quantile(
+            boot, [(1 - ci) / 2, (1 + ci) / 2, ci]))
+        cv_upper = math.sqrt(up) if up > 0 else math.nan
     parts = {"agree": agreement_ok, "level": level_ok, "decay": decay_ok, "spread": spread_ok}
     ergodic = RULES[rule][0](parts)
     eb_ok = RULES[rule][0]({**parts, "agree": True})
     reasons.append(
-        f"{'ok' if ergodic else 'FAIL'}: rule {rule!r} = {RULES[rule][1]}; CV(D_i)[{key}] = "
-        f"{cv_hat.get(key, math.nan):.3g}, {ci:.0%} upper bound {cv_upper:.3g}"
+        f"{'ok' if ergodic else 'FAIL'}: rule {rule!r} = {RULES[rule][1]}; CV²(D_i)[{key}] = "
+        f"{cv2_hat.get(key, math.nan):.3g} [{cv2_lo:.3g}, {cv2_hi:.3g}] ({ci:.0%} CI); spread "
+        + (f"excluded above CV {cv_upper:.3g}" if math.isfinite(cv_upper) else
+           "bound n/a (the CV² upper bound is ≤ 0: the estimate lies below its model's range)")
     )
     return ErgodicVerdict(
         ergodic=ergodic,
@@ -380,6 +422,9 @@ def ergodic_verdict(
         decay_ok=decay_ok,
         spread_ok=spread_ok,
         cv_hat=cv_hat,
+        cv2_hat=cv2_hat,
+        cv2_lo=cv2_lo,
+        cv2_hi=cv2_hi,
         cv_upper=cv_upper,
         cv_max=cv_max,
         error_rates=calibrated_error_rates(
@@ -391,16 +436,40 @@ def _mark(ok: bool) -> str:
     return "ok" if ok else "FAIL"
 
 
-def _cv_from_eb(eb_full: float, eb_half: float) -> float:
-    """CV of per-particle D from EB over T and T/2: EB = CV² + K/T for a population whose
-    ergodic part falls like 1/T, so CV² = 2 EB(T) - EB(T/2) (NaN without EB(T/2))."""
-    return math.sqrt(max(0.0, 2.0 * eb_full - eb_half)) if math.isfinite(eb_half) else math.nan
+def _agree_movers(d_ci: Mapping[str, DInterval], movers: Mapping[str, float], a: str,
+                  b: str) -> tuple[bool, str]:
+    """Rule (a) for a pair with a family that has no mover (no D_i > 0), whose D has no upper
+    bound: it agrees iff the other family's share of particles with D_i > 0 lies within the
+    no-mover family's (one-sided) bound on that share; two no-mover families agree."""
+    still = [n for n in (a, b) if d_ci[n].status == NO_MOVER]
+    if len(still) == 2:
+        return True, f"neither {a!r} nor {b!r} has a particle with D_i > 0"
+    other = b if still[0] == a else a
+    bound = d_ci[still[0]].mover_share_hi
+    ok = movers[other] <= bound
+    return ok, (f"no mover in {still[0]!r} (share < {100 * bound:.2g} %) vs "
+                f"{100 * movers[other]:.3g} % of {other!r} with D_i > 0")
 
 
-def _cv_upper(full: _FLOAT, half: _FLOAT, n_resamples: int, ci: float,
-              rng: np.random.Generator) -> float:
-    """One-sided ``ci`` percentile-bootstrap upper bound of _cv_from_eb over particles (the
-    same particles resampled for both halves of the run)."""
+def _cv2_from_eb(eb_full: float, eb_half: float) -> float:
+    """CV² of per-particle D from EB over T and T/2, signed: EB = CV² + K/T for a population
+    whose ergodic part falls like 1/T, so CV² = 2 EB(T) - EB(T/2) (NaN without EB(T/2)).
+
+    The sliding-window EB of Brownian increments falls slightly faster than 1/T (at the
+    scenes' lag of 4 samples in 91, EB(T/2)/EB(T) = 2.048), so this is low by about
+    0.003 x EB/EB_Brownian (-0.003 for Brownian motion, -0.015 for the jumpy laws): below the
+    estimate's noise at the ensemble sizes used, but enough to bring its 95 % CI's coverage to
+    0.83-0.89 for Brownian motion at 3 x 1024 and 1 x 4096 (ergodicity_calibration.json).  The
+    exact-window form (r EB(T) - EB(T/2)) / (r - 1) is unbiased for Brownian motion but raised
+    the rule's worst false-negative rate at 3 x 1024 from 9 % to 18 % (jumpy, 40 seeds): the
+    rule keeps the form it was calibrated with."""
+    return 2.0 * eb_full - eb_half if math.isfinite(eb_half) else math.nan
+
+
+def _cv2_boot(full: _FLOAT, half: _FLOAT, n_resamples: int,
+              rng: np.random.Generator) -> _FLOAT:
+    """Percentile-bootstrap replicates over particles of the pooled CV² = 2 EB - EB½ (the same
+    particles resampled for both halves of the run), signed."""
     n = full.size
     out = np.empty(n_resamples)
     block = max(1, 4_000_000 // n)
@@ -408,7 +477,8 @@ def _cv_upper(full: _FLOAT, half: _FLOAT, n_resamples: int, ci: float,
         m = min(block, n_resamples - start)
         idx = rng.integers(0, n, size=(m, n))
         f, h = full[idx], half[idx]
-        ebf = f.var(axis=1, ddof=1) / f.mean(axis=1) ** 2
-        ebh = h.var(axis=1, ddof=1) / h.mean(axis=1) ** 2
-        out[start : start + m] = np.sqrt(np.maximum(0.0, 2.0 * ebf - ebh))
-    return float(np.quantile(out, ci))
+        with np.errstate(invalid="ignore", divide="ignore"):  # a resample of still particles
+            ebf = f.var(axis=1, ddof=1) / f.mean(axis=1) ** 2
+            ebh = h.var(axis=1, ddof=1) / h.mean(axis=1) ** 2
+        out[start : start + m] = 2.0 * ebf - ebh
+    return out

@@ -22,6 +22,9 @@ width).  The rule (calibrated in docs/statistics.md, ``benchmarks/rare_movers.py
 
 What no rule on the data can do: when no mover is in the sample the data hold no mover size,
 so the coverage at an expected number of movers m is at most 1 − e^(−m) (0.39 at m = 0.5).
+With no positive D_i at all, the data bound the *share* of movers (:func:`mover_share_bound`:
+no mover among N ⇒ share < 1 − (1 − ci)^(1/N) ≈ 3/N at 95 %), not D: the interval's upper
+end is NaN (not bounded by the data), never a zero-width [D, D].
 """
 
 from __future__ import annotations
@@ -32,7 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 __all__ = ["RARE_N_EFF", "RARE_SHARE", "effective_movers", "is_rare", "rare_mover_interval",
-           "gamma_quantile"]
+           "mover_share_bound", "gamma_quantile"]
 
 #: Below this n_eff the D CI is widened to the Fay-Feuer gamma interval (docs/statistics.md) ...
 RARE_N_EFF = 40.0
@@ -56,7 +59,9 @@ def effective_movers(d_i: NDArray[np.float64]) -> float:
 
 def rare_mover_interval(d_i: NDArray[np.float64], ci: float) -> tuple[float, float]:
     """(lo, hi), mm²/s: the Fay-Feuer gamma interval at level ``ci`` for mean(D_i) (module
-    docstring); (mean, mean) when no D_i is positive."""
+    docstring); (mean, NaN) when no D_i is positive: no mover was seen, and the data bound
+    their share (:func:`mover_share_bound`), not D; (NaN, NaN) when all N are equal movers
+    (no spread; the rule never applies there)."""
     d = np.asarray(d_i, dtype=np.float64)
     n = d.size
     c = np.maximum(d, 0.0)
@@ -65,12 +70,23 @@ def rare_mover_interval(d_i: NDArray[np.float64], ci: float) -> tuple[float, flo
     # Σ c_i² less (Σ c_i)² / N: the variance of a sum of N Bernoulli(p) x size terms, not of
     # Poisson counts (which would overstate it by 1 / (1 - n_eff / N) when many move).
     v = float(c @ c) - y * y / n
-    if y <= 0.0 or v <= 0.0:
-        return shift, shift
+    if y <= 0.0:
+        return shift, math.nan
+    if v <= 0.0:  # every particle the same mover: no spread to scale a gamma by (never rare)
+        return math.nan, math.nan
     alpha = 1.0 - ci
     lo = (v / y) * gamma_quantile(alpha / 2.0, y * y / v)
     hi = ((v + w * w) / (y + w)) * gamma_quantile(1.0 - alpha / 2.0, (y + w) ** 2 / (v + w * w))
     return lo / n + shift, hi / n + shift
+
+
+def mover_share_bound(n: int, ci: float) -> float:
+    """One-sided upper ``ci`` bound of the share of movers when none of ``n`` particles moved
+    (dimensionless): the p with (1 - p)^n = 1 - ci, i.e. 1 - (1 - ci)^(1/n) (≈ 3/n at 95 %,
+    the rule of three; exact for independent particles)."""
+    if n < 1 or not 0.0 < ci < 1.0:
+        raise ValueError(f"mover_share_bound needs n ≥ 1 and 0 < ci < 1, got {n!r}, {ci!r}")
+    return -math.expm1(math.log1p(-ci) / n)
 
 
 def gamma_quantile(q: float, shape: float) -> float:

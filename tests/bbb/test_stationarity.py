@@ -75,3 +75,11 @@ def test_the_tolerance_is_relative_to_d():
 def test_a_run_too_short_for_two_fit_lags_is_refused():
     with pytest.raises(ValueError, match="fit lag"):
         stationarity(np.zeros((4, 12)), np.arange(12.0), n_resamples=10, seed=0)
+
+
+def test_an_ensemble_that_never_moves_gets_no_interval_of_the_change_not_a_zero_width_one():
+    # particles held still: every D_i is 0 in both halves; [0, 0] would claim certainty
+    x = np.tile(np.arange(16.0)[:, None], (1, 101))
+    s = stationarity(x, np.arange(101) * 0.5, n_resamples=200, seed=0)
+    assert s.dD == 0.0 and np.isnan(s.dD_lo) and np.isnan(s.dD_hi)
+    assert s.stationary  # nothing to flag

@@ -204,6 +204,76 @@ def test_d_near_zero_is_resolved_only_with_an_absolute_half_width():
     assert advance(StoppingRule(0.03, 1.0, 8), None, 8, lambda n: zero).reason == ZERO
 
 
+def test_a_unit_where_nothing_moved_is_not_resolved_but_sampled_to_the_cap():
+    """No mover: D = 0 with no upper bound (hi NaN, bbb.stats.interval).  [0, 0] once counted
+    as resolved after the first chunk; the data bound only the share of movers, which more
+    particles shrink, so the unit keeps sampling until the cap."""
+    still = (0.0, 0.0, math.nan)
+    state = advance(StoppingRule(0.03, 1.0, 8), None, 8, lambda n: still)
+    assert state.reason == CAP and state.n == 8 and state.waves == [1, 2, 4, 8]
+
+
+def test_a_target_met_row_shows_the_very_ci_that_met_the_target(two_workers, tmp_path):
+    """One CI for the stopping rule and the table: each family's D_<fam>_lo/hi is the CI its
+    last decision read (same chunks, same seed), so a "target met" family never shows a
+    half-width above its target (Fig. 2 showed 3.07-3.15 % against 3 % when the table
+    bootstrapped again with its own seed)."""
+    from pipeline.reduce import reduce_store
+    from pipeline.waves import unit_ci
+
+    store = StudyStore.open(two_workers)
+    study = store.study
+    t = reduce_store(store, tmp_path / "out", echo=lambda _: None)["diffusion"]
+    used, reason = _stops(two_workers)
+    met = 0
+    for fi, f in enumerate(study.frequencies):
+        row = t[t["f"] == f].iloc[0]
+        for mi, fam in enumerate(study.families):
+            D, lo, hi = (row[f"D_{fam.name}{s}"] for s in ("", "_lo", "_hi"))
+            assert (D, lo, hi) == unit_ci(store, fi, mi, int(used[fi, mi]))
+            if reason[fi, mi] == TARGET:
+                met += 1
+                assert (hi - lo) / 2 <= study.accuracy.target_ci * D
+    assert met >= 2
+
+
+STILL = (SCENE.replace("[54.0, 60.0, 72.0]", "[40.0]").replace("max_particles = 64",
+                                                                  "max_particles = 32")
+         .replace('[families.launched]\ninitial = "launched"\n', ""))
+
+
+def test_a_frequency_where_nothing_moves_reports_the_mover_share_bound_not_zero_width(tmp_path):
+    """40 Hz from rest (Γ = 0.64 < 1): no particle ever lifts off, every D_i = 0.  The unit
+    samples to the cap (4 chunks of 8) and the table says D = 0, D_hi NaN, mover share
+    < 1 - 0.05^(1/32) = 8.9 %."""
+    from pipeline.reduce import reduce_store
+
+    store = tmp_path / "still.zarr"
+    run_study(parse_workflow(STILL, "still.toml"), store, workers=1, **QUIET)
+    assert _stops(store)[0].tolist() == [[4]] and _stops(store)[1].tolist() == [[CAP]]
+    row = reduce_store(store, tmp_path / "out", echo=lambda _: None)["diffusion"].iloc[0]
+    assert row["n_moving"] == 0 and row["D"] == 0.0 and row["D_lo"] == 0.0
+    assert math.isnan(row["D_hi"]) and math.isnan(row["D_rest_hi"])
+    assert row["mover_share_hi"] == pytest.approx(1 - 0.05 ** (1 / 32))
+    assert row["D_status"].startswith("no mover among 32")
+    assert math.isnan(row["D_cover"])
+
+
+def test_a_store_that_recorded_no_mover_as_resolved_zero_is_reopened_and_finished(tmp_path):
+    """A store decided by the old rule (no mover after chunk 1: "resolved zero") is reopened
+    by the next run and ends where a fresh run ends."""
+    study = parse_workflow(STILL, "still.toml")
+    fresh, old = tmp_path / "fresh.zarr", tmp_path / "old.zarr"
+    run_study(study, fresh, workers=1, **QUIET)
+    run_study(study, old, workers=1, **QUIET)
+    g = zarr.open_group(str(old), mode="r+")
+    g["done"][0, 0, 1:] = False
+    g["n_chunks_used"][0, 0] = 1
+    g["stop_reason"][0, 0] = ZERO
+    run_study(study, old, workers=1, **QUIET)
+    assert_same_store(old, fresh)
+
+
 def test_a_target_without_positions_or_a_cap_without_a_target_is_refused():
     with pytest.raises(WorkflowError, match=r"accuracy\.d_resolved: only with target_ci"):
         parse_workflow(SCENE.replace("target_ci = 0.3\n", ""), "x.toml")

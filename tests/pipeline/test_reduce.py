@@ -201,3 +201,43 @@ def test_task_seconds_sum_the_done_chunks_only(tmp_path):
     store.write_chunk(0, 0, 2, FakeRun(study, 1.0), 100.0, mark_done=False)
     t = counters_table(store, store.done())
     assert t.task_seconds.tolist() == [10.5, 0.0, 0.0, 0.0]
+
+
+def test_the_ci_columns_say_what_their_interval_means_with_units(tables):
+    df = pd.read_parquet(tables / "diffusion.parquet")
+    from pipeline.reduce import table_metadata
+
+    units = table_metadata(tables / "diffusion.parquet")["units"]
+    assert (units["D_status"], units["D_cover"], units["mover_share_hi"], units["CV2_D"],
+            units["CV2_D_lo"], units["CV_D"]) == ("", "1", "1", "1", "1", "1")
+    ok = df["D_status"] == "ok"
+    assert (df.loc[ok, "D_cover"] == 0.95).all()
+    # at 54 Hz two of 16 particles carry D: the rare-mover rule and its calibrated coverage
+    rare = df[df["D_status"].str.contains("rare movers")]
+    assert list(rare["f"]) == [54.0] and (rare["D_cover"] < 0.95).all()
+    assert all(f"coverage {c:.2f}" in t for c, t in zip(rare["D_cover"], rare["D_status"],
+                                                         strict=True))
+    # CV² is the signed 2 EB - EB(T/2) (EB_decay = EB(T/2)/EB), CV its root only where > 0
+    assert np.allclose(df["CV2_D"], df["EB"] * (2 - df["EB_decay"]), rtol=1e-9)
+    pos = df["CV2_D"] > 0
+    assert np.allclose(df.loc[pos, "CV_D"], np.sqrt(df.loc[pos, "CV2_D"]))
+    assert df.loc[~pos, "CV_D"].isna().all()
+    assert (df["CV2_D_lo"] <= df["CV2_D"]).all() and (df["CV2_D"] <= df["CV2_D_hi"]).all()
+
+
+def test_an_estimator_failure_is_not_put_in_the_value_columns():
+    # D significantly below 0 (particles settling in the fit window): NaN in D, D_lo, D_hi,
+    # the fit's numbers only in D_status, so no figure or claim reads them as a value
+    from bbb.stats.bootstrap import _bootstrap_mean
+    from bbb.stats.interval import d_interval
+    from pipeline.reduce import _d_columns, _status_text
+
+    d = -7.4e-6 + 5e-6 * np.random.default_rng(0).standard_normal(128)
+    r = d_interval(d, _bootstrap_mean(d, 400, 0.95, np.random.default_rng(1), "percentile"), 0.95)
+    cols = _d_columns("D", r)
+    assert set(cols) == {"D", "D_lo", "D_hi"} and all(np.isnan(v) for v in cols.values())
+    text = _status_text(r, {"rest": r})
+    assert text.startswith("estimator failed: fit D = -7") and "mm²/s < 0" in text
+    ok = d_interval(-d, _bootstrap_mean(-d, 400, 0.95, np.random.default_rng(1), "percentile"),
+                    0.95)
+    assert _status_text(ok, {"a": ok, "b": r}) == f"b: {r.note()}"

@@ -105,10 +105,15 @@ def _spread_text(sel: pd.DataFrame) -> str:
     if "CV_D_upper" not in sel or sel.empty:
         return ""
     up = sel["CV_D_upper"].to_numpy(float)
+    none = sel["f"][~np.isfinite(up)].tolist()
+    gap = (f"; no bound at {', '.join(f'{x:g}' for x in none)} Hz (the CV² estimate lies "
+           "below its model's range there)" if none else "")
+    if not np.isfinite(up).any():
+        return gap
     worst = sel.iloc[int(np.nanargmax(up))]
     return (f"; the runs exclude a per-particle D spread above CV {_pct(np.nanmin(up))}–"
             f"{_pct(np.nanmax(up))} (95 % upper bound; weakest at {worst['f']:g} Hz); smaller "
-            "spreads are not excluded")
+            "spreads are not excluded" + gap)
 
 
 @measure("klages2004.nonergodic_near_55")

@@ -23,6 +23,7 @@ import pandas as pd
 from bbb.extrema import Extremum, critical_z, find_extrema
 from bbb.locking import CREEP_MARGIN, FLIGHT_TOL, MAX_QUANTILE, TMAX_QUANTILE
 from bbb.stationarity import TOLERANCE as STATIONARITY_TOL
+from bbb.stats.ergodicity import cv2_ci_coverage
 
 from ... import claims as _claims
 from ...claim_measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
@@ -118,13 +119,29 @@ def _pct(x: float) -> str:
     return f"{100 * x:.0f} %"
 
 
+def _cv2_text(r: pd.Series) -> str:
+    """The signed CV² with its CI (tables from before CV² was reported: the clipped CV)."""
+    if "CV2_D" not in r:
+        return f"CV {_pct(r['CV_D'])}"
+    return f"{r['CV2_D']:.3g} [{r['CV2_D_lo']:.3g}, {r['CV2_D_hi']:.3g}]"
+
+
+def _bound_text(up: float) -> str:
+    """The spread bound in CV, or why there is none (its CV² bound is ≤ 0)."""
+    return _pct(up) if math.isfinite(up) else "none (CV² bound ≤ 0)"
+
+
 def _ergodicity_rule_line(ergo: pd.DataFrame) -> str:
     """The rule behind the ergodicity verdicts and what it can and cannot exclude."""
     r = ergo.iloc[0]
     return (f"Rule `{r['rule']}` (`bbb.stats.ergodic_verdict`, calibrated on synthetic "
             "populations of known per-particle D spread before it was applied here: "
             "docs/statistics.md): ergodic iff the families' D agree within their CIs and the "
-            f"estimated spread CV(D_i) = √(2 EB(T) − EB(T/2)) is at most {_pct(r['cv_max'])}. "
+            "estimated squared spread CV²(D_i) = 2 EB(T) − EB(T/2) is at most "
+            f"({_pct(r['cv_max'])})² = {r['cv_max'] ** 2:.3g}; CV² is shown signed, with its "
+            "95 % bootstrap CI (its noise reaches below 0 where the spread is small; the CI "
+            f"covered the true CV² in {_pct(cv2_ci_coverage()[0])}–{_pct(cv2_ci_coverage()[1])} "
+            "of synthetic samples). "
             f"Measured worst error rates at this ensemble size: false positive "
             f"{_pct(r['rule_fp'])}, false negative {_pct(r['rule_fn'])}. A verdict excludes only "
             "spreads above the 'excluded above' column; smaller spreads cannot be excluded.")
@@ -295,11 +312,11 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
     if ergo is not None and "CV_D_upper" in ergo:
         L += ["", "## Ergodicity verdicts, frequency by frequency", "",
               _ergodicity_rule_line(ergo), "",
-              "| f (Hz) | families' D agree | CV of per-particle D (estimate) | spread excluded "
+              "| f (Hz) | families' D agree | CV² of per-particle D [95 % CI] | spread excluded "
               "above (95 %) | verdict |", "| --- | --- | --- | --- | --- |"]
         for _, r in ergo.sort_values("f").iterrows():
             L.append(f"| {r['f']:g} | {'yes' if r['families_agree'] else 'no'} | "
-                     f"{_pct(r['CV_D'])} | {_pct(r['CV_D_upper'])} | "
+                     f"{_cv2_text(r)} | {_bound_text(r['CV_D_upper'])} | "
                      f"{'ergodic' if r['ergodic'] else 'not ergodic'} |")
     lock = tables.get("locking")
     if lock is not None:

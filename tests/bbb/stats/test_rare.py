@@ -56,3 +56,11 @@ def test_rule_restores_coverage_where_few_particles_move():
     cov = hits / n_rep
     assert cov[0] < 0.87, cov  # the bootstrap alone is anti-conservative here ...
     assert cov[1] > 0.89, cov  # ... the rule brings it near the nominal 95 %
+
+
+def test_with_no_positive_D_the_rule_bounds_nothing_above():
+    # no mover seen: the Fay-Feuer interval has no mover size to scale by; it returns the
+    # sample's D and no upper end (was a zero-width (shift, shift))
+    d = np.r_[np.zeros(30), -2e-6, -4e-6]
+    lo, hi = rare_mover_interval(d, 0.95)
+    assert lo == pytest.approx(d.mean(), abs=1e-20) and np.isnan(hi)

@@ -203,3 +203,35 @@ def test_the_ergodicity_verdicts_name_the_rule_its_error_rates_and_the_excluded_
     assert f"false positive {fp:.0f} %, false negative {fn:.0f} %" in section
     rows = [ln for ln in section.splitlines() if ln.startswith(f"| {r['f']:g} |")]
     assert len(rows) == 1 and "| 37 % |" in rows[0]
+
+
+def test_the_ergodicity_table_shows_cv2_signed_with_its_ci_and_no_clipped_zero(
+        tmp_path_factory, tmp_path):
+    # a spread estimate below 0 (noise about CV = 0) is shown as it is, not as "0 %", and a
+    # bound that cannot be stated (its CV² bound ≤ 0) says so
+    store, t = tiny_store(tmp_path_factory)
+    ergo = t["diffusion"].copy()
+    ergo["CV2_D"], ergo["CV2_D_lo"], ergo["CV2_D_hi"] = -0.0126, -0.0581, 0.0342
+    ergo["CV_D"], ergo["CV_D_upper"] = float("nan"), float("nan")
+    text = write_report(tmp_path, stores={"figure2": store}, tables={"ergodicity": ergo})
+    section = text.read_text().split("## Ergodicity verdicts, frequency by frequency", 1)[1]
+    row = next(ln for ln in section.splitlines() if ln.startswith(f"| {ergo['f'].iloc[0]:g} |"))
+    assert "| -0.0126 [-0.0581, 0.0342] |" in row and "| none (CV² bound ≤ 0) |" in row
+    assert "0 %" not in row
+
+
+def test_the_ergodicity_rule_line_quotes_the_cv2_ci_coverage_from_its_calibration(
+        tmp_path_factory, tmp_path):
+    import json
+    from pathlib import Path
+
+    import bbb.stats
+
+    cal = json.loads((Path(bbb.stats.__file__).parent / "ergodicity_calibration.json")
+                     .read_text())["cv2_ci_coverage"]
+    values = [c for pops in cal.values() for c in pops.values()]
+    store, t = tiny_store(tmp_path_factory)
+    text = write_report(tmp_path, stores={"figure2": store},
+                        tables={"ergodicity": t["diffusion"]}).read_text()
+    want = f"covered the true CV² in {100 * min(values):.0f} %–{100 * max(values):.0f} %"
+    assert want in text

@@ -1,0 +1,58 @@
+"""benchmarks/agreement.py: two D(f) tables agree within their combined CIs, or, where a
+target-driven scene stopped as "resolved zero", at that scene's resolution d_resolved."""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import pandas as pd
+
+ROOT = Path(__file__).resolve().parents[2]
+_spec = importlib.util.spec_from_file_location("agreement", ROOT / "benchmarks" / "agreement.py")
+agreement = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(agreement)
+
+NAN = float("nan")
+OLD = pd.DataFrame({"f": [50.0, 54.0, 58.0, 60.0, 62.0],
+                    "D": [1e-3, 2e-3, 100.0, 300.0, 200.0],
+                    "D_lo": [9e-4, 1.8e-3, 95.0, 291.0, 194.0],
+                    "D_hi": [1.1e-3, 2.2e-3, 105.0, 309.0, 206.0]})
+NEW = pd.DataFrame({"f": [50.0, 54.0, 58.0, 60.0, 62.0],
+                    "D": [3e-6, 4e-6, 120.0, 301.0, NAN],
+                    "D_lo": [1e-6, 2e-6, 116.0, 292.0, NAN],
+                    "D_hi": [5e-6, 6e-6, 124.0, 310.0, NAN],
+                    "stop": ["resolved zero", "rest: resolved zero; launched: cap",
+                             "resolved zero", "target met", "resolved zero"]})
+
+
+def _files(tmp_path):
+    old, new = tmp_path / "old.csv", tmp_path / "new.csv"
+    OLD.to_csv(old, index=False)
+    NEW.to_csv(new, index=False)
+    return str(old), str(new)
+
+
+def test_a_resolved_zero_agrees_at_the_scenes_resolution_and_nowhere_else(tmp_path):
+    old, new = _files(tmp_path)
+    rows = {r.f: r for r in agreement.compare(agreement.read_table(old),
+                                              agreement.read_table(new), d_resolved=9.0)}
+    # 50 Hz: CIs far apart (z << -1), both |D| <= 9 mm²/s where the scene stopped resolved
+    assert rows[50.0].z < -1 and rows[50.0].by == "res" and rows[50.0].agrees
+    # 54 Hz: one family stopped at the cap: the CI rule judges, and they differ
+    assert rows[54.0].by == "ci" and not rows[54.0].agrees
+    # 58 Hz: stopped "resolved" with D = 120 > 9: resolution does not cover it, CIs differ
+    assert rows[58.0].by == "res" and not rows[58.0].agrees
+    assert rows[60.0].by == "ci" and rows[60.0].agrees
+    assert rows[62.0].by == "n/a" and not rows[62.0].agrees  # no D (estimator failed)
+    # without d_resolved every frequency is judged by the CIs
+    plain = agreement.compare(agreement.read_table(old), agreement.read_table(new))
+    assert [r.agrees for r in plain] == [False, False, False, True, False]
+
+
+def test_d_resolved_is_read_from_the_scenes_workflow(tmp_path, capsys):
+    old, new = _files(tmp_path)
+    rc = agreement.main([old, new, "--workflow", str(ROOT / "workflows" / "figure2.toml")])
+    last = capsys.readouterr().out.strip().splitlines()[-1]
+    assert rc == 1 and last.startswith("2/5 frequencies agree (40.0 %")
+    assert "d_resolved = 9 mm²/s" in last and "by the CIs alone 1/5; n/a 1" in last
