@@ -35,7 +35,8 @@ n_lyapunov, n_collapsed  particles measured, and of them those whose separation 
 lam_move, lam_conf (+ _lo, _hi)  λ (1/s) of the moving particles (x at the period ends of λ's
                    window spans ≥ S) and of the confined ones (spans < S: rattling at a cusp or
                    held), with n_lam_move, n_lam_conf                              [lyapunov]
-lam{,_move,_conf}_distinct  distinct per-particle values (equal to 1e-4 relative)
+lam{,_move,_conf}_distinct, _tie  distinct per-particle values (equal to 1e-4 relative), and
+                   the size of the largest group of equal ones
 lam{,_move,_conf}_degenerate  True where that CI is degenerate: fewer than 5 distinct values,
                    or one value shared by more than half of the particles (they sit in one
                    periodic orbit), or a zero-width CI; its ``_lo``/``_hi`` are then NaN
@@ -61,7 +62,8 @@ import pandas as pd
 from .store import StudyStore
 from .store_layout import n_periods
 
-__all__ = ["mechanisms_table", "MECHANISM_ORDERS", "DEGENERATE_DISTINCT", "distinct_values"]
+__all__ = ["mechanisms_table", "MECHANISM_ORDERS", "DEGENERATE_DISTINCT", "degenerate",
+           "distinct_values"]
 
 #: the truncations D_n written as columns (per period; per collision the first two)
 MECHANISM_ORDERS = (0, 1, 5)
@@ -212,10 +214,17 @@ def _lyapunov_columns(store: StudyStore, fi: int, done: np.ndarray,
             out[f"{name}_lo"], out[f"{name}_hi"] = lo, hi
             continue
         distinct, tie = distinct_values(v)
-        bad = v.size > 0 and (distinct < DEGENERATE_DISTINCT or tie > v.size / 2 or not hi > lo)
+        bad = degenerate(v, lo, hi)
         out[f"{name}_lo"], out[f"{name}_hi"] = (math.nan, math.nan) if bad else (lo, hi)
-        out[f"{name}_distinct"], out[f"{name}_degenerate"] = distinct, bool(bad)
+        out[f"{name}_distinct"], out[f"{name}_tie"] = distinct, tie
+        out[f"{name}_degenerate"] = bool(bad)
     return out
+
+
+def degenerate(v: np.ndarray, lo: float, hi: float) -> bool:
+    """Whether the CI [lo, hi] of the mean of ``v`` is degenerate (module docstring)."""
+    distinct, tie = distinct_values(v)
+    return v.size > 0 and (distinct < DEGENERATE_DISTINCT or tie > v.size / 2 or not hi > lo)
 
 
 def distinct_values(v: np.ndarray) -> tuple[int, int]:

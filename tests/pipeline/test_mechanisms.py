@@ -183,6 +183,19 @@ def test_lambda_of_moving_and_confined_particles_splits_the_stored_lambdas_by_x_
             assert row["lam_move"] == pytest.approx(lam[moves].mean(), rel=1e-12)
 
 
+def test_a_lambda_ci_is_degenerate_when_most_particles_share_one_orbit_or_few_values():
+    from pipeline.mechanisms import degenerate
+
+    rng = np.random.default_rng(3)
+    chaotic = 37.0 * (1 + 0.02 * rng.standard_normal(16))
+    # 13 particles held in one periodic orbit: equal up to ~1e-5 (what their transients left)
+    held = np.concatenate([-126.1 * (1 + 1e-5 * rng.standard_normal(13)), chaotic[:3]])
+    four = np.repeat([1.0, 2.0, 3.0, 4.0], 4)
+    assert degenerate(held, -120.0, -100.0) and degenerate(four, 2.0, 3.0)
+    assert not degenerate(chaotic, 36.5, 37.5)
+    assert degenerate(chaotic, 37.0, 37.0)  # a zero-width interval
+
+
 def test_mechanism_columns_only_when_declared(reference):
     from pipeline.reduce import reduce_store
 

@@ -120,7 +120,7 @@ def _panels_contrast(ax_l, ax_s, mech: pd.DataFrame) -> list[str]:
                   ha="right", fontsize="x-small", color="0.4")
     ax_s.set_ylim(-1.0, 2.0)
     ax_s.set_ylabel("memory share")
-    ax_s.legend(fontsize="xx-small", loc="upper left")
+    ax_s.legend(fontsize="xx-small", loc="lower left")
     return labels
 
 

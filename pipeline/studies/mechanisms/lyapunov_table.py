@@ -19,8 +19,10 @@ def lam_text(row: pd.Series, name: str) -> str:
     if pd.isna(v):
         return "—"
     if bool(row.get(f"{name}_degenerate", False)):
-        return (f"{v:.3g} (CI degenerate: {int(row[f'{name}_distinct'])} distinct values "
-                "to 4 digits)")
+        n = int({"lam": row["n_lyapunov"] - row["n_collapsed"], "lam_move": row["n_lam_move"],
+                 "lam_conf": row["n_lam_conf"]}[name])
+        return (f"{v:.3g} (CI degenerate: {int(row[f'{name}_distinct'])} distinct values to 4 "
+                f"digits, {int(row[f'{name}_tie'])} of {n} equal)")
     return f"{v:.3g} [{row[f'{name}_lo']:.3g}, {row[f'{name}_hi']:.3g}]"
 
 
