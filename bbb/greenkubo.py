@@ -5,27 +5,33 @@ For a stationary sequence of jumps Δx_n (one per step of duration T, per partic
     D_n  = (1 / 2T) [C(0) + 2 Σ_{k=1..n} C(k)]   (mm²/s)
 D_0 is the random-walk (uncorrelated-jump) value, D_n − D_0 the memory of n jumps, and
 D_∞ = lim D_n equals the MSD-based D whenever C is summable (Klages & Korabel 2002;
-Mátyás & Klages 2004 for the bouncing ball billiard).  Two step choices:
+Mátyás & Klages 2004 for the bouncing ball billiard).  Three step choices:
 
 * per floor period: Δx_n = x((n+1)/f) − x(n/f), T = 1/f (:func:`period_jumps`);
-* per collision: jumps between cells (arcs) in units of S, T = the mean time between
-  collisions τ̄ (:func:`cell_jumps`), as Mátyás & Klages did.
+* per collision, in mm: Δx_n = x_{n+1} − x_n between successive post-collision states, T = the
+  mean time between collisions τ̄ (:func:`collision_jumps`);
+* per collision, in cells: jumps between cells (arcs) in units of S, T = τ̄
+  (:func:`cell_jumps`), as Mátyás & Klages did (a particle rattling in a cusp touches the
+  left and the right arc in turn: ±1 cell at collisions with no net motion).
 
 Where the sum stops ("D_∞"): at the first lag K ≥ 1 from which |C(k)| stays within
 ``noise_z`` standard errors (over particles) of zero for ``noise_window`` consecutive lags;
 D_∞ = D_{K−1}.  If that never happens below ``max_lag``, the expansion is reported as not
 converged and D_∞ = D_{max_lag}.  Everything here is numpy: arrays in, a dataclass out.
+
+Why D differs between two frequencies: :mod:`bbb.gk_contrast` splits ln D_∞(a)/D_∞(b) into the
+random-walk part ln D_0(a)/D_0(b) and the memory part, from the bootstrap replicates kept here.
 """
 
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-__all__ = ["CollisionJumps", "GreenKubo", "cell_jumps", "expansion", "period_jumps"]
+__all__ = ["CollisionJumps", "GreenKubo", "cell_jumps", "collision_jumps", "expansion",
+           "period_jumps"]
 
 _FLOAT = NDArray[np.float64]
 # particles per FFT block when computing per-particle correlations (bounds memory)
@@ -36,7 +42,8 @@ _FFT_BLOCK = 256
 class GreenKubo:
     """The expansion D_n for n = 0 … max_lag with bootstrap CIs over particles.
 
-    step        -- step time T (s): 1/f per period, τ̄ per collision
+    step        -- step time T (s): 1/f per period, τ̄ per collision (the mean over particles
+                   when each particle has its own)
     C           -- C(k), k = 0 … max_lag, in (jump unit)² (mm² here)
     C_se        -- standard error of C(k) over particles (the noise level)
     D_n, D_lo, D_hi -- D_n and its CI, mm²/s, n = 0 … max_lag
@@ -44,6 +51,8 @@ class GreenKubo:
     converged   -- False if |C| never fell into the noise below max_lag
     D_inf, D_inf_lo, D_inf_hi -- D_∞ and its CI (the rule re-applied in every resample), mm²/s
     n_particles, n_steps -- particles and jumps per particle used
+    D0_boot, D_inf_boot -- D_0 and D_∞ in each bootstrap resample (mm²/s), both from the same
+                   resample of particles (paired): what :mod:`bbb.gk_contrast` combines
     """
 
     step: float
@@ -59,6 +68,8 @@ class GreenKubo:
     D_inf_hi: float
     n_particles: int
     n_steps: int
+    D0_boot: _FLOAT = field(repr=False, default_factory=lambda: np.zeros(0))
+    D_inf_boot: _FLOAT = field(repr=False, default_factory=lambda: np.zeros(0))
 
     def at(self, n: int) -> tuple[float, float, float]:
         """(D_n, lo, hi) in mm²/s; n beyond max_lag is refused."""
@@ -129,9 +140,28 @@ def cell_jumps(collisions: ArrayLike, n_recorded: ArrayLike, S: float,
     return CollisionJumps(np.diff(cell, axis=1), tau, int(np.count_nonzero(~keep)))
 
 
+def collision_jumps(collisions: ArrayLike, n_recorded: ArrayLike) -> tuple[_FLOAT, _FLOAT]:
+    """Horizontal jumps (mm) and their durations (s) between successive recorded collisions.
+
+    collisions -- (n_particles, n_rows, ≥ 2) post-collision rows (t s, x mm, …) as in
+                  ``SimRun.collisions_dense``;  n_recorded -- valid rows per particle
+    Returns (dx, dt), each (n_particles, n_rows − 1): dx[i, n] = x_{n+1} − x_n and
+    dt[i, n] = t_{n+1} − t_n for n < n_recorded[i] − 1, NaN beyond.
+    """
+    rows = np.asarray(collisions, dtype=np.float64)
+    nrec = np.asarray(n_recorded, dtype=np.int64)
+    if rows.ndim != 3 or rows.shape[2] < 2 or rows.shape[1] < 2 or nrec.shape != rows.shape[:1]:
+        raise ValueError("collisions must be (n_particles, n_rows ≥ 2, ≥ 2) with n_recorded per "
+                         "particle")
+    valid = np.arange(rows.shape[1] - 1)[None, :] < (nrec[:, None] - 1)
+    dx = np.where(valid, np.diff(rows[:, :, 1], axis=1), np.nan)
+    dt = np.where(valid, np.diff(rows[:, :, 0], axis=1), np.nan)
+    return dx, dt
+
+
 def expansion(
     jumps: ArrayLike,
-    step: float,
+    step: float | ArrayLike,
     *,
     max_lag: int | None = None,
     n_resamples: int = 1000,
@@ -144,7 +174,8 @@ def expansion(
 
     jumps   -- per-particle stationary jump sequences (transient already removed), in mm
                (or any length unit: C and D follow it)
-    step    -- duration T of one step, s
+    step    -- duration T of one step, s; or one per particle (its window's duration / n_steps,
+               as per collision): T is then their mean, recomputed in every resample
     max_lag -- largest lag n of D_n (default min(n_steps // 4, 1000))
     n_resamples, ci, seed -- percentile bootstrap over particles (deterministic in seed)
     noise_z, noise_window -- the convergence rule (module docstring)
@@ -154,9 +185,13 @@ def expansion(
         raise ValueError(f"jumps must be (n_particles ≥ 2, n_steps ≥ 2), got {dx.shape}")
     if not np.all(np.isfinite(dx)):
         raise ValueError("jumps must be finite (drop particles with missing samples first)")
-    if not (math.isfinite(step) and step > 0):
-        raise ValueError(f"step = {step!r} must be a positive time (s)")
     n_p, n = dx.shape
+    steps = np.broadcast_to(np.asarray(step, dtype=np.float64), (n_p,)) if np.ndim(step) == 0 \
+        else np.asarray(step, dtype=np.float64)
+    if steps.shape != (n_p,) or not np.all(np.isfinite(steps) & (steps > 0)):
+        raise ValueError(f"step must be a positive time (s), or one per particle ({n_p}); "
+                         f"got {np.asarray(step).shape} values, min {np.min(step)!r}")
+    T = float(steps.mean())
     if max_lag is None:
         max_lag = min(n // 4, 1000)
     if not 1 <= max_lag <= n - 1:
@@ -164,11 +199,12 @@ def expansion(
     if not 0.0 < ci < 1.0:
         raise ValueError(f"ci = {ci!r} must be in (0, 1)")
     c_i = _autocorrelation(dx, max_lag)  # (n_p, max_lag + 1)
-    d_i = _partial_sums(c_i, step)
+    s_i = _partial_sums(c_i)
     counts = _resample_counts(n_p, n_resamples, seed)  # (n_resamples, n_p)
     C, C_se = (a[0] for a in _mean_se(c_i, np.ones((1, n_p))))
-    D_n = d_i.mean(axis=0)
-    boot = counts @ d_i / n_p
+    D_n = s_i.mean(axis=0) / (2.0 * T)
+    # τ̄ of a resample: the mean step of its particles (1/f exactly when all steps are equal)
+    boot = (counts @ s_i / n_p) / (2.0 * (counts @ steps / n_p))[:, None]
     q = (1.0 - ci) / 2.0
     D_lo, D_hi = np.quantile(boot, [q, 1.0 - q], axis=0)
     lag = _converged_lag(C[None], C_se[None], noise_z, noise_window)[0]
@@ -181,10 +217,10 @@ def expansion(
     n_inf = lag - 1 if converged else max_lag
     inf_lo, inf_hi = np.quantile(inf_b, [q, 1.0 - q])
     return GreenKubo(
-        step=float(step), C=C, C_se=C_se, D_n=D_n, D_lo=D_lo, D_hi=D_hi,
+        step=T, C=C, C_se=C_se, D_n=D_n, D_lo=D_lo, D_hi=D_hi,
         lag=int(lag) if converged else max_lag, converged=bool(converged),
         D_inf=float(D_n[n_inf]), D_inf_lo=float(inf_lo), D_inf_hi=float(inf_hi),
-        n_particles=n_p, n_steps=n,
+        n_particles=n_p, n_steps=n, D0_boot=boot[:, 0].copy(), D_inf_boot=inf_b,
     )
 
 
@@ -200,10 +236,9 @@ def _autocorrelation(dx: _FLOAT, max_lag: int) -> _FLOAT:
     return out / counts
 
 
-def _partial_sums(c: _FLOAT, step: float) -> _FLOAT:
-    """D_n = (C(0) + 2 Σ_{k=1..n} C(k)) / (2T), row by row."""
-    s = 2.0 * np.cumsum(c, axis=1) - c[:, :1]
-    return s / (2.0 * step)
+def _partial_sums(c: _FLOAT) -> _FLOAT:
+    """C(0) + 2 Σ_{k=1..n} C(k) (length²; D_n is this over 2T), row by row."""
+    return 2.0 * np.cumsum(c, axis=1) - c[:, :1]
 
 
 def _resample_counts(n: int, n_resamples: int, seed: int) -> _FLOAT:

@@ -58,6 +58,8 @@ class Lyapunov:
                                   but their λ stays −inf)
     collisions                 -- per particle, collisions of the primary after the transient
     duration                   -- time over which λ was averaged, s
+    x_range                    -- per particle, max − min of the primary's x (mm) at the period
+                                  ends of that time (its start included): how far it moved
     """
 
     lam: float
@@ -71,6 +73,7 @@ class Lyapunov:
     n_collapsed: int
     collisions: NDArray[np.int64]
     duration: float
+    x_range: _FLOAT
 
 
 def lyapunov(
@@ -115,6 +118,9 @@ def lyapunov(
     log_sum = np.zeros(n)
     collisions = np.zeros(n, np.int64)
     collapsed = np.zeros(n, bool)
+    x_start = prim["cell"] * params.S + prim["d"]
+    x_lo, x_hi = (x_start.copy(), x_start.copy()) if n_skip == 0 else (np.full(n, np.inf),
+                                                                          np.full(n, -np.inf))
     for k in range(n_periods):
         both = {key: np.concatenate([prim[key], sec[key]]) for key in prim}
         end, coll = _one_period(params, both, period, numerics)
@@ -124,6 +130,9 @@ def lyapunov(
         before = np.linalg.norm(_separation(*_halves(both, n), scale, params.S), axis=1)
         newly = (size == 0.0) & ~collapsed
         collapsed |= newly
+        if k + 1 >= n_skip:  # the window starts at the end of period n_skip − 1
+            x_end = prim["cell"] * params.S + prim["d"]
+            x_lo, x_hi = np.minimum(x_lo, x_end), np.maximum(x_hi, x_end)
         if k >= n_skip:
             ok = ~collapsed
             log_sum[ok] += np.log(size[ok] / before[ok])
@@ -136,7 +145,8 @@ def lyapunov(
     lam = _mean_ci(lam_i[~collapsed], n_resamples, ci, seed)
     per = _mean_ci(per_coll_i[~collapsed], n_resamples, ci, seed)
     return Lyapunov(*lam, *per, lam_i=lam_i, per_coll_i=per_coll_i,
-                    n_collapsed=int(collapsed.sum()), collisions=collisions, duration=duration)
+                    n_collapsed=int(collapsed.sum()), collisions=collisions, duration=duration,
+                    x_range=x_hi - x_lo)
 
 
 def flat_floor_tangent_exponent(rows: _FLOAT, params: Params) -> tuple[float, float]:

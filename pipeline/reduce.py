@@ -100,7 +100,10 @@ __all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir
            "table_metadata", "write_table"]
 
 # (pattern, unit) by column name, first match wins; see the module docstring
-_UNITS = ((r"f", "Hz"), (r"D_status", ""), (r"(D_cover|CV.*|mover_share_hi)", "1"),
+_UNITS = (  # the mechanisms table's neighbours, contrasts, λ split (pipeline.mechanisms)
+          (r"f_(dn|up)", "Hz"), (r"(ln|share)_.*", "1"), (r"lam_(move|conf)(_lo|_hi)?", "1/s"),
+          (r"lam.*_(distinct|tie)", "1"), (r"tau_coll", "s"), (r"(max_)?lag_coll", "1"),
+          (r"f", "Hz"), (r"D_status", ""), (r"(D_cover|CV.*|mover_share_hi)", "1"),
           (r"lam(_lo|_hi)?", "1/s"), (r"lag_s", "s"),
           (r"(lam_coll.*|lag|max_lag|frac_creep)", "1"), (r"D(_.*)?", "mm^2/s"),
           (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),

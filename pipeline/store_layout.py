@@ -30,11 +30,20 @@ period         (period,)                    index          i8      whole    [jum
 jumps          (frequency, family, particle, period)  Δx, mm  f4  (1, 1, chunk_size, P)  [jumps]
 lyapunov       (frequency, family, particle)  λ, 1/s       f8      (1, 1, chunk_size)  [lyapunov]
 lyapunov_per_collision  (frequency, family, particle)  λ per collision  f8  [lyapunov]
+lyapunov_x_range  (frequency, family, particle)  mm          f8      (1, 1, chunk_size)  [lyapunov]
+collision_jump  (collision_jump,)           index          i8      whole    [x_jumps]
+collision_dx   (frequency, family, particle, collision_jump)  mm  f4  (1, 1, chunk_size, J)  [x_jumps]
+collision_dt   (frequency, family, particle, collision_jump)  s   f4  (1, 1, chunk_size, J)  [x_jumps]
 =============  ==========================================  ======  ===========================
 
 ``jumps[..., n]`` = x((n+1)/f) − x(n/f) for n < floor(t_max f) (P: its largest value over the
 frequencies; NaN beyond).  ``lyapunov*`` hold the first ``[observables.lyapunov] particles``
-particles of each (frequency, family) (NaN beyond; −inf where the separation collapsed).
+particles of each (frequency, family) (NaN beyond; −inf where the separation collapsed);
+``lyapunov_x_range`` is how far each of them moved (max − min of x at the period ends of λ's
+window).  ``collision_dx[..., n]``, ``collision_dt[..., n]`` = x and t of recorded collision
+n + 1 minus those of collision n (``[observables.collisions] x_jumps`` = J; NaN beyond a
+particle's n_recorded − 1; the collisions array keeps its first ``record`` rows of the same
+recording).
 
 With ``target_ci`` the chunk axis is sized by the cap (max_particles); a (frequency, family)
 uses the first ``n_chunks_used`` chunks, and ``stop_reason`` says why it stopped
@@ -127,6 +136,15 @@ def create_layout(g: zarr.Group, study: Study) -> None:
              np.nan, "1/s", "largest Lyapunov exponent per unit time (NaN: not measured)")
         data("lyapunov_per_collision", ("frequency", "family", "particle"), (F, M, N),
              (1, 1, cs), "float64", np.nan, "1", "largest Lyapunov exponent per collision")
+        data("lyapunov_x_range", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs),
+             "float64", np.nan, "mm", "max - min of x at the period ends of the λ window")
+    if obs.collisions and obs.collisions_x_jumps:
+        J = obs.collisions_x_jumps
+        coord("collision_jump", np.arange(J), "int64", "", "jump n: recorded collision n to n + 1")
+        for name, unit, what in (("collision_dx", "mm", "x"), ("collision_dt", "s", "t")):
+            data(name, ("frequency", "family", "particle", "collision_jump"), (F, M, N, J),
+                 (1, 1, cs, J), "float32", np.nan, unit,
+                 f"{what} of recorded collision n + 1 minus {what} of collision n, NaN beyond")
     data("done", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "bool", False, "",
          "chunk completely written")
     data("chunk_seconds", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "float64",

@@ -59,10 +59,12 @@ def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = Fal
     run = simulate(
         study.params(f), acc.chunk_size, acc.t_max, study.seed_sequence(f, fam, ci),
         sample_times=times,
-        record_collisions=obs.collisions_record or 0, record_from=obs.collisions_from,
+        record_collisions=_rows_recorded(obs), record_from=obs.collisions_from,
         numerics=acc.numerics(), **fam.simulate_kwargs(),
     )
     extra = {}
+    if obs.collisions_x_jumps:
+        run, extra = _split_collision_jumps(run, obs)
     if obs.jumps:
         extra["jumps"] = np.diff(run.positions[:, period_cols], axis=1).astype(np.float32)
     if pick is not None:
@@ -93,6 +95,25 @@ def _sample_grid(study: Study, f: float) -> tuple[np.ndarray | None, np.ndarray 
     return times, pick, np.searchsorted(times, periods)
 
 
+def _rows_recorded(obs) -> int:
+    """Collisions recorded per particle: [collisions] record, or x_jumps + 1 when more."""
+    return max(obs.collisions_record or 0, (obs.collisions_x_jumps + 1) if obs.collisions_x_jumps
+               else 0)
+
+
+def _split_collision_jumps(run, obs) -> tuple:
+    """The per-collision x and t jumps of the recording (float32, ``x_jumps`` per particle),
+    and the run cut to the first ``record`` rows for the collisions array."""
+    from bbb.greenkubo import collision_jumps
+
+    J = obs.collisions_x_jumps
+    dx, dt = collision_jumps(run.collisions_dense[:, : J + 1], np.minimum(run.n_recorded, J + 1))
+    K = obs.collisions_record
+    cut = dataclasses.replace(run, collisions_dense=run.collisions_dense[:, :K],
+                              n_recorded=np.minimum(run.n_recorded, K))
+    return cut, {"collision_dx": dx.astype(np.float32), "collision_dt": dt.astype(np.float32)}
+
+
 def _lyapunov_chunk(study: Study, f: float, fam, ci: int) -> dict[str, np.ndarray]:
     """λ (1/s, per collision) of this chunk's particles among the first
     ``lyapunov_particles`` of the ensemble, from the same initial states as the chunk."""
@@ -110,7 +131,8 @@ def _lyapunov_chunk(study: Study, f: float, fam, ci: int) -> dict[str, np.ndarra
     sub = InitialState(**{fd.name: getattr(st, fd.name)[:k] for fd in dataclasses.fields(st)})
     lam = lyapunov(p, k, acc.t_max, 0, sub, discard=obs.lyapunov_discard, d0=obs.lyapunov_d0,
                    numerics=acc.numerics(), n_resamples=10)
-    return {"lyapunov": lam.lam_i, "lyapunov_per_collision": lam.per_coll_i}
+    return {"lyapunov": lam.lam_i, "lyapunov_per_collision": lam.per_coll_i,
+            "lyapunov_x_range": lam.x_range}
 
 
 class KernelMismatch(RuntimeError):

@@ -294,7 +294,8 @@ def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
                        jumps=obs["jumps"] is not None,
                        lyapunov_particles=lyap.particles if lyap else None,
                        lyapunov_d0=float(lyap.d0) if lyap else 1e-8,
-                       lyapunov_discard=float(lyap.discard) if lyap else 0.1)
+                       lyapunov_discard=float(lyap.discard) if lyap else 0.1,
+                       collisions_x_jumps=int(coll.x_jumps) if coll else 0)
 
 
 def _analysis(r: Reader, doc: dict) -> Analysis:

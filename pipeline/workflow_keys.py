@@ -201,6 +201,9 @@ class CollisionsTable:
                       units="post-collision states per particle", ge=1, le=1e7)
     record_from: float = key(0.0, "record collisions from this time on", units="s", ge=0,
                              lt="t_max")
+    x_jumps: int = key(0, "also store x and t differences between the first x_jumps + 1 "
+                       "collisions from record_from (the per-collision Green–Kubo expansion); "
+                       "0: off", units="jumps per particle", ge=0, le=1e6, omit_default=True)
 
 
 @dataclass(frozen=True)
@@ -256,6 +259,7 @@ class Observables:
                                          omit_default=True)
     lyapunov_d0: float = key(1e-8, "companion separation", omit_default=True)
     lyapunov_discard: float = key(0.1, "transient of λ, fraction of t_max", omit_default=True)
+    collisions_x_jumps: int = key(0, "per-collision x jumps per particle", omit_default=True)
 
     @property
     def lyapunov(self) -> bool:

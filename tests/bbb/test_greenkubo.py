@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from bbb import Params, simulate
-from bbb.greenkubo import cell_jumps, expansion, period_jumps
+from bbb.greenkubo import cell_jumps, collision_jumps, expansion, period_jumps
 from bbb.stats import bootstrap_D
 
 STEP = 1.0 / 60.0  # s
@@ -99,16 +99,60 @@ def test_converged_sum_equals_the_msd_diffusion_coefficient_on_real_runs(real_ru
     assert abs(gk.D_inf - msd.D) <= math.hypot(half_gk, half_msd)
 
 
-def test_per_collision_expansion_equals_the_msd_diffusion_coefficient_at_80_hz():
+def test_per_collision_expansions_equal_the_msd_diffusion_coefficient_at_80_hz():
     f = 80.0
     p = Params.preset("klages2004", f=f)
     times = np.arange(int(round(50 * f)) + 1) / f
     run = simulate(p, 256, float(times[-1]), seed=11, sample_times=times,
                    record_collisions=6000, record_from=5.0)
+    msd = bootstrap_D(run.positions, times, n_resamples=1000, seed=3)
     cj = cell_jumps(run.collisions_dense, run.n_recorded, p.S)
     gk = expansion(cj.jumps * p.S, cj.tau, seed=2)
-    msd = bootstrap_D(run.positions, times, n_resamples=1000, seed=3)
     assert cj.n_excluded <= 5 and cj.jumps.shape[1] > 1000
-    assert gk.converged
-    half = math.hypot(0.5 * (gk.D_inf_hi - gk.D_inf_lo), 0.5 * (msd.hi - msd.lo))
-    assert abs(gk.D_inf - msd.D) <= half
+    # in mm, each particle with its own τ̄ (the pipeline's per-collision expansion)
+    dx, dt = collision_jumps(run.collisions_dense, run.n_recorded)
+    n = int(np.isfinite(dx).sum(axis=1).min())
+    gx = expansion(dx[:, :n], dt[:, :n].sum(axis=1) / n, seed=2)
+    assert n > 1000
+    for g in (gk, gx):
+        assert g.converged
+        half = math.hypot(0.5 * (g.D_inf_hi - g.D_inf_lo), 0.5 * (msd.hi - msd.lo))
+        assert abs(g.D_inf - msd.D) <= half
+
+
+def test_collision_jumps_are_the_differences_of_the_recorded_rows_and_nan_beyond():
+    rows = np.full((2, 4, 6), np.nan)
+    rows[0, :3, :2] = [[0.0, 1.0], [0.5, 3.0], [0.75, 2.5]]
+    rows[1, :4, :2] = [[0.0, 0.0], [0.1, -1.0], [0.3, -1.5], [0.6, 0.5]]
+    dx, dt = collision_jumps(rows, np.array([3, 4]))
+    np.testing.assert_array_equal(dx, [[2.0, -0.5, np.nan], [-1.0, -0.5, 2.0]])
+    np.testing.assert_allclose(dt, [[0.5, 0.25, np.nan], [0.1, 0.2, 0.3]], rtol=1e-12)
+
+
+def test_per_particle_steps_divide_by_their_mean_in_the_estimate_and_in_every_resample():
+    x = ar1(0.6, n_particles=64, n_steps=1000)
+    steps = np.where(np.arange(64) < 32, STEP, 3 * STEP)
+    g = expansion(x, steps, max_lag=20, n_resamples=200, seed=4)
+    c0 = np.mean(x * x, axis=1)  # each particle's C(0)
+    assert g.step == pytest.approx(2 * STEP, rel=1e-12)
+    assert g.D_n[0] == pytest.approx(c0.mean() / (2 * 2 * STEP), rel=1e-12)
+    # a resample's D_0 is its particles' mean C(0) over twice their mean step: the replicates
+    # spread more than with one common step (the step varies with the drawn particles)
+    same = expansion(x, 2 * STEP, max_lag=20, n_resamples=200, seed=4)
+    assert same.D_n[0] == pytest.approx(g.D_n[0], rel=1e-12)
+    assert np.std(g.D0_boot) > 1.5 * np.std(same.D0_boot)
+    # equal steps given per particle: the same numbers as one step
+    one = expansion(x, np.full(64, STEP), max_lag=20, n_resamples=200, seed=4)
+    ref = expansion(x, STEP, max_lag=20, n_resamples=200, seed=4)
+    np.testing.assert_allclose(one.D_n, ref.D_n, rtol=1e-12)
+    np.testing.assert_allclose(one.D0_boot, ref.D0_boot, rtol=1e-12)
+
+
+def test_kept_replicates_are_the_ones_behind_the_cis():
+    g = expansion(ar1(0.6, n_particles=64, n_steps=1000), STEP, max_lag=40, n_resamples=300,
+                  seed=5)
+    assert g.D0_boot.shape == g.D_inf_boot.shape == (300,)
+    np.testing.assert_allclose(np.quantile(g.D0_boot, [0.025, 0.975]), [g.D_lo[0], g.D_hi[0]],
+                               rtol=1e-12)
+    np.testing.assert_allclose(np.quantile(g.D_inf_boot, [0.025, 0.975]),
+                               [g.D_inf_lo, g.D_inf_hi], rtol=1e-12)

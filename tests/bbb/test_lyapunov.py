@@ -157,3 +157,15 @@ def test_a_separation_that_sticking_collapses_to_zero_is_counted_and_left_out():
     assert res.n_collapsed == 4
     assert np.all(res.lam_i == -np.inf)
     assert math.isnan(res.lam)
+
+
+def test_x_range_is_how_far_the_primary_moved_after_the_transient():
+    # flat floor, β = 1: vₓ survives every collision, so on the period-1 orbit (no sticking)
+    # x = x0 + vₓ t exactly; over the window after the transient (20 of 200 periods) it spans
+    # vₓ × 180 periods
+    p = flat(0.8).with_(beta=1.0)
+    st = period_one_state(p, 2)
+    st = InitialState(st.cell, st.d, st.y, np.array([5.0, -2.0]), st.vy, st.s, st.stuck,
+                      st.from_surface)
+    res = lyapunov(p, 2, 200 / p.f, 0, st, direction=VERTICAL, discard=0.1, n_resamples=10)
+    np.testing.assert_allclose(res.x_range, np.array([5.0, 2.0]) * 180 / p.f, rtol=1e-9)

@@ -41,6 +41,7 @@ particles = 5
 
 [observables.collisions]
 record = 20
+x_jumps = 30
 """
 
 
@@ -114,6 +115,85 @@ def test_lyapunov_in_the_store_equals_bbb_lyapunov_on_the_same_initial_states(me
     lam = lyapunov(p, 4, study.accuracy.t_max, 0, st, numerics=study.accuracy.numerics())
     stored = np.asarray(zarr.open_group(str(path), mode="r")["lyapunov"][0, 0, 4:5])
     assert stored[0] == lam.lam_i[0]
+
+
+def test_stored_collision_jumps_are_the_differences_of_the_stored_collisions(mech):
+    import zarr
+
+    _, path, _ = mech
+    g = zarr.open_group(str(path), mode="r")
+    rows = np.asarray(g["collisions"][1, 0])  # the first 20 rows of the same recording
+    dx, dt = (np.asarray(g[name][1, 0]) for name in ("collision_dx", "collision_dt"))
+    assert dx.shape == dt.shape == (8, 30)
+    np.testing.assert_array_equal(dx[:, :19], np.diff(rows[:, :, 1], axis=1).astype(np.float32))
+    np.testing.assert_array_equal(dt[:, :19], np.diff(rows[:, :, 0], axis=1).astype(np.float32))
+
+
+def test_per_collision_expansion_from_the_store_equals_one_of_independently_simulated_runs(mech):
+    from bbb.greenkubo import collision_jumps
+
+    study, _, tables = mech
+    row = tables["mechanisms"].set_index("f").loc[80.0]
+    f, fam = 80.0, study.families[0]
+    runs = [simulate(study.params(f), 4, study.accuracy.t_max, study.seed_sequence(f, fam, ci),
+                     record_collisions=31, numerics=study.accuracy.numerics()) for ci in (0, 1)]
+    parts = [collision_jumps(r.collisions_dense, r.n_recorded) for r in runs]
+    dx, dt = (np.concatenate([p[k] for p in parts]).astype(np.float32).astype(np.float64)
+              for k in (0, 1))
+    assert np.isfinite(dx).all()  # 8 particles, each ≥ 31 collisions in 4 s at 80 Hz
+    seed = np.random.SeedSequence(study.seed, spawn_key=(80000, __import__("zlib").crc32(
+        b"mechanisms")))
+    gk = expansion(dx, dt.sum(axis=1) / 30, n_resamples=50, ci=0.95,
+                   seed=int(seed.generate_state(3)[2]))
+    assert row["n_coll_jumps"] == 30 and row["n_coll_particles"] == 8
+    assert row["D_inf_coll"] == pytest.approx(gk.D_inf, rel=1e-12)
+    assert row["D_0_coll"] == pytest.approx(gk.D_n[0], rel=1e-12)
+    assert row["tau_coll"] == pytest.approx(dt.sum() / 240, rel=1e-12)
+
+
+def test_contrast_columns_split_the_log_ratio_of_the_neighbours_expansions(mech):
+    t = mech[2]["mechanisms"].set_index("f")
+    r, nb = t.loc[80.0], t.loc[60.0]
+    assert r["f_dn"] == 60.0 and np.isnan(r["f_up"]) and np.isnan(r["ln_D_up"])
+    for step in ("", "_coll"):
+        if not (r[f"converged{step}"] and nb[f"converged{step}"]):
+            assert np.isnan(r[f"ln_D{step}_dn"])
+            continue
+        assert r[f"ln_D{step}_dn"] == pytest.approx(
+            math.log(r[f"D_inf{step}"] / nb[f"D_inf{step}"]), rel=1e-12)
+        assert r[f"ln_walk{step}_dn"] == pytest.approx(
+            math.log(r[f"D_0{step}"] / nb[f"D_0{step}"]), rel=1e-12)
+        assert r[f"ln_mem{step}_dn"] == pytest.approx(
+            r[f"ln_D{step}_dn"] - r[f"ln_walk{step}_dn"], rel=1e-9, abs=1e-12)
+        # the same contrast seen from the other side has the opposite sign
+        assert nb[f"ln_D{step}_up"] == pytest.approx(-r[f"ln_D{step}_dn"], rel=1e-12)
+
+
+def test_lambda_of_moving_and_confined_particles_splits_the_stored_lambdas_by_x_range(mech):
+    import zarr
+
+    study, path, tables = mech
+    g = zarr.open_group(str(path), mode="r")
+    for fi, f in enumerate(study.frequencies):
+        lam = np.asarray(g["lyapunov"][fi, 0, :5])
+        moves = np.asarray(g["lyapunov_x_range"][fi, 0, :5]) >= study.params(f).S
+        row = tables["mechanisms"].set_index("f").loc[f]
+        assert row["n_lam_move"] == moves.sum() and row["n_lam_conf"] == (~moves).sum()
+        if moves.any():
+            assert row["lam_move"] == pytest.approx(lam[moves].mean(), rel=1e-12)
+
+
+def test_a_lambda_ci_is_degenerate_when_most_particles_share_one_orbit_or_few_values():
+    from pipeline.mechanisms import degenerate
+
+    rng = np.random.default_rng(3)
+    chaotic = 37.0 * (1 + 0.02 * rng.standard_normal(16))
+    # 13 particles held in one periodic orbit: equal up to ~1e-5 (what their transients left)
+    held = np.concatenate([-126.1 * (1 + 1e-5 * rng.standard_normal(13)), chaotic[:3]])
+    four = np.repeat([1.0, 2.0, 3.0, 4.0], 4)
+    assert degenerate(held, -120.0, -100.0) and degenerate(four, 2.0, 3.0)
+    assert not degenerate(chaotic, 36.5, 37.5)
+    assert degenerate(chaotic, 37.0, 37.0)  # a zero-width interval
 
 
 def test_mechanism_columns_only_when_declared(reference):

@@ -1,16 +1,26 @@
-"""The mechanisms claims as data (judged by :mod:`pipeline.claims` from the mechanisms table).
+"""The mechanisms claims as data (judged from the mechanisms table and the scene's diffusion table).
 
-Rules, fixed before the data (their thresholds are definitions, not fits):
+Rules, fixed before the data:
 
-memory share   s = (D_∞ − D_0) / D_∞ at f0.  "Made by memory" means most of D is memory:
-               s ≥ 0.5.  CI: conservative, from the ends of the two CIs
-               (1 − D_0_hi / D_inf_lo, 1 − D_0_lo / D_inf_hi), not a bootstrap.  A D_∞ whose CI
-               reaches 0 (nothing diffuses) is "not measured".  The row also says whether D_0
-               itself has the extremum at f0 (D_0(f0) beyond the CIs of both grid neighbours,
-               same side): then the extremum is already in the jump statistics.
-λ ratio        r = mean λ over the scene's f ≥ 66 Hz (the spiral regime) / λ(60 Hz) (the VHO).
-               Larger means r > 1 with its CI (ends: mean of the lows / λ_hi(60), mean of the
-               highs / λ_lo(60)).
+extremum carrier  (M1–M5) The paper's extremum of D at f0 (Klages et al. 2004: maxima at 54,
+               60 and 80 Hz, minima at 58 and 62 Hz) against each grid neighbour f_nb:
+               ln D_∞(f0)/D_∞(f_nb) = random walk (ln of the D_0 ratio) + memory (ln of the
+               D_∞/D_0 ratio), with paired bootstrap CIs (pipeline.mechanisms,
+               bbb.gk_contrast).  Each side gets ``bbb.gk_contrast.carrier`` (memory share of
+               the contrast ≥ θ: "memory", ≤ 1 − θ: "random walk", within: "both", CI across an
+               edge: "undecided"; θ and the CI level read from the calibration,
+               ``bbb.gk_contrast.calibrated_rule``), the sides are combined by
+               ``combine_sides`` ("no extremum" if a side has the wrong sign), once per floor
+               period and once per collision.  The verdict is the one both step choices give;
+               where they differ it is "undecided" (the split depends on what a step is), where
+               one is not measured the other's.  "not measured": f0 is still (no particle left
+               its cell: the MSD D is zero at the scene's resolution; or every state creeps),
+               the MSD D's CI reaches 0, or the expansion at f0 has not converged.
+λ ratio        (M6) r = mean λ of the moving particles (x spans ≥ S in λ's window) over the
+               scene's f ≥ 66 Hz (the spiral regime) / theirs at 60 Hz (the VHO): larger means
+               r > 1 with its CI (ends: mean of the lows / λ_hi(60), mean of the highs /
+               λ_lo(60)); frequencies whose λ CI is degenerate or has no moving particle are
+               left out of the mean and named.
 """
 
 from __future__ import annotations
@@ -19,90 +29,167 @@ import math
 
 import pandas as pd
 
+from bbb.gk_contrast import Contrast, calibrated_rule, carrier, combine_sides
+
 from ...claim_measures import row_at
 from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, markdown_table, measure
 
-__all__ = ["CLAIMS", "EXTREMA", "report_lines"]
+__all__ = ["CLAIMS", "EXTREMA", "SIDES", "STEPS", "neighbour_moves", "report_lines",
+           "side_contrast"]
 
-#: the paper's extrema of D(f) (Fig. 2) and their kind
-EXTREMA = ((54.0, "min"), (58.0, "min"), (60.0, "max"), (62.0, "min"), (80.0, "max"))
+#: the paper's extrema of D(f) (Fig. 2 and its text) and their kind
+EXTREMA = ((54.0, "max"), (58.0, "min"), (60.0, "max"), (62.0, "min"), (80.0, "max"))
 SPIRAL_FROM = 66.0  # Hz: the spiral regime (klages2004 claims)
 VHO = 60.0
+#: the step choices of the expansion: column suffix -> name
+STEPS = {"_coll": "per collision", "": "per period"}
+SIDES = ("dn", "up")
 
 
-def _d0_extremum(t: pd.DataFrame, f0: float) -> str:
-    """Whether D_0 has a local extremum at f0 on the scene's grid, beyond the CIs."""
-    t = t.sort_values("f").reset_index(drop=True)
-    i = t.index[(t["f"] - f0).abs() < 1e-6]
-    if not len(i) or i[0] == 0 or i[0] == len(t) - 1:
-        return "D_0 extremum: no neighbours"
-    r, a, b = (t.loc[j] for j in (i[0], i[0] - 1, i[0] + 1))
-    if r["D_0_lo"] > max(a["D_0_hi"], b["D_0_hi"]):
-        kind = "max"
-    elif r["D_0_hi"] < min(a["D_0_lo"], b["D_0_lo"]):
-        kind = "min"
-    else:
-        kind = "none"
-    return (f"D_0 = {a['D_0']:.3g}, {r['D_0']:.3g}, {b['D_0']:.3g} mm²/s at "
-            f"{a['f']:g}, {r['f']:g}, {b['f']:g} Hz: D_0 {'has a ' + kind if kind != 'none' else 'has no'}"
-            " local extremum there")
+def side_contrast(row: pd.Series, step: str, side: str) -> Contrast:
+    """The contrast of ``row``'s f with its neighbour on ``side``, from the table's columns."""
+    def trio(name: str) -> tuple[float, float, float]:
+        return tuple(float(row.get(f"{name}{step}_{side}{s}", math.nan)) for s in ("", "_lo", "_hi"))
+    return Contrast(trio("ln_D"), trio("ln_walk"), trio("ln_mem"), trio("share_mem"),
+                    float(calibrated_rule()["ci"]))
 
 
-@measure("memory_share")
-def memory_share(claim: Claim, ctx) -> Measured:
+def neighbour_moves(t: pd.DataFrame, row: pd.Series, side: str) -> bool:
+    """Whether ``row``'s f has a neighbour on ``side`` that is not still."""
+    f_nb = row.get(f"f_{side}", math.nan)
+    nb = None if pd.isna(f_nb) else row_at(t, float(f_nb))
+    return nb is not None and not bool(nb.get("still", False))
+
+
+def _side(t: pd.DataFrame, row: pd.Series, step: str, side: str, kind: str,
+          theta: float) -> tuple[str, str]:
+    """(verdict, text) of one side: the carrier rule, "not measured" against a still neighbour."""
+    f_nb = row.get(f"f_{side}", math.nan)
+    if pd.isna(f_nb):
+        return "not measured", f"no neighbour {'below' if side == 'dn' else 'above'}"
+    nb = row_at(t, float(f_nb))
+    if nb is not None and bool(nb.get("still", False)):
+        return "not measured", f"vs {f_nb:g} Hz: still there, not measured"
+    c = side_contrast(row, step, side)
+    if not c.measured:
+        return "not measured", f"vs {f_nb:g} Hz: not measured (a D ≤ 0 or not converged)"
+    v = carrier(c, kind, theta)
+    q = {k: Quantity(*getattr(c, a)).text(".2f") for k, a in
+         (("ln D", "total"), ("walk", "walk"), ("memory", "memory"), ("share", "share"))}
+    return v, (f"vs {f_nb:g} Hz: ln D ratio {q['ln D']} = walk {q['walk']} + memory "
+               f"{q['memory']}, memory share {q['share']} → {v}")
+
+
+def _unmeasured(r: pd.Series, diff: pd.DataFrame | None, f0: float) -> str:
+    """Why the extremum at f0 cannot be split ('' if it can)."""
+    if bool(r.get("still", False)):
+        return (f"f = {f0:g} Hz is still: {int(r.get('n_left_cell', -1))} particles left their "
+                f"cell, creeping fraction {r.get('frac_creep', math.nan):.3g} (D zero at the "
+                "scene's resolution)")
+    d = row_at(diff, f0) if diff is not None else None
+    if d is not None and not d["D_lo"] > 0:
+        return f"the MSD D = {d['D']:.3g} [{d['D_lo']:.3g}, {d['D_hi']:.3g}] mm²/s reaches 0"
+    conv = [name for step, name in STEPS.items() if f"converged{step}" in r
+            and not pd.isna(r[f"converged{step}"]) and not bool(r[f"converged{step}"])]
+    if conv:
+        return f"the expansion at {f0:g} Hz has not converged ({', '.join(conv)})"
+    return ""
+
+
+@measure("extremum_carrier")
+def extremum_carrier(claim: Claim, ctx) -> Measured:
     t = ctx["tables"].get(claim.scene)
-    if t is None or "D_inf" not in t:
-        return Measured(missing="no mechanisms table with jumps")
+    if t is None or "ln_D_dn" not in t:
+        return Measured(missing="no mechanisms table with contrasts")
     r = row_at(t, claim.f0)
     if r is None:
         return Measured(missing=f"f = {claim.f0:g} not in the mechanisms table")
-    d0, lo0, hi0 = r["D_0"], r["D_0_lo"], r["D_0_hi"]
-    di, loi, hii = r["D_inf"], r["D_inf_lo"], r["D_inf_hi"]
-    conv = "" if r["converged"] else "; the expansion did not converge (D_∞ = D_max_lag)"
-    if not loi > 0:
-        return Measured(missing=f"D_∞ = {di:.3g} [{loi:.3g}, {hii:.3g}] mm²/s reaches 0: nothing "
-                        f"diffuses; {_d0_extremum(t, claim.f0)}{conv}")
-    q = Quantity(1 - d0 / di, 1 - hi0 / loi, 1 - lo0 / hii, "", "ends of the D_0 and D_∞ CIs")
-    txt = (f"(D_∞ − D_0)/D_∞ = {q.text('.3f')}; D_0 = {d0:.3g}, D_∞ = {di:.4g} mm²/s, "
-           f"memory over K = {int(r['lag'])} periods; {_d0_extremum(t, claim.f0)}{conv}")
-    return Measured([Part(f"f = {r['f']:g}", q, txt)])
+    why = _unmeasured(r, ctx["tables"].get(f"{claim.scene}_diffusion"), claim.f0)
+    if why:
+        return Measured(missing=why)
+    theta, kind = float(calibrated_rule()["theta"]), claim.options["kind"]
+    texts, by_step = [], {}
+    for step, name in STEPS.items():
+        if f"ln_D{step}_dn" not in t:
+            continue
+        sides = [_side(t, r, step, s, kind, theta) for s in SIDES]
+        by_step[name] = combine_sides([v for v, _ in sides])
+        texts.append(f"{name} — " + "; ".join(x for _, x in sides) + f" ⇒ {by_step[name]}")
+    decided = {k: v for k, v in by_step.items() if v != "not measured"}
+    if not decided:
+        return Measured(missing="not measured against either neighbour: " + ". ".join(texts))
+    verdicts = set(decided.values())
+    verdict = verdicts.pop() if len(verdicts) == 1 else "undecided"
+    note = ("" if len(set(decided.values())) == 1 else
+            "The two step choices split the contrast differently ("
+            + ", ".join(f"{k}: {v}" for k, v in decided.items()) + "): undecided.")
+    if len(decided) < len(by_step):
+        note += " Only " + ", ".join(decided) + " measured."
+    return Measured(text=". ".join(texts), verdict=verdict, note=note.strip())
 
 
 @measure("lyapunov_ratio")
 def lyapunov_ratio(claim: Claim, ctx) -> Measured:
     t = ctx["tables"].get(claim.scene)
-    if t is None or "lam" not in t:
-        return Measured(missing="no mechanisms table with lyapunov")
+    col = claim.options.get("column", "lam_move")
+    if t is None or col not in t:
+        return Measured(missing=f"no mechanisms table with {col}")
     vho = row_at(t, VHO)
-    sp = t[t["f"] >= SPIRAL_FROM].dropna(subset=["lam"])
-    if vho is None or sp.empty or not vho["lam_lo"] > 0:
-        return Measured(missing=f"λ at {VHO:g} Hz or at f ≥ {SPIRAL_FROM:g} Hz not measured")
-    q = Quantity(sp["lam"].mean() / vho["lam"], sp["lam_lo"].mean() / vho["lam_hi"],
-                 sp["lam_hi"].mean() / vho["lam_lo"], "", "ends of the λ CIs")
-    txt = (f"mean λ(f ≥ {SPIRAL_FROM:g}, {len(sp)} f) = {sp['lam'].mean():.3g} 1/s, λ({VHO:g}) = "
-           f"{vho['lam']:.3g} [{vho['lam_lo']:.3g}, {vho['lam_hi']:.3g}] 1/s; ratio {q.text('.3f')}")
+    sp = t[t["f"] >= SPIRAL_FROM]
+    use = sp[sp[f"{col}_lo"].notna() & sp[col].notna()]
+    left = sp[~sp.index.isin(use.index)]
+    if vho is None or use.empty or not vho[f"{col}_lo"] > 0:
+        why = "degenerate CI or no moving particle" if vho is not None else "not in the table"
+        return Measured(missing=f"λ of the moving particles at {VHO:g} Hz ({why}) or at "
+                        f"f ≥ {SPIRAL_FROM:g} Hz not measured")
+    q = Quantity(use[col].mean() / vho[col], use[f"{col}_lo"].mean() / vho[f"{col}_hi"],
+                 use[f"{col}_hi"].mean() / vho[f"{col}_lo"], "", "ends of the λ CIs")
+    txt = (f"moving particles: mean λ(f ≥ {SPIRAL_FROM:g}, {len(use)} f) = {use[col].mean():.3g} "
+           f"1/s, λ({VHO:g}) = {vho[col]:.3g} [{vho[f'{col}_lo']:.3g}, {vho[f'{col}_hi']:.3g}] "
+           f"1/s ({int(vho.get('n_lam_move', -1))} moving particles); ratio {q.text('.3f')}")
+    if not left.empty:
+        txt += "; left out (degenerate CI or no moving particle): " + ", ".join(
+            f"{f:g}" for f in left["f"]) + " Hz"
     return Measured([Part("λ ratio", q, txt)])
 
 
-_SHARE = Band(0.5, math.inf, "rule: made by memory when D_∞ − D_0 is at least half of D_∞ "
-              "(module docstring of pipeline.studies.mechanisms.claims)")
+def _rule_why() -> str:
+    rule = calibrated_rule()
+    return (f"rule: the memory share of each neighbour's log contrast, CI at "
+            f"{rule['ci']:.0%}, against θ = {rule['theta']:.3g} (bbb.gk_contrast; calibrated on "
+            f"AR(1) sequences with a known split: worst wrong-verdict rate "
+            f"{rule['worst_wrong']:.2f}, {rule['source']})")
+
+
 CLAIMS = [
-    Claim(f"The {kind}imum of D at {f0:g} Hz is made by memory (D_∞ − D_0), not by the "
-          "random-walk term D_0", "memory_share", "mechanisms", _SHARE, f0=f0)
+    Claim(f"The {kind}imum of D at {f0:g} Hz: carried by the random walk (D_0) or by the "
+          "memory (D_∞/D_0), against both grid neighbours", "extremum_carrier", "mechanisms",
+          Band(-math.inf, math.inf, _rule_why()), f0=f0, options={"kind": kind})
     for f0, kind in EXTREMA
 ] + [
     Claim(f"λ is larger in the spiral regime (f ≥ {SPIRAL_FROM:g} Hz) than at the VHO "
-          f"({VHO:g} Hz)", "lyapunov_ratio", "mechanisms",
-          Band(1.0, math.inf, "rule: ratio of the mean λ over f ≥ 66 Hz to λ(60 Hz) above 1"),
-          f0=VHO),
+          f"({VHO:g} Hz), for the particles that move", "lyapunov_ratio", "mechanisms",
+          Band(1.0, math.inf, "rule: ratio of the mean λ of moving particles over f ≥ 66 Hz "
+               "to theirs at 60 Hz above 1"), f0=VHO),
 ]
 
 
 def report_lines(tables) -> list[str]:
-    """The REPORT.md section: the claim rows judged from ``tables["mechanisms"]``."""
-    rows = evaluate(CLAIMS, {"tables": {"mechanisms": tables.get("mechanisms")}})
-    L = ["", "## Mechanisms: memory and chaos at the extrema (scene mechanisms)", "",
-         "Verdicts computed from the mechanisms store (Green–Kubo expansion per floor period, "
-         "Lyapunov exponent from two trajectories; pipeline/studies/mechanisms/claims.py "
-         "states the rules).", ""]
-    return L + markdown_table(rows, prefix="M")
+    """The REPORT.md section: the claim rows judged from ``tables["mechanisms"]`` (and the
+    scene's diffusion table), and the λ table of moving and confined particles."""
+    from .lyapunov_table import lyapunov_lines
+
+    ctx = {"tables": {"mechanisms": tables.get("mechanisms"),
+                      "mechanisms_diffusion": tables.get("mechanisms_diffusion")}}
+    rows = evaluate(CLAIMS, ctx)
+    L = ["", "## Mechanisms: which part of D makes the extrema, and chaos where particles move "
+         "(scene mechanisms)", "",
+         "M1–M5 split the contrast of D between each paper extremum and its grid neighbours, "
+         "ln D_∞(f0)/D_∞(f_nb) = ln D_0 ratio (random walk) + ln (D_∞/D_0) ratio (memory), "
+         "per floor period and per collision, with paired bootstrap CIs; the verdict names the "
+         "part that carries the extremum: **memory**, **random walk**, **both**, **undecided** "
+         "(a CI across the rule's edges, or the two step choices differ), **no extremum** (a "
+         "neighbour's contrast has the wrong sign), **not resolved** (no contrast resolved), "
+         "**not measured** (nothing moves at f0, or the expansion has not converged). "
+         "pipeline/studies/mechanisms/claims.py states the rules.", ""]
+    return L + markdown_table(rows, prefix="M") + lyapunov_lines(tables.get("mechanisms"))
