@@ -31,11 +31,12 @@ ensembles by benchmarks/transport_rules.py; their numbers are read from transpor
   of x − v t over the upper half of the fit lags over its slope over the lower half -- lies
   above 1 + the calibrated tolerance: a population of particles running at different speeds
   (some stuck, the rest running) spreads ballistically, MSD ~ σ²Δ², and its "D about the
-  drift" is that spread, not a diffusion.  The ratio is 1 for every MSD linear in Δ, whatever
-  its intercept; the log-log exponent of the MSD is not (a persistent walk, MSD ≈ 2D(Δ − τ),
-  has exponent Δ/(Δ − τ) > 1 although its slope is 2D: at tilt 2°, 60-100 Hz it reads 1.4-1.5
-  over the fit lags while the slope there is within ~5 % of the slope at 20-40 s).  A ratio
-  below 1 (bounded motion of locked particles) is not flagged here.
+  drift" is that spread, not a diffusion; a velocity memory as long as the fit lags also
+  steepens the MSD there (D_drift is then a window's slope, below the diffusion's).  The
+  ratio is 1 for every MSD linear in Δ, whatever its intercept; the log-log exponent of the
+  MSD is not (a persistent walk, MSD ≈ 2D(Δ − τ), reads Δ/(Δ − τ) > 1: 1.24 over the fit
+  lags for τ = 1 s, although its slope is 2D there).  A ratio below 1 (bounded motion of
+  locked particles) is not flagged here.
 
 Positions are ``(n_particles, n_samples)`` in mm at equally spaced times (s), as in bbb.stats.
 Pure numpy; only public bbb.stats names.
@@ -95,8 +96,8 @@ class TransportEstimate:
     curvature, curvature_lo, curvature_hi -- the slope ratio of the MSD about the drift over
                       the upper / lower half of the fit lags (:func:`msd_slope_ratio`), with
                       its bootstrap CI (NaN: nothing moves)
-    diffusive      -- False when curvature_lo > 1 + CURVATURE_TOL (ballistic spread); None:
-                      untested
+    diffusive      -- False when curvature_lo > 1 + CURVATURE_TOL (the MSD still steepens over
+                      the fit lags); None: untested
     """
 
     v: float

@@ -52,8 +52,9 @@ steady       False where the CI of dv lies beyond +-dv_tol: an acceleration (a p
 msd_slope_ratio, msd_slope_ratio_lo, msd_slope_ratio_hi  slope of the MSD about the drift over
              the upper half of the fit lags / over the lower half, with its bootstrap CI: 1
              for diffusion (any intercept), up to ~2 for particles running at different speeds
-diffusive    False where that CI lies above 1 + a calibrated tolerance: D_drift is then
-             ballistic spread, not diffusion (NA: nothing moves)
+diffusive    False where that CI lies above 1 + a calibrated tolerance: the MSD about the
+             drift still steepens over the fit lags (particles at different speeds, or velocity
+             memory as long as the lags), so D_drift is a window slope (NA: nothing moves)
 
 ``mechanisms.parquet`` / ``.csv`` (stores with jumps or lyapunov): the Green–Kubo expansion
 and the Lyapunov exponent per frequency (columns in :mod:`pipeline.mechanisms`).

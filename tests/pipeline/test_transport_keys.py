@@ -92,9 +92,13 @@ def test_a_contact_model_on_the_conveyor_runs_and_near_vertical_cusps_are_one_li
 # -- mirror pairs ([families.NAME] mirror) ------------------------------------------------
 #: fingerprints of the transport scenes on main before the mirror key: a scene that keeps
 #: mirror at its default (or counts images by symmetry) stores exactly what it stored
-TRANSPORT_BEFORE = {
+TRANSPORT_BEFORE = {  # transport_t5 uses pairs (benchmarks/transport_mirror.py): new data
     "transport_t0": "d29bf86c5ec522246c2568ba735018d228d8e8f87a3550cea362069a038ca875",
+    "transport_t2": "dde996d3bb705442da2e8715a778c0b01d7c49cdc1f8ba79d628d21cd398a9f7",
+    "transport_p60": "873d6e45b890d5a630bb4301499bd8e0564896c18d299fa18bc2d66ffe7d1d81",
+    "transport_p30": "6ae9e64c635c68e5418383db81db026000d0e850ffe95c8046655bc0d165d904",
     "transport_sliding_stick": "dd56949fc5b88fe3807d60240e1a1b0ee5b192cc7ec0a8f7e5c99387404ddf19",
+    "transport_sliding_coulomb": "9256f5bc024fa5f88b1d56e0a469a64fa86ebc1eefc2eb58433861bec8c232a6",
 }
 ODD = {"v", "v_lo", "v_hi", "dv", "dv_lo", "dv_hi", "dv_tol", "steady", "Pe", "v_by", "D_drift",
        "D_drift_lo", "D_drift_hi", "msd_slope_ratio", "msd_slope_ratio_lo", "msd_slope_ratio_hi",

@@ -16,10 +16,12 @@ steady only     every rule uses the frequencies whose drift is steady (bbb.trans
                 downhill) v and D are window means, not transport coefficients.  The rows say
                 how many frequencies were left out.
 diffusive only  an extremum of v(f) or of D_drift(f) at a frequency whose D about the drift is
-                not diffusive (bbb.transport: the CI of the MSD exponent lies above 1 + a
-                calibrated tolerance -- particles running at different speeds, some stuck)
-                is not counted: there D_drift is the spread of a population that does not mix
-                and v an average over it, not a particle's transport.  The rows name them.
+                not diffusive (bbb.transport: the CI of the MSD's slope ratio, upper over
+                lower half of the fit lags, lies above 1 + a calibrated tolerance) is not
+                counted: the MSD about the drift still steepens over the fit lags -- particles
+                running at different speeds (some stuck), or velocity memory as long as the
+                lags -- so D_drift is a window slope, not a diffusion coefficient, and v may
+                average a population that does not mix.  The rows name them.
 reversal        a sign change between consecutive significant frequencies (those in between
                 not significant).  The claim counts reversals over all conveyor scenes; it
                 agrees with ≥ 1.
