@@ -167,3 +167,19 @@ def test_extrema_where_D_about_the_drift_is_not_diffusive_are_not_counted():
     rows = evaluate(CLAIMS, {"tables": tables})
     assert rows[1].verdict == "disagrees" and rows[3].verdict == "disagrees"
     assert "not counted" in rows[3].measured and "not diffusive" in rows[3].measured
+
+
+def test_the_docs_quote_the_committed_calibration_and_benchmark():
+    from pathlib import Path
+
+    from bbb.transport import CURVATURE_TOL, STEADY_SE
+    from pipeline.studies.transport.claims import MIRROR
+
+    doc = (Path(__file__).resolve().parents[4] / "docs" / "statistics.md").read_text("utf-8")
+    fa = MIRROR["t1_false_alarm"]
+    assert f"k = {STEADY_SE:g} is the smallest" in doc
+    assert f"the CI lies above {1 + CURVATURE_TOL:g}" in doc
+    assert f"fails by chance on {100 * fa['rate']:.1f} % [{100 * fa['lo']:.1f}, " \
+           f"{100 * fa['hi']:.1f}] %" in doc
+    t5 = MIRROR["variance"]["transport_t5"]["v"]
+    assert f"| tilt 5° | {t5['ratio']:.3g} [{t5['lo']:.2f}, {t5['hi']:.2f}] |" in doc
