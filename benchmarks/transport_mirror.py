@@ -39,8 +39,6 @@ import argparse
 import datetime
 import json
 import math
-import os
-import platform
 import sys
 import time
 import zlib
@@ -50,6 +48,9 @@ import numpy as np
 
 # run as a script, this folder is sys.path[0], and its pipeline.py would shadow the package
 sys.path[0] = str(Path(__file__).resolve().parents[1])
+sys.path.append(str(Path(__file__).resolve().parent))
+
+from transport_rules import machine  # noqa: E402
 
 from bbb import simulate, stats  # noqa: E402
 from bbb.ensemble import InitialState, initial_state, mirror_pairs  # noqa: E402
@@ -205,9 +206,8 @@ def main(argv=None) -> int:
     ap.add_argument("--write", action="store_true", help=f"write {OUT.name}")
     args = ap.parse_args(argv)
     t0 = time.time()
-    print(f"# mirror pairs on the transport scenes, {datetime.date.today()}, "
-          f"{platform.processor() or platform.machine()}, {os.cpu_count()} CPUs; "
-          f"{args.pairs} pairs per frequency, pool {args.pool}, {args.curves} null curves")
+    print(f"# mirror pairs on the transport scenes, {machine()}; {args.pairs} pairs per "
+          f"frequency, pool {args.pool}, {args.curves} null curves")
     var = variance([s for s in args.scenes.split(",") if s], args.pairs)
     for name, sm in var.items():
         print(f"\n## {name}: Var(v) pairs / independent at equal particle count\n")

@@ -87,17 +87,18 @@ def _telegraph(dwell: float, v_run: float = -300.0, D: float = 1.0):
 
 
 # name -> (truth, generator); truth: the right answer of the check, or "grey"
-STEADY = {
+WALKS = {  # steady and diffusive: both checks must pass them
     "brownian D 2, v 3": (True, _drifting("brownian", 2.0, 3.0)),
     "brownian D Gamma(2, CV 1), v 0": (True, _drifting("brownian", 2.0, 0.0, cv=1.0)),
     "jumpy (1 mm jumps) D 2, v -5": (True, _drifting("jumpy", 2.0, -5.0)),
+}
+STEADY = {
+    **WALKS,
     "persistent tau 1 s D 5, v 10": (True, _drifting("persistent", 5.0, 10.0, tau=1.0)),
     "7 % stuck, runners -300 +- 40": (True, _stuck_runners(0.07)),
 }
 DIFFUSIVE = {
-    "brownian D 2 (v 3)": (True, _drifting("brownian", 2.0, 3.0)),
-    "brownian D Gamma(2, CV 1)": (True, _drifting("brownian", 2.0, 0.0, cv=1.0)),
-    "jumpy (1 mm jumps) D 2": (True, _drifting("jumpy", 2.0, -5.0)),
+    **WALKS,
     "persistent tau 0.5 s D 5": (True, _drifting("persistent", 5.0, 10.0, tau=0.5)),
     "stuck/running, dwell 0.25 s": (True, _telegraph(0.25)),
     "stuck/running, dwell 2 s": ("grey", _telegraph(2.0)),
@@ -182,15 +183,19 @@ def choose(rates: dict, truth: dict, grid, what: str) -> float:
     raise SystemExit(f"no {what} in {grid} keeps false flags ≤ {MAX_FALSE:.0%}")
 
 
+def machine() -> str:
+    """Date, CPU and cores of this run, for the results header."""
+    return (f"{datetime.date.today()}, {platform.processor() or platform.machine()}, "
+            f"{os.cpu_count()} CPUs, python {sys.version.split()[0]}")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--seeds", type=int, default=1000)
     ap.add_argument("--write", action="store_true", help=f"write {OUT.name}")
     args = ap.parse_args(argv)
     t0 = time.time()
-    print(f"# bbb.transport rule calibration, {datetime.date.today()}, "
-          f"{platform.processor() or platform.machine()}, {os.cpu_count()} CPUs, python "
-          f"{sys.version.split()[0]}; {args.seeds} ensembles per cell")
+    print(f"# bbb.transport rule calibration, {machine()}; {args.seeds} ensembles per cell")
 
     st = steady_runs(args.seeds)
     st_rates = {key: {k: flagged(c, k) for k in K_GRID} for key, c in st.items()}
