@@ -54,7 +54,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from bbb.stats import DEFAULT_DISCARD, DEFAULT_FIT_FROM, DEFAULT_FIT_TO, tamsd
+from bbb.stats import DEFAULT_DISCARD, DEFAULT_FIT_FROM, DEFAULT_FIT_TO, tamsd, unit_means
 
 __all__ = ["TOLERANCE", "D_FLOOR", "Stationarity", "half_run_diffusion", "stationarity"]
 
@@ -140,12 +140,14 @@ def stationarity(x: ArrayLike, sample_times: ArrayLike, *, n_resamples: int,
                  seed: int | np.random.SeedSequence, ci: float = 0.95,
                  tolerance: float = TOLERANCE, floor: float = D_FLOOR,
                  discard: float = DEFAULT_DISCARD, fit_from: float = DEFAULT_FIT_FROM,
-                 fit_to: float = DEFAULT_FIT_TO) -> Stationarity:
+                 fit_to: float = DEFAULT_FIT_TO, units: ArrayLike | None = None) -> Stationarity:
     """D of the two halves of the analysed run and the paired bootstrap CI of their difference.
 
     Arguments as :func:`half_run_diffusion`; n_resamples (≥ 1) percentile-bootstrap resamples
     over particles at confidence ``ci``; ``seed`` makes the result deterministic;
-    ``tolerance`` (relative) and ``floor`` (mm²/s) set the flag (module docstring).
+    ``tolerance`` (relative) and ``floor`` (mm²/s) set the flag (module docstring);
+    ``units``: labels of independent units of one size (mirror pairs), resampled instead of
+    particles (:func:`bbb.stats.unit_means`).
     """
     if not 0.0 < ci < 1.0:
         raise ValueError(f"ci = {ci!r} must be in (0, 1)")
@@ -153,10 +155,10 @@ def stationarity(x: ArrayLike, sample_times: ArrayLike, *, n_resamples: int,
         raise ValueError(f"n_resamples = {n_resamples!r} must be a positive integer")
     d1, d2, T_h, lags = half_run_diffusion(x, sample_times, discard=discard, fit_from=fit_from,
                                            fit_to=fit_to)
-    n = d1.size
+    diff = d2 - d1 if units is None else unit_means(d2 - d1, units)
+    n = diff.size
     if n < 2:
         raise ValueError("the paired bootstrap over particles needs at least 2 particles")
-    diff = d2 - d1
     ss = seed if isinstance(seed, np.random.SeedSequence) else np.random.SeedSequence(seed)
     rng = np.random.default_rng(ss)
     boot = np.empty(int(n_resamples))

@@ -50,12 +50,25 @@ stop         (target-driven stores only) why sampling stopped: "target met", "re
              docs/accuracy.md), "cap" or "open"; "family: reason; ..." with several families
 v, v_lo, v_hi  (scenes with tilt or throw only) drift velocity, mm/s, with its bootstrap CI
              over particles (bbb.transport: slope of the mean displacement over the fit lags)
+v_by         how the particles count (the families' mirror key, Study.pairing): "mirror
+             symmetry" -- on a level floor vibrated vertically every particle's mirror image
+             counts, so v = v_lo = v_hi = 0 and dv = 0 exactly, by construction (not an
+             estimate); "pairs" -- simulated mirror pairs, every bootstrap of the row (D, v,
+             D_drift, dv, dD, the MSD slope ratio; not EB) resamples pairs; "independent"
 D_drift, D_drift_lo, D_drift_hi  D about the drift (MSD of x - v t), mm^2/s, with its CI;
              there the column D still holds the raw MSD's D, drift included
 Pe           Péclet number v S / D_drift
 dv, dv_lo, dv_hi  v of the analysed run's second half minus its first half, mm/s, paired CI
-steady       False where that CI lies beyond +-(5 % of |v| + 1e-6 mm/s): an acceleration (a
-             particle running away downhill), not a drift -- v and D_drift are then window means
+dv_tol       the band that CI must leave to flag, mm/s: 5 % of |v| + k SE(v) + 1e-6 mm/s
+             (k calibrated, bbb/transport_rules.json)
+steady       False where the CI of dv lies beyond +-dv_tol: an acceleration (a particle
+             running away downhill), not a drift -- v and D_drift are then window means
+msd_slope_ratio, msd_slope_ratio_lo, msd_slope_ratio_hi  slope of the MSD about the drift over
+             the upper half of the fit lags / over the lower half, with its bootstrap CI: 1
+             for diffusion (any intercept), up to ~2 for particles running at different speeds
+diffusive    False where that CI lies above 1 + a calibrated tolerance: the MSD about the
+             drift still steepens over the fit lags (particles at different speeds, or velocity
+             memory as long as the lags), so D_drift is a window slope (NA: nothing moves)
 
 ``mechanisms.parquet`` / ``.csv`` (stores with jumps or lyapunov): the Green–Kubo expansion
 and the Lyapunov exponent per frequency (columns in :mod:`pipeline.mechanisms`).
@@ -107,7 +120,8 @@ _UNITS = (  # the mechanisms table's neighbours, contrasts, λ split (pipeline.m
           (r"lam(_lo|_hi)?", "1/s"), (r"lag_s", "s"),
           (r"(lam_coll.*|lag|max_lag|frac_creep)", "1"), (r"D(_.*)?", "mm^2/s"),
           (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),
-          (r".*_per_s", "1/s"), (r"d?v(_lo|_hi)?", "mm/s"), (r"(Gamma|EB.*|Pe)", "1"), (r"n_.*", "1"),
+          (r".*_per_s", "1/s"), (r"d?v(_lo|_hi|_tol)?", "mm/s"), (r"msd_slope_ratio(_lo|_hi)?", "1"),
+          (r"(Gamma|EB.*|Pe)", "1"), (r"n_.*", "1"),
           (r".*_frac(_lo|_hi)?", "1"))
 
 
@@ -209,6 +223,7 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
             rows.append(row)
             continue
         x = np.concatenate(list(fams.values()))
+        pairing, units = _pairing(study, fams)
         seed = _reduce_seed(study, f)
         est = stats.diffusion_coefficient(x, times, **fit)
         named = {study.families[mi].name: r for mi, r in fam_ci.items()}
@@ -244,12 +259,12 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
         row["verdict"] = "; ".join(verdict.reasons)
         if stops is not None:
             row["stop"] = _stop_text(study, stops[1][fi])
-        row.update(_stationarity_columns(x, times, an, acc, seed))
+        row.update(_stationarity_columns(x, times, an, acc, seed, units))
         if {"tilt", "throw"} & study.overrides.keys():  # a conveyor (even at tilt = 0)
-            row.update(_transport_columns(x, times, study, seed, fit))
+            row.update(_transport_columns(x, times, study, seed, fit, pairing, units))
         rows.append(row)
     df = pd.DataFrame(rows)
-    for col in ("ergodic", "families_agree", "eb_ok", "stationary", "steady"):
+    for col in ("ergodic", "families_agree", "eb_ok", "stationary", "steady", "diffusive"):
         if col in df:
             df[col] = df[col].astype("boolean")
     return df
@@ -313,15 +328,30 @@ def _done_seconds(seconds, fi: int, mi: int, done_fm: np.ndarray) -> float:
     return float(np.nansum(part[idx - idx[0]]))
 
 
+def _pairing(study: Study, fams: dict[str, np.ndarray]) -> tuple[str, np.ndarray | None]:
+    """How the pooled particles of one frequency count (bbb.transport.PAIRING) and, with mirror
+    pairs, the pair labels of the pooled rows (:func:`pipeline.waves.pair_units`).  Images
+    count by symmetry only when every family is mirrored; pairs are all or none on a conveyor
+    (pipeline.workflow)."""
+    from .waves import pair_units
+
+    by_name = {fam.name: fam for fam in study.families}
+    kinds = {study.pairing(by_name[name]) for name in fams}
+    if kinds != {"pairs"}:
+        return ("mirror symmetry" if kinds == {"mirror symmetry"} else "independent"), None
+    return "pairs", pair_units(study, [(by_name[name], pos.shape[0]) for name, pos in fams.items()])
+
+
 def _stationarity_columns(x: np.ndarray, times: np.ndarray, an, acc,
-                          seed: np.random.SeedSequence) -> dict:
+                          seed: np.random.SeedSequence, units: np.ndarray | None = None) -> dict:
     from bbb.stationarity import stationarity
 
     try:
         s = stationarity(x, times, n_resamples=acc.n_resamples, ci=an.ci,
                          seed=np.random.SeedSequence(seed.entropy, spawn_key=(
                              *seed.spawn_key, zlib.crc32(b"stationarity"))),
-                         discard=an.discard, fit_from=an.fit_from, fit_to=an.fit_to)
+                         discard=an.discard, fit_from=an.fit_from, fit_to=an.fit_to,
+                         units=units)
     except ValueError:  # a half too short for two fit lags: no check, not a flag
         return {}
     return {"D_half1": s.D_half1, "D_half2": s.D_half2, "dD": s.dD, "dD_lo": s.dD_lo,
@@ -329,16 +359,20 @@ def _stationarity_columns(x: np.ndarray, times: np.ndarray, an, acc,
 
 
 def _transport_columns(x: np.ndarray, times: np.ndarray, study: Study,
-                       seed: np.random.SeedSequence, fit: dict) -> dict:
+                       seed: np.random.SeedSequence, fit: dict, pairing: str = "independent",
+                       units: np.ndarray | None = None) -> dict:
     from bbb.transport import transport
 
     an = study.analysis
     t = transport(x, times, study.base_params["S"], n_resamples=study.accuracy.n_resamples,
                   ci=an.ci, method=an.ci_method, seed=np.random.SeedSequence(
-                      seed.entropy, spawn_key=(*seed.spawn_key, zlib.crc32(b"transport"))), **fit)
-    return {"v": t.v, "v_lo": t.v_lo, "v_hi": t.v_hi, "D_drift": t.D, "D_drift_lo": t.D_lo,
-            "D_drift_hi": t.D_hi, "Pe": t.Pe, "dv": t.dv, "dv_lo": t.dv_lo, "dv_hi": t.dv_hi,
-            "steady": t.steady}
+                      seed.entropy, spawn_key=(*seed.spawn_key, zlib.crc32(b"transport"))),
+                  pairing=pairing, units=units, **fit)
+    return {"v": t.v, "v_lo": t.v_lo, "v_hi": t.v_hi, "v_by": t.v_by, "D_drift": t.D,
+            "D_drift_lo": t.D_lo, "D_drift_hi": t.D_hi, "Pe": t.Pe, "dv": t.dv,
+            "dv_lo": t.dv_lo, "dv_hi": t.dv_hi, "dv_tol": t.dv_tol, "steady": t.steady,
+            "msd_slope_ratio": t.curvature, "msd_slope_ratio_lo": t.curvature_lo,
+            "msd_slope_ratio_hi": t.curvature_hi, "diffusive": t.diffusive}
 
 
 def _ratio(a: float, b: float) -> float:

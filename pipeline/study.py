@@ -87,6 +87,21 @@ class Study:
         adding frequencies or families never changes the results of the others."""
         return np.random.SeedSequence(self.seed, spawn_key=(round(f * 1000), family.key, chunk))
 
+    @property
+    def mirror_symmetric(self) -> bool:
+        """Whether the floor is mirror-symmetric (level, vibrated vertically: no tilt, throw
+        90°), under any contact model: a particle's mirror image then moves as its reflection."""
+        return not Params.preset(self.preset, f=1.0, **self.overrides).transport
+
+    def pairing(self, family: Family) -> str:
+        """How ``family``'s particles enter the estimates (bbb.transport.PAIRING): "mirror
+        symmetry" (images counted, not simulated), "pairs" (each chunk's second half are the
+        mirror partners of its first half, bbb.ensemble.mirror_pairs) or "independent"."""
+        from bbb.transport import INDEPENDENT, PAIRS, SYMMETRY
+
+        mirror = self.mirror_symmetric if family.mirror is None else family.mirror
+        return INDEPENDENT if not mirror else SYMMETRY if self.mirror_symmetric else PAIRS
+
     def with_frequencies(self, frequencies: tuple[float, ...]) -> Study:
         """The same study at some of its frequencies (Hz): every chunk keeps its seed, so it
         computes the same numbers as in the whole sweep."""
@@ -126,6 +141,7 @@ class Study:
                 initial=fd["initial"],
                 drop_height=_tuple_or_none(fd.get("drop_height")),
                 launch_speed=_tuple_or_none(fd.get("launch_speed")),
+                mirror=fd.get("mirror"),
                 description=fd.get("description", ""),
             )
             for fd in d["families"]
@@ -154,7 +170,7 @@ class Study:
             "seed": self.seed,
             "params": self.base_params,
             "f_mhz": [round(f * 1000) for f in self.base_frequencies],
-            "families": [_drop_none(as_dict(fam, identity=True)) for fam in self.families],
+            "families": [self._family_identity(fam) for fam in self.families],
             "accuracy": acc,
             "observables": as_dict(self.observables, identity=True),
         }
@@ -167,6 +183,15 @@ class Study:
                              "fit_from": an.fit_from, "fit_to": an.fit_to}
         if self.refine is not None:
             d["refine"] = as_dict(self.refine)
+        return d
+
+    def _family_identity(self, fam: Family) -> dict[str, Any]:
+        # mirror changes the stored numbers only where the partners are simulated ("pairs");
+        # images counted by symmetry, or none, leave the store (and its fingerprint) as before
+        d = _drop_none(as_dict(fam, identity=True))
+        d.pop("mirror", None)
+        if self.pairing(fam) == "pairs":
+            d["mirror"] = True
         return d
 
     def fingerprint(self) -> str:

@@ -60,7 +60,7 @@ def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = Fal
         study.params(f), acc.chunk_size, acc.t_max, study.seed_sequence(f, fam, ci),
         sample_times=times,
         record_collisions=_rows_recorded(obs), record_from=obs.collisions_from,
-        numerics=acc.numerics(), **fam.simulate_kwargs(),
+        numerics=acc.numerics(), **_initial(study, f, fam, ci),
     )
     extra = {}
     if obs.collisions_x_jumps:
@@ -77,6 +77,19 @@ def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = Fal
         raise InjectedFailure(f"{FAIL_ENV} asked this chunk to fail after writing its data")
     return ChunkResult((f, fam.name, ci), int(run.counters["collisions"].sum()), seconds,
                        time.perf_counter() - t0 - seconds, socket.gethostname())
+
+
+def _initial(study: Study, f: float, fam, ci: int) -> dict:
+    """bbb.simulate's initial-condition keywords for one chunk: the family's draw from the
+    chunk's seed, or, with mirror pairs (Study.pairing), half of it followed by the partners
+    (bbb.ensemble.mirror_pairs)."""
+    kw = fam.simulate_kwargs()
+    if study.pairing(fam) != "pairs":
+        return kw
+    from bbb.ensemble import mirror_pairs
+
+    return {"initial": mirror_pairs(study.params(f), study.accuracy.chunk_size,
+                                    study.seed_sequence(f, fam, ci), kw.pop("initial"), **kw)}
 
 
 def _sample_grid(study: Study, f: float) -> tuple[np.ndarray | None, np.ndarray | None,
@@ -125,9 +138,11 @@ def _lyapunov_chunk(study: Study, f: float, fam, ci: int) -> dict[str, np.ndarra
     k = min(acc.chunk_size, obs.lyapunov_particles - first)
     if k <= 0:
         return {}
-    kw = fam.simulate_kwargs()
     p = study.params(f)
-    st = initial_state(p, acc.chunk_size, study.seed_sequence(f, fam, ci), kw.pop("initial"), **kw)
+    kw = _initial(study, f, fam, ci)
+    st = kw.pop("initial")
+    if isinstance(st, str):
+        st = initial_state(p, acc.chunk_size, study.seed_sequence(f, fam, ci), st, **kw)
     sub = InitialState(**{fd.name: getattr(st, fd.name)[:k] for fd in dataclasses.fields(st)})
     lam = lyapunov(p, k, acc.t_max, 0, sub, discard=obs.lyapunov_discard, d0=obs.lyapunov_d0,
                    numerics=acc.numerics(), n_resamples=10)

@@ -40,8 +40,8 @@ from .adaptive import (
 from .store import StudyStore
 from .study import Study
 
-__all__ = ["Waves", "rule_of", "stop_seed", "interval_of", "row_intervals", "unit_ci",
-           "pooled_ci"]
+__all__ = ["Waves", "rule_of", "stop_seed", "interval_of", "pair_units", "row_intervals",
+           "unit_ci", "pooled_ci"]
 
 Unit = tuple[int, int]  # (frequency index, family index)
 
@@ -61,10 +61,11 @@ def stop_seed(study: Study, f: float, family, n: int) -> np.random.SeedSequence:
                                                          zlib.crc32(b"stop"), n))
 
 
-def interval_of(study: Study, x: np.ndarray, seed) -> DInterval | None:
+def interval_of(study: Study, x: np.ndarray, seed, units: np.ndarray | None = None
+                ) -> DInterval | None:
     """D's CI (:class:`bbb.stats.interval.DInterval`, mm²/s) of positions x (particle, time)
-    with the study's estimator, fit range, level, method and resamples; None below 2
-    particles."""
+    with the study's estimator, fit range, level, method and resamples, resampling the
+    ``units`` (mirror pairs, :func:`pair_units`) when given; None below 2 particles."""
     from bbb import stats
 
     if x.shape[0] < 2:
@@ -73,7 +74,24 @@ def interval_of(study: Study, x: np.ndarray, seed) -> DInterval | None:
     T = an.duration(study.accuracy.t_max)
     return stats.bootstrap_D(x, study.sample_times(), n_resamples=study.accuracy.n_resamples,
                              ci=an.ci, seed=seed, method=an.ci_method, fit_from=an.fit_from * T,
-                             fit_to=an.fit_to * T, discard=an.discard, detail=True)
+                             fit_to=an.fit_to * T, discard=an.discard, detail=True, units=units)
+
+
+def pair_units(study: Study, sizes: list[tuple[object, int]]) -> np.ndarray | None:
+    """The labels of the independent units of the particles of ``sizes`` = [(family, number
+    of its particles), ...] pooled in that order: mirror pairs when every family holds them
+    (:meth:`pipeline.study.Study.pairing`; each chunk's second half partners its first half,
+    bbb.ensemble.mirror_pairs), else None (particles are the units)."""
+    from bbb.ensemble import mirror_pair_units
+    from bbb.transport import PAIRS
+
+    if not sizes or any(study.pairing(fam) != PAIRS for fam, _ in sizes):
+        return None
+    labels, offset = [], 0
+    for _, n in sizes:
+        labels.append(mirror_pair_units(n, study.accuracy.chunk_size) + offset)
+        offset += n // 2
+    return np.concatenate(labels)
 
 
 def row_intervals(study: Study, fi: int, parts: dict[int, tuple[np.ndarray, int]]
@@ -86,14 +104,17 @@ def row_intervals(study: Study, fi: int, parts: dict[int, tuple[np.ndarray, int]
     from .reduce import _reduce_seed
 
     f = study.frequencies[fi]
-    fams = {mi: interval_of(study, x, stop_seed(study, f, study.families[mi], n))
+    fam = study.families
+    fams = {mi: interval_of(study, x, stop_seed(study, f, fam[mi], n),
+                            pair_units(study, [(fam[mi], x.shape[0])]))
             for mi, (x, n) in parts.items() if x.shape[0] >= 2}
     if len(fams) == 1:
         return fams, next(iter(fams.values()))
     if not fams:
         return fams, None
     x = np.concatenate([parts[mi][0] for mi in fams])
-    return fams, interval_of(study, x, _reduce_seed(study, f))
+    units = pair_units(study, [(fam[mi], parts[mi][0].shape[0]) for mi in fams])
+    return fams, interval_of(study, x, _reduce_seed(study, f), units)
 
 
 def _as_ci(r: DInterval | None) -> tuple[float, float, float]:

@@ -128,9 +128,27 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
             r.fail(path, f"invalid parameters at f = {f:g} Hz: {e}")
     acc = _accuracy(r, doc)
     obs = _observables(r, doc, acc)
-    return Study(name=name, source=source, seed=st["seed"], preset=preset, overrides=overrides,
-                 frequencies=freqs, families=_families(r, doc), accuracy=acc,
-                 observables=obs, analysis=_analysis(r, doc), refine=refine, text=text)
+    study = Study(name=name, source=source, seed=st["seed"], preset=preset, overrides=overrides,
+                  frequencies=freqs, families=_families(r, doc), accuracy=acc,
+                  observables=obs, analysis=_analysis(r, doc), refine=refine, text=text)
+    _mirror_pairs(r, study)
+    return study
+
+
+def _mirror_pairs(r: Reader, study: Study) -> None:
+    """On a conveyor mirror pairs fill whole chunks, for every family or for none (a row of
+    `bbb reduce` pools the families, and its bootstraps resample pairs)."""
+    paired = [study.pairing(fam) == "pairs" for fam in study.families]
+    for fam, p in zip(study.families, paired, strict=True):
+        if p and study.accuracy.chunk_size % 2:
+            r.fail(("families", fam.name, "mirror"), f"mirror pairs on this floor (tilt or "
+                   f"throw) fill each chunk with pairs, but chunk_size = "
+                   f"{study.accuracy.chunk_size} is odd",
+                   "an even [accuracy] chunk_size, or mirror = false")
+        if p != paired[0]:
+            r.fail(("families", fam.name, "mirror"), f"mirror = {str(p).lower()} here but "
+                   f"{str(paired[0]).lower()} for family {study.families[0].name!r}",
+                   "the same mirror for every family on a floor with tilt or throw")
 
 
 def _params(r: Reader, doc: dict) -> tuple[str, dict[str, float | str]]:

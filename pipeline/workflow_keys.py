@@ -127,6 +127,13 @@ class Family:
     launch_speed: tuple[float, float] | None = key(
         (0.0, 200.0), "launched upward at this speed relative to the floor", units="mm/s", ge=0,
         when=("initial", "launched"), default_doc='[0, 200] for initial = "launched"')
+    # None: the floor decides (Study.pairing); omit_default keeps every older fingerprint
+    mirror: bool | None = key(None, "mirror pairs: on a mirror-symmetric floor each particle's "
+                              "image counts in the estimates (the drift v = 0 exactly, nothing "
+                              "more simulated); elsewhere half of each chunk are the mirror "
+                              "partners of the other half (antithetic drift estimates)",
+                              omit_default=True, default_doc="true on a level floor vibrated "
+                              "vertically (tilt = 0, throw = 90), else false")
     description: str = key("", "free text", identity=False, omit_default=True)
 
     @property

@@ -31,7 +31,7 @@ Modules (every public name is re-exported here, so ``from bbb.stats import X`` w
 
 from __future__ import annotations
 
-from .bootstrap import BootstrapCI, bootstrap_D, bootstrap_mean
+from .bootstrap import BootstrapCI, bootstrap_D, bootstrap_mean, unit_means
 from .ergodicity import (
     DEFAULT_CV_MAX,
     DEFAULT_EB_TOLERANCE,
@@ -77,6 +77,7 @@ __all__ = [
     "per_particle_D",
     "bootstrap_D",
     "bootstrap_mean",
+    "unit_means",
     "ergodicity_breaking",
     "eb_brownian",
     "ergodic_verdict",

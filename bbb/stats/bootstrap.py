@@ -12,7 +12,7 @@ from .fit import DEFAULT_DISCARD, _per_particle_fit, _regime
 from .inputs import _as_positions, _as_times
 from .interval import DInterval, d_interval
 
-__all__ = ["BootstrapCI", "bootstrap_D", "bootstrap_mean", "with_rare_movers"]
+__all__ = ["BootstrapCI", "bootstrap_D", "bootstrap_mean", "with_rare_movers", "unit_means"]
 
 _FLOAT = NDArray[np.float64]
 # Largest number of resample indices held at once in the bootstrap (≈ 32 MB).
@@ -43,6 +43,7 @@ def bootstrap_D(
     discard: float = DEFAULT_DISCARD,
     rare: bool = True,
     detail: bool = False,
+    units: ArrayLike | None = None,
 ) -> BootstrapCI | DInterval:
     """D, mm²/s, with a bootstrap confidence interval over particles.
 
@@ -65,6 +66,9 @@ def bootstrap_D(
                    particles, the CI is the hull of the bootstrap CI and the Fay-Feuer gamma
                    interval (:mod:`bbb.stats.rare`; the bootstrap alone covers < 90 % there)
     detail      -- return the :class:`~bbb.stats.interval.DInterval` (status, coverage) instead
+    units       -- None (particles are independent), or labels (n_particles,) of the
+                   independent units, all of one size (e.g. mirror pairs): the bootstrap and
+                   the rare-mover rule then run over the units' means (:func:`unit_means`)
 
     Returns ``BootstrapCI(D, lo, hi)``: hi is NaN when no particle has D_i > 0 (no mover: the
     data bound the share of movers, not D; :mod:`bbb.stats.interval`).
@@ -81,6 +85,8 @@ def bootstrap_D(
     times = _as_times(sample_times, xs.shape[1])
     reg = _regime(xs.shape[1], times, fit_from, fit_to, discard)
     d_i, _ = _per_particle_fit(xs, reg)
+    if units is not None:
+        d_i = unit_means(d_i, units)
     boot = _bootstrap_mean(d_i, int(n_resamples), ci, _rng(seed), method)
     res = d_interval(d_i, boot, ci, rare=rare)
     return res if detail else BootstrapCI(res.D, res.lo, res.hi)
@@ -95,17 +101,35 @@ def with_rare_movers(d_i: ArrayLike, boot: BootstrapCI, ci: float) -> BootstrapC
 
 
 def bootstrap_mean(values: ArrayLike, *, n_resamples: int, ci: float = 0.95,
-                   seed: int | np.random.SeedSequence, method: str = "percentile") -> BootstrapCI:
+                   seed: int | np.random.SeedSequence, method: str = "percentile",
+                   units: ArrayLike | None = None) -> BootstrapCI:
     """The mean of per-particle ``values`` (any unit) with the bootstrap CI over particles that
-    :func:`bootstrap_D` gives D (same resampling, levels and methods)."""
+    :func:`bootstrap_D` gives D (same resampling, levels and methods; ``units`` as there)."""
     if method not in _METHODS:
         raise ValueError(f"method = {method!r}; allowed: {', '.join(_METHODS)}")
     if not 0.0 < ci < 1.0:
         raise ValueError(f"ci = {ci!r} must be a confidence level in (0, 1)")
     v = np.asarray(values, dtype=np.float64).ravel()
+    if units is not None:
+        v = unit_means(v, units)
     if v.size < 2 or not np.all(np.isfinite(v)):
         raise ValueError("bootstrap over particles needs at least 2 finite values")
     return _bootstrap_mean(v, int(n_resamples), ci, _rng(seed), method)
+
+
+def unit_means(values: ArrayLike, units: ArrayLike) -> _FLOAT:
+    """The mean of ``values`` over each unit (labels ``units``, same shape, every unit of one
+    size), in the order of the sorted labels: what a bootstrap over independent units (e.g.
+    the two particles of a mirror pair) resamples.  Their mean is the mean of ``values``."""
+    v = np.asarray(values, dtype=np.float64).ravel()
+    u = np.asarray(units).ravel()
+    if u.shape != v.shape:
+        raise ValueError(f"units holds {u.size} labels for {v.size} values")
+    _, inv, counts = np.unique(u, return_inverse=True, return_counts=True)
+    if counts.min() != counts.max():
+        raise ValueError(f"units of unequal size ({counts.min()} to {counts.max()} values); "
+                         "allowed: every unit the same size")
+    return np.bincount(inv, weights=v) / counts
 
 
 def _rng(seed: int | np.random.SeedSequence) -> np.random.Generator:

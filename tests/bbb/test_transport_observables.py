@@ -54,3 +54,119 @@ def test_a_constant_drift_is_steady_and_an_accelerating_ensemble_is_not():
 def test_zero_drift_walks_are_steady_although_their_dv_is_all_noise():
     est = transport(_walks(0.0, 3.0, 8), TIMES, 2.0, n_resamples=1000, seed=2)
     assert est.steady  # the tolerance 5 % of |v| ~ 0 is far inside the noise of dv
+
+
+# -- mirror pairs --------------------------------------------------------------------------
+def test_with_mirror_symmetry_v_and_dv_are_zero_exactly_and_D_is_the_particles_own():
+    from bbb.stats import bootstrap_D
+    from bbb.transport import SYMMETRY
+
+    x = _walks(0.4, 2.0, 11)[:100]  # a drift the images cancel: the estimate never sees it
+    est = transport(x, TIMES, 2.0, n_resamples=500, seed=3, pairing=SYMMETRY)
+    assert (est.v, est.v_lo, est.v_hi, est.dv, est.dv_lo, est.dv_hi) == (0.0,) * 6
+    assert est.steady and est.v_by == SYMMETRY and est.Pe == 0.0
+    s_d = np.random.SeedSequence(3).spawn(4)[1]  # the D bootstrap's child seed
+    assert (est.D, est.D_lo, est.D_hi) == tuple(bootstrap_D(x, TIMES, n_resamples=500, seed=s_d))
+
+
+def _antithetic(rep: int, n_pairs: int = 100, v: float = 2.0):
+    # each particle runs at its own speed s_i (spread 5 mm/s) plus noise; its partner at -s_i:
+    # the pair mean cancels the spread that dominates Var(v_i)
+    rng = np.random.default_rng(rep)
+    s = rng.normal(0.0, 5.0, n_pairs)
+    walk = brownian(rng, np.full(2 * n_pairs, 0.5), N_SAMPLES, DT)
+    x = walk + (v + np.concatenate([s, -s]))[:, None] * TIMES[None, :]
+    return x, np.tile(np.arange(n_pairs), 2)
+
+
+def test_mirror_pairs_resampled_as_pairs_cover_v_with_a_much_narrower_CI():
+    from bbb.transport import PAIRS
+
+    hits, width_pairs, width_indep = 0, [], []
+    for rep in range(40):
+        x, units = _antithetic(rep)
+        p = transport(x, TIMES, 2.0, n_resamples=500, seed=rep, pairing=PAIRS, units=units)
+        q = transport(x, TIMES, 2.0, n_resamples=500, seed=rep)
+        hits += p.v_lo <= 2.0 <= p.v_hi
+        width_pairs.append(p.v_hi - p.v_lo)
+        width_indep.append(q.v_hi - q.v_lo)
+    assert hits >= 32, hits  # 95 % CIs: fails with probability < 1e-3 (binomial)
+    assert np.median(width_pairs) < 0.3 * np.median(width_indep)
+
+
+def test_pair_labels_go_with_pairs_only():
+    from bbb.transport import PAIRS
+
+    x, units = _antithetic(0, 10)
+    with pytest.raises(ValueError, match="units"):
+        transport(x, TIMES, 2.0, n_resamples=50, seed=0, pairing=PAIRS)
+    with pytest.raises(ValueError, match="units"):
+        transport(x, TIMES, 2.0, n_resamples=50, seed=0, units=units)
+
+
+# -- the calibrated checks (benchmarks/transport_rules.py, bbb/transport_rules.json) -------
+SCENE_TIMES = np.arange(101) * 0.5  # the transport scenes: 50 s every 0.5 s
+SCENE_FIT = dict(fit_from=2.25, fit_to=11.25, discard=0.1)
+
+
+def _steady_flags(make, reps: int) -> float:
+    flags = []
+    for rep in range(reps):
+        x = make(np.random.default_rng(rep))
+        flags.append(not transport(x, SCENE_TIMES, 2.0, n_resamples=400, seed=rep,
+                                   **SCENE_FIT).steady)
+    return float(np.mean(flags))
+
+
+def test_steady_drifts_near_zero_are_not_flagged_by_their_noise():
+    # 128 walks of heterogeneous D (Gamma, CV 1), no drift: calibrated false flags ≤ 1 %; a
+    # bare 95 % test of dv (the tolerance 5 % |v| + 1e-6 mm/s alone, k = 0) flags ~5 %
+    from bbb.stats.synthetic import gamma_D
+
+    def make(rng):
+        return brownian(rng, gamma_D(rng, 128, 2.0, 1.0), SCENE_TIMES.size, 0.5)
+    assert _steady_flags(make, 300) <= 0.025
+
+
+def test_a_drift_that_changes_by_many_standard_errors_is_flagged():
+    # a t²/2 on 128 walks (D = 2, v = 3): dv ≈ a · 22.5 s ≈ 1.1 mm/s, ~40 SE(v) of ~0.03 mm/s
+    def make(rng):
+        return brownian(rng, np.full(128, 2.0), SCENE_TIMES.size, 0.5) + \
+            3.0 * SCENE_TIMES + 0.025 * SCENE_TIMES**2
+    assert _steady_flags(make, 50) >= 0.9
+
+
+def _stuck_runners(rng, n=256, p_stuck=0.07):
+    stuck = rng.random(n) < p_stuck
+    v = np.where(stuck, 0.0, rng.normal(-300.0, 40.0, n))
+    return brownian(rng, np.where(stuck, 1e-3, 100.0), SCENE_TIMES.size, 0.5) + v[:, None] * SCENE_TIMES
+
+
+def test_stuck_and_running_particles_are_ballistic_not_diffusive():
+    # tilt 2°, 58 Hz: 7 % stuck, the rest running at -300 ± 40 mm/s; MSD about the drift ~ Δ²
+    est = transport(_stuck_runners(np.random.default_rng(1)), SCENE_TIMES, 2.0, n_resamples=400,
+                    seed=1, **SCENE_FIT)
+    assert est.diffusive is False and est.curvature_lo > 1.7
+    walks = brownian(np.random.default_rng(2), np.full(256, 50.0), SCENE_TIMES.size, 0.5)
+    ok = transport(walks - 280.0 * SCENE_TIMES, SCENE_TIMES, 2.0, n_resamples=400, seed=1,
+                   **SCENE_FIT)
+    assert ok.diffusive is True and ok.curvature_lo < 1.0 < ok.curvature_hi
+
+
+def test_a_persistent_walk_with_its_negative_intercept_is_diffusive():
+    # MSD ≈ 2 D (Δ − τ), τ = 1 s: the log-log exponent over the fit lags is ~1.24 (a check on
+    # it would flag this walk), the slope ratio ~1
+    from bbb.stats import tamsd
+    from bbb.stats.synthetic import persistent
+
+    x = persistent(np.random.default_rng(3), np.full(256, 50.0), SCENE_TIMES.size, 0.5, tau=1.0)
+    lags = np.arange(5, 23)
+    assert np.polyfit(np.log(lags), np.log(tamsd(x[:, 10:], lags).mean(0)), 1)[0] > 1.2
+    est = transport(x, SCENE_TIMES, 2.0, n_resamples=400, seed=2, **SCENE_FIT)
+    assert est.diffusive is True and est.curvature_lo < 1.0 < est.curvature_hi
+
+
+def test_an_ensemble_at_rest_has_no_exponent_and_is_not_judged():
+    est = transport(np.zeros((10, SCENE_TIMES.size)), SCENE_TIMES, 2.0, n_resamples=50, seed=0,
+                    **SCENE_FIT)
+    assert np.isnan(est.curvature) and est.diffusive is None

@@ -87,3 +87,94 @@ def test_a_contact_model_on_the_conveyor_runs_and_near_vertical_cusps_are_one_li
     msg = str(e.value)
     assert "\n" not in msg and "wf.toml" in msg and "contact" in msg and "R = 1.0" in msg
     assert "allowed" in msg and "stick" in msg
+
+
+# -- mirror pairs ([families.NAME] mirror) ------------------------------------------------
+#: fingerprints of the transport scenes on main before the mirror key: a scene that keeps
+#: mirror at its default (or counts images by symmetry) stores exactly what it stored
+TRANSPORT_BEFORE = {  # transport_t5 uses pairs (benchmarks/transport_mirror.py): new data
+    "transport_t0": "d29bf86c5ec522246c2568ba735018d228d8e8f87a3550cea362069a038ca875",
+    "transport_t2": "dde996d3bb705442da2e8715a778c0b01d7c49cdc1f8ba79d628d21cd398a9f7",
+    "transport_p60": "873d6e45b890d5a630bb4301499bd8e0564896c18d299fa18bc2d66ffe7d1d81",
+    "transport_p30": "6ae9e64c635c68e5418383db81db026000d0e850ffe95c8046655bc0d165d904",
+    "transport_sliding_stick": "dd56949fc5b88fe3807d60240e1a1b0ee5b192cc7ec0a8f7e5c99387404ddf19",
+    "transport_sliding_coulomb": "9256f5bc024fa5f88b1d56e0a469a64fa86ebc1eefc2eb58433861bec8c232a6",
+}
+ODD = {"v", "v_lo", "v_hi", "dv", "dv_lo", "dv_hi", "dv_tol", "steady", "Pe", "v_by", "D_drift",
+       "D_drift_lo", "D_drift_hi", "msd_slope_ratio", "msd_slope_ratio_lo", "msd_slope_ratio_hi",
+       "diffusive"}
+LEVEL = _with("tilt = 0.0\nthrow = 90.0")  # the transport columns on the paper's floor
+
+
+def _mirror(text: str, value: str) -> str:
+    return (text.replace('initial = "rest"', f'initial = "rest"\nmirror = {value}')
+            .replace('initial = "launched"', f'initial = "launched"\nmirror = {value}'))
+
+
+@pytest.mark.parametrize("name", sorted(TRANSPORT_BEFORE))
+def test_transport_scenes_without_simulated_pairs_keep_their_fingerprint(name):
+    assert load_scene(name).fingerprint() == TRANSPORT_BEFORE[name]
+
+
+def test_on_the_level_floor_mirror_images_change_nothing_stored_and_make_v_zero(tmp_path):
+    on, off = parse_workflow(LEVEL), parse_workflow(_mirror(LEVEL, "false"))
+    assert on.fingerprint() == off.fingerprint() == parse_workflow(TINY).fingerprint()
+    a, b = _reduced(LEVEL, tmp_path / "on"), _reduced(_mirror(LEVEL, "false"), tmp_path / "off")
+    assert (a["v_by"] == "mirror symmetry").all() and (b["v_by"] == "independent").all()
+    for col in ("v", "v_lo", "v_hi", "dv", "dv_lo", "dv_hi"):
+        assert (a[col] == 0.0).all(), col
+    assert a["steady"].all() and (b["v"] != 0.0).any()
+    # every even column (D, EB, stationarity, ...) bit for bit as without images
+    even = [c for c in a.columns if c not in ODD]
+    pd.testing.assert_frame_equal(a[even], b[even])
+
+
+@pytest.mark.parametrize("text,problem", [
+    (_mirror(_with("tilt = 2.0"), '"yes"'), "must be true or false"),
+    (_mirror(_with("tilt = 2.0"), "true").replace("chunk_size = 4", "chunk_size = 1"), "is odd"),
+    (_with("tilt = 2.0").replace('initial = "launched"', 'initial = "launched"\nmirror = true'),
+     "the same mirror for every family"),
+])
+def test_a_bad_mirror_is_one_line_naming_the_key(text, problem):
+    with pytest.raises(WorkflowError) as e:
+        parse_workflow(text, source="wf.toml")
+    msg = str(e.value)
+    assert "\n" not in msg and "wf.toml:" in msg and ".mirror" in msg and problem in msg
+
+
+def test_an_odd_chunk_is_fine_where_images_are_not_simulated():
+    study = parse_workflow(TINY.replace("chunk_size = 4", "chunk_size = 1"))
+    assert {study.pairing(f) for f in study.families} == {"mirror symmetry"}
+
+
+def test_a_conveyor_chunk_with_mirror_pairs_is_the_familys_draw_then_the_partners(tmp_path):
+    import numpy as np
+
+    from bbb import simulate
+    from bbb.ensemble import initial_state, mirror_pair_units
+    from bbb.stats import bootstrap_D
+    from pipeline.reduce import _reduce_seed
+
+    text = _mirror(_with("tilt = 2.0"), "true")
+    study = parse_workflow(text)
+    assert study.fingerprint() != parse_workflow(_with("tilt = 2.0")).fingerprint()
+    store = StudyStore.create_or_open(tmp_path / "s.zarr", study)
+    compute_chunk(store, 1, 0, 1)
+    x = store.read_done("positions", 1, 0, np.array([False, True]))
+    p, acc = study.params(60.0), study.accuracy
+    drawn = initial_state(p, 2, study.seed_sequence(60.0, study.families[0], 1), "rest")
+    first = simulate(p, 2, acc.t_max, 0, drawn, sample_times=study.sample_times(),
+                     numerics=acc.numerics())
+    assert np.array_equal(x[:2], first.positions)  # the drawn half: the family's own draw
+    assert not np.array_equal(x[2:], x[:2])  # partners, not copies
+    # the D column resamples pairs
+    table = _reduced(text, tmp_path / "all")
+    assert (table["v_by"] == "pairs").all()
+    study, row = parse_workflow(text), table.iloc[0]
+    s = StudyStore.open(tmp_path / "all" / "s.zarr")
+    xs = np.concatenate([s.read_done("positions", 0, mi, s.done()[0, mi]) for mi in range(2)])
+    units = np.concatenate([mirror_pair_units(8, 4), 4 + mirror_pair_units(8, 4)])
+    T = study.analysis.duration(acc.t_max)
+    d = bootstrap_D(xs, study.sample_times(), n_resamples=acc.n_resamples, seed=_reduce_seed(
+        study, 54.0), fit_from=0.05 * T, fit_to=0.25 * T, discard=0.1, units=units)
+    assert (row["D"], row["D_lo"], row["D_hi"]) == tuple(d)

@@ -11,9 +11,17 @@ significant v   v(f) ≠ 0 at a frequency when |v| exceeds z_n standard errors (
                 particle at rest has |v| ~ 1e-16 mm/s with a CI of rounding size).
 steady only     every rule uses the frequencies whose drift is steady (bbb.transport: not
                 steady when the CI of v(second half) − v(first half) lies beyond ±(5 % of |v|
-                + 1e-6 mm/s), the rule bbb.stationarity applies to D); where
-                the ensemble accelerates (runs away downhill) v and D are window means, not
-                transport coefficients.  The rows say how many frequencies were left out.
+                + k SE(v) + 1e-6 mm/s), k calibrated on synthetic steady and accelerating
+                drifts, bbb/transport_rules.json); where the ensemble accelerates (runs away
+                downhill) v and D are window means, not transport coefficients.  The rows say
+                how many frequencies were left out.
+diffusive only  an extremum of v(f) or of D_drift(f) at a frequency whose D about the drift is
+                not diffusive (bbb.transport: the CI of the MSD's slope ratio, upper over
+                lower half of the fit lags, lies above 1 + a calibrated tolerance) is not
+                counted: the MSD about the drift still steepens over the fit lags -- particles
+                running at different speeds (some stuck), or velocity memory as long as the
+                lags -- so D_drift is a window slope, not a diffusion coefficient, and v may
+                average a population that does not mix.  The rows name them.
 reversal        a sign change between consecutive significant frequencies (those in between
                 not significant).  The claim counts reversals over all conveyor scenes; it
                 agrees with ≥ 1.
@@ -23,7 +31,12 @@ extrema         bbb.extrema.find_extrema (Bonferroni over all pairs, family-wise
                 "D irregular": ≥ 2 extrema of D_drift(f) (a curve with a maximum and a
                 minimum is not monotonic) per conveyor scene; the row also gives the count
                 at φ = 0, ψ = 90°.
-no current      at φ = 0, ψ = 90° (mirror symmetric): no frequency with a significant v.
+no current      at φ = 0, ψ = 90° (mirror symmetric): no frequency with a significant v.  With
+                mirror pairs (the default there) every particle's image counts and v = 0
+                exactly: the claim then holds by construction, a property of the design, not
+                a measurement, and the row says so.  With independent particles the rule fails
+                by chance on a measured fraction of current-free curves (its design
+                false-alarm rate, benchmarks/transport_mirror.py -> mirror.json).
 sliding         on the sliding scenes' floor (φ = 0°, ψ = 30°), below its lift-off frequency
                 (bbb.liftoff: no particle at rest anywhere on the floor can lift off there),
                 the frequencies with a significant v: 0 under stick (a stuck particle rides
@@ -35,7 +48,9 @@ record: the extrema are reported by frequency.
 
 from __future__ import annotations
 
+import json
 import math
+from importlib import resources
 from statistics import NormalDist
 
 import numpy as np
@@ -44,6 +59,7 @@ import pandas as pd
 from bbb import Params
 from bbb.extrema import find_extrema
 from bbb.liftoff import liftoff_frequency
+from bbb.transport import SYMMETRY
 
 from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, markdown_table, measure
 
@@ -70,6 +86,9 @@ ALPHA = 0.05
 V_MIN = 1e-6  # mm/s
 D_MIN = 1e-6  # mm²/s
 _Z95 = NormalDist().inv_cdf(0.975)
+#: the mirror-pair benchmark: variance saved per scene, T1's false alarms without pairs
+MIRROR: dict = json.loads(resources.files(__package__).joinpath("mirror.json")
+                          .read_text(encoding="utf-8"))
 
 
 def significant_signs(v, lo, hi, ci: float = 0.95, alpha: float = ALPHA) -> np.ndarray:
@@ -117,18 +136,48 @@ def _extrema_text(ex) -> str:
     return ", ".join(f"{e.kind} {e.f:g} Hz" for e in ex) or "none"
 
 
+def _counted(ex, t: pd.DataFrame) -> tuple[list, str]:
+    """The extrema at frequencies whose D about the drift is diffusive (the column
+    ``diffusive``, NA counts as diffusive: nothing moves to test) and a text naming the
+    others."""
+    if "diffusive" not in t:
+        return list(ex), ""
+    bad = set(t["f"][~t["diffusive"].fillna(True).astype(bool)])
+    keep = [e for e in ex if e.f not in bad]
+    dropped = [e for e in ex if e.f in bad]
+    return keep, (f"; not counted: {_extrema_text(dropped)} (D about the drift not diffusive)"
+                  if dropped else "")
+
+
+def _design_false_alarms() -> str:
+    fa = MIRROR.get("t1_false_alarm")
+    if not fa:
+        return ""
+    return (f"With independent particles this rule fails by chance on {100 * fa['rate']:.1f} % "
+            f"[{100 * fa['lo']:.1f}, {100 * fa['hi']:.1f}] % of current-free curves "
+            f"({fa['n_frequencies']} frequencies x {fa['n_particles']} particles; "
+            f"{fa['curves']} null curves, benchmarks/transport_mirror.py).")
+
+
 @measure("transport_no_current")
 def no_current(claim: Claim, ctx) -> Measured:
     t = _table(ctx, claim.scene)
     if t is None:
         return Measured(missing=f"no transport columns for {claim.scene}")
+    if "v_by" in t and len(t) and (t["v_by"] == SYMMETRY).all():
+        return Measured([Part(LABELS[claim.scene], Quantity(0.0),
+                              f"v = 0 exactly at all {len(t)} frequencies, by construction: "
+                              "every particle's mirror image counts (mirror pairs on a "
+                              "mirror-symmetric floor), so the claim is a property of the "
+                              "ensemble's design, not a measurement")],
+                        note=_design_false_alarms())
     s = significant_signs(t["v"], t["v_lo"], t["v_hi"])
     where = t["f"][s != 0].tolist()  # steady rows only; at φ = 0, ψ = 90° all should be
     vmax = float(np.abs(t["v"]).max())
     return Measured([Part(LABELS[claim.scene], Quantity(float(len(where))),
                           f"{len(where)} of {len(t)} frequencies with a significant v "
                           f"({', '.join(f'{x:g}' for x in where) or 'none'}); max |v| = "
-                          f"{vmax:.3g} mm/s")])
+                          f"{vmax:.3g} mm/s")], note=_design_false_alarms())
 
 
 @measure("transport_v_extrema")
@@ -138,10 +187,11 @@ def v_extrema(claim: Claim, ctx) -> Measured:
         t = _table(ctx, sc)
         if t is None:
             continue
-        ex = find_extrema(t["f"], t["v"], t["v_lo"], t["v_hi"], min_depth=V_MIN)
+        ex, dropped = _counted(find_extrema(t["f"], t["v"], t["v_lo"], t["v_hi"],
+                                            min_depth=V_MIN), t)
         parts.append(Part(LABELS[sc], Quantity(float(len(ex))),
-                          f"{len(ex)} ({_extrema_text(ex)}); v from {t['v'].min():.3g} to "
-                          f"{t['v'].max():.3g} mm/s{_left_out(t)}"))
+                          f"{len(ex)} ({_extrema_text(ex)}{dropped}); v from {t['v'].min():.3g} "
+                          f"to {t['v'].max():.3g} mm/s{_left_out(t)}"))
     return Measured(parts) if parts else Measured(missing="no conveyor scene reduced")
 
 
@@ -171,16 +221,17 @@ def d_extrema(claim: Claim, ctx) -> Measured:
         t = _table(ctx, sc)
         if t is None:
             return None
-        ex = find_extrema(t["f"], t["D_drift"], t["D_drift_lo"], t["D_drift_hi"],
-                          min_depth=D_MIN)
-        return ex, _left_out(t)
+        ex, dropped = _counted(find_extrema(t["f"], t["D_drift"], t["D_drift_lo"],
+                                            t["D_drift_hi"], min_depth=D_MIN), t)
+        return ex, dropped + _left_out(t)
 
     ref = count(HOPPING[0])
-    parts = [Part(LABELS[sc], Quantity(float(len(ex))), f"{len(ex)} ({_extrema_text(ex)}){lo}")
+    parts = [Part(LABELS[sc], Quantity(float(len(ex))), f"{len(ex)} ({_extrema_text(ex)}{lo})")
              for sc in CONVEYORS if (r := count(sc)) is not None for ex, lo in [r]]
     if not parts:
         return Measured(missing="no conveyor scene reduced")
-    ref_txt = ("not reduced" if ref is None else f"{len(ref[0])} ({_extrema_text(ref[0])})")
+    ref_txt = ("not reduced" if ref is None
+               else f"{len(ref[0])} ({_extrema_text(ref[0])}{ref[1]})")
     return Measured(parts, text=f"at {LABELS[HOPPING[0]]}: {ref_txt}")
 
 
@@ -215,11 +266,13 @@ def sliding(claim: Claim, ctx) -> Measured:
 CLAIMS = [
     Claim("Mirror symmetry: a level floor vibrated vertically carries no current",
           "transport_no_current", HOPPING[0],
-          Band(0.0, 0.0, "rule: no frequency with a significant v (Bonferroni, α = 0.05)")),
+          Band(0.0, 0.0, "rule: no frequency with a significant v (Bonferroni, α = 0.05); "
+               "with mirror pairs v = 0 by construction")),
     Claim("Integer frequency lockings produce extrema of the transport rate (paper's outlook, "
           "after Hongler et al.)", "transport_v_extrema", "",
           Band(1.0, math.inf, "rule: at least one significant extremum of v(f) per conveyor "
-               "scene (bbb.extrema, family-wise α = 0.05)")),
+               "scene (bbb.extrema, family-wise α = 0.05), none counted where D about the "
+               "drift is not diffusive")),
     Claim("Current reversals: the sign of the current changes with the driving (paper's "
           "outlook, after Grochowski et al.)", "transport_reversals", "",
           Band(1.0, math.inf, "rule: at least one sign change between frequencies whose v is "
@@ -227,7 +280,8 @@ CLAIMS = [
     Claim("Not only the current, but also the diffusion coefficient may be irregular functions "
           "of control parameters", "transport_d_extrema", "",
           Band(2.0, math.inf, "rule: at least 2 significant extrema of D about the drift "
-               "(a maximum and a minimum) per conveyor scene")),
+               "(a maximum and a minimum) per conveyor scene, none counted where it is not "
+               "diffusive")),
     Claim("Below lift-off a vibratory conveyor transports by sliding only: the stick model "
           "carries no current there, Coulomb friction does (conveyor theory's sliding regime; "
           "issue 13)", "transport_sliding", "",

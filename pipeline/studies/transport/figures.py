@@ -1,6 +1,8 @@
 """The transport figures: (a) drift v(f) and (b) D(f) about the drift, with their bootstrap
 CIs, one curve per (tilt φ, throw ψ); hollow markers where the drift is not steady (the
-ensemble accelerates: v and D are window means there).  And the sliding regime: v(f) on one
+ensemble accelerates: v and D are window means there), crossed where D about the drift is
+not diffusive (its MSD still steepens over the fit lags: particles running at different
+speeds, or velocity memory as long as the lags).  And the sliding regime: v(f) on one
 floor per contact model, with the lift-off frequency marked, and the time held and sliding.
 Units: f Hz, v mm/s, D mm²/s."""
 
@@ -23,8 +25,11 @@ CAPTIONS = {
     "fig_transport": (
         "Transport on a vibro-conveyor at the paper's parameters: (a) drift v(f) and (b) D about "
         "the drift, bootstrap 95 % CIs over particles, one curve per (tilt φ, throw ψ); hollow "
-        "markers where the drift is not steady (window means). Scenes transport_t0, _t2, _t5, "
-        "_p60, _p30."),
+        "markers where the drift is not steady (window means), crossed where D about the drift "
+        "is not diffusive (its MSD still steepens over the fit lags: particles running at "
+        "different speeds, some stuck, or velocity memory as long as the lags; bbb.transport). "
+        "On the level floor (φ = 0°, ψ = 90°) every particle's mirror image counts: v = 0 "
+        "exactly, by construction, without a CI. Scenes transport_t0, _t2, _t5, _p60, _p30."),
     "fig_transport_sliding": (
         "The sliding regime: drift v(f) on a level floor of the paper's arcs thrown at ψ = 30°, "
         "under the stick model and Coulomb friction μ = 0.3, bootstrap 95 % CIs; dashed: the "
@@ -58,6 +63,10 @@ def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathL
                 ax_d.errorbar(sel["f"], sel["D_drift"], yerr=[sel["D_drift"] - sel["D_drift_lo"],
                                                               sel["D_drift_hi"] - sel["D_drift"]],
                               **kw)
+            if "diffusive" in t:  # crossed: D about the drift is a window slope there
+                bad = t[~t["diffusive"].fillna(True).astype(bool)]
+                for ax, col in ((ax_v, "v"), (ax_d, "D_drift")):
+                    ax.plot(bad["f"], bad[col], "x", ms=7, mew=1.2, color=c, zorder=5)
         ax_v.axhline(0.0, color="0.6", lw=0.8, zorder=0)
         ax_v.set_yscale("symlog", linthresh=1.0)
         ax_v.set_ylabel("drift v (mm/s)")

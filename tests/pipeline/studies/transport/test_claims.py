@@ -142,3 +142,44 @@ def test_the_sliding_scenes_are_the_floor_and_contact_models_the_claim_assumes()
         p = load_scene(scene).params(50.0)
         assert (p.tilt, p.throw) == (SLIDING_GEOMETRY["tilt"], SLIDING_GEOMETRY["throw"])
         assert (p.contact, p.mu) == (contact, mu)
+
+
+def test_the_no_current_claim_holds_by_construction_with_mirror_images_and_says_so():
+    zero = np.zeros(F.size)
+    t = _table(zero, zero, zero)
+    t["v_by"] = "mirror symmetry"
+    row = evaluate(CLAIMS, {"tables": {HOPPING[0]: t}})[0]
+    assert row.verdict == "agrees" and "by construction" in row.measured
+    assert "not a measurement" in row.measured
+    t["v_by"] = "independent"  # the same zeros estimated from independent particles
+    row = evaluate(CLAIMS, {"tables": {HOPPING[0]: t}})[0]
+    assert row.verdict == "agrees" and "by construction" not in row.measured
+
+
+def test_extrema_where_D_about_the_drift_is_not_diffusive_are_not_counted():
+    d = 20 + 5 * np.sin(F / 4.0)  # a maximum and a minimum per scene: T4 agrees
+    v = -5.0 - 4.0 * np.sin(2 * np.pi * (F - 50.0) / 25.0)
+    tables = {s: _table(v, v - 0.3, v + 0.3, d=d) for s in CONVEYORS}
+    rows = evaluate(CLAIMS, {"tables": tables})
+    assert rows[1].verdict == "agrees" and rows[3].verdict == "agrees"
+    for s in CONVEYORS:  # ballistic spread everywhere but the ends
+        tables[s]["diffusive"] = (F < 52) | (F > 98)
+    rows = evaluate(CLAIMS, {"tables": tables})
+    assert rows[1].verdict == "disagrees" and rows[3].verdict == "disagrees"
+    assert "not counted" in rows[3].measured and "not diffusive" in rows[3].measured
+
+
+def test_the_docs_quote_the_committed_calibration_and_benchmark():
+    from pathlib import Path
+
+    from bbb.transport import CURVATURE_TOL, STEADY_SE
+    from pipeline.studies.transport.claims import MIRROR
+
+    doc = (Path(__file__).resolve().parents[4] / "docs" / "statistics.md").read_text("utf-8")
+    fa = MIRROR["t1_false_alarm"]
+    assert f"k = {STEADY_SE:g} is the smallest" in doc
+    assert f"the CI lies above {1 + CURVATURE_TOL:g}" in doc
+    assert f"fails by chance on {100 * fa['rate']:.1f} % [{100 * fa['lo']:.1f}, " \
+           f"{100 * fa['hi']:.1f}] %" in doc
+    t5 = MIRROR["variance"]["transport_t5"]["v"]
+    assert f"| tilt 5° | {t5['ratio']:.3g} [{t5['lo']:.2f}, {t5['hi']:.2f}] |" in doc

@@ -39,3 +39,18 @@ def test_the_sliding_figure_draws_each_models_held_and_sliding_fractions_below_v
             ln = lines[f"{SLIDING_LABELS[sc]}: {what}"]
             t = contact[sc].sort_values("f")
             assert np.array_equal(ln.get_xdata(), t["f"]) and np.array_equal(ln.get_ydata(), t[col])
+
+
+def test_points_whose_D_about_the_drift_is_not_diffusive_are_crossed(tmp_path):
+    from pipeline.studies.transport.claims import HOPPING
+    from pipeline.studies.transport.figures import figure_transport
+
+    f = np.arange(50.0, 60.1, 2.0)
+    t = pd.DataFrame({"f": f, "v": -f, "v_lo": -f - 0.1, "v_hi": -f + 0.1, "D_drift": f,
+                      "D_drift_lo": f - 1, "D_drift_hi": f + 1, "steady": True,
+                      "diffusive": pd.array([True, None, False, True, False, True], "boolean")})
+    fig = figure_transport({HOPPING[1]: t}, tmp_path)
+    for ax, col in zip(fig.axes, ("v", "D_drift"), strict=True):
+        crossed = [ln for ln in ax.get_lines() if ln.get_marker() == "x"]
+        assert len(crossed) == 1 and list(crossed[0].get_xdata()) == [54.0, 58.0]
+        assert list(crossed[0].get_ydata()) == list(t[col][[2, 4]])
