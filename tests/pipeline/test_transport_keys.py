@@ -25,7 +25,8 @@ BEFORE = {
     "finescale": "5d2d9b20f6715454931ae2fa5a1c5aeaa2fab121a9cf89803f7b7d4fab118c7c",
     "locking": "d2b86776f65b2503595163072a4233b9cf84d6a51fa161e1cd2a9019994ac524",
     "locking_matyas2004": "5f6e4ec1397a51b6b3ddf0b41f2b9faea8540e9d35071ca4b435bc941f50d29c",
-    "mechanisms": "4286ca121359b87343825282b8f73e165053d927535ba7ac4bbd8275377b39f9",
+    # mechanisms: records per-collision jumps from 5 s since 2026-11-25 (x_jumps; the scene explains)
+    "mechanisms": "3f917dc4900752a2632e5178276b796503be2693386c2eb8ed5ca8a4b6f11455",
     "smoke": "27388bc65e6950507b8067cc506473e2a493d294ff3ad699bf8474b8454a2f86",
 }
 TRANSPORT_COLUMNS = {"v", "v_lo", "v_hi", "D_drift", "D_drift_lo", "D_drift_hi", "Pe"}
