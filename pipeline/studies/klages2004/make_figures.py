@@ -38,6 +38,7 @@ import contextlib
 import importlib
 import json
 import os
+import re
 import sys
 import time
 from collections.abc import Callable, Iterator
@@ -79,6 +80,7 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     from ...reduce import reduce_store
     from ...run import run_study
     from . import figures as fg
+    from .changes import changes_section
     from .committed import (
         TABLE_FILES,
         read_study_tables,
@@ -171,11 +173,18 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     readme = ROOT / "README.md"
     if out.resolve() == (ROOT / "figures").resolve() and readme.is_file():
         update_readme(readme, log)  # the committed figures: the README's table of run times
+    previous = out / "REPORT.md"
+    previous = previous.read_text(encoding="utf-8") if previous.is_file() else None
     report = write_report(out, stores=stores, tables=read_tables(out), figures=paths,
                           run_log=log, captions=captions)
     if extra_lines:
         with open(report, "a", encoding="utf-8") as fh:
             fh.write("\n".join(extra_lines) + "\n")
+    written = re.search(r"^Written (\S+) by", previous or "", re.M)
+    changes = changes_section(previous, report.read_text(encoding="utf-8"),
+                              written and written.group(1))
+    with open(report, "a", encoding="utf-8") as fh:
+        fh.write("\n".join(changes) + "\n")
     echo(f"figures: {', '.join(str(p) for p in paths if p.suffix == '.png')}")
     echo(f"tables:  {', '.join(table_files.values())}")
     echo(f"report:  {report}")

@@ -1,0 +1,52 @@
+"""The report's section of changed verdicts: every change is listed, and none is invented."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+from pipeline.studies.klages2004.changes import HEADING, changes_section, verdicts
+
+REPORT = Path(__file__).resolve().parents[4] / "figures" / "REPORT.md"
+
+
+def _claim_rows(text: str) -> list[str]:
+    """Rows of the numbered claims tables: first cell an id (5, M1, T3), fourth a verdict."""
+    return [line for line in text.splitlines()
+            if re.match(r"^\| [A-Z]?\d+ \|", line) and " | **" in line]
+
+
+def test_every_numbered_claim_row_of_the_committed_report_is_read():
+    text = REPORT.read_text(encoding="utf-8")
+    rows = _claim_rows(text)
+    assert len(rows) >= 19
+    assert len(verdicts(text)) == len(rows)
+
+
+def test_a_changed_verdict_is_listed_with_its_old_and_new_value():
+    text = REPORT.read_text(encoding="utf-8")
+    cid, (claim, verdict, _) = next(iter(verdicts(text).items()))
+    other = "agrees" if verdict != "agrees" else "disagrees"
+    row = next(r for r in _claim_rows(text) if r.startswith(f"| {cid} |"))
+    new = text.replace(row, row.replace(f"| **{verdict}** |", f"| **{other}** |", 1))
+    lines = changes_section(text, new, "2026-01-01")
+    assert HEADING in lines
+    listed = [r for r in lines if r.startswith(f"| {cid} |")]
+    assert listed and f"**{verdict}** | **{other}**" in listed[0]
+    assert len([r for r in lines if re.match(r"^\| [A-Z]?\d+ \|", r)]) == 1
+
+
+def test_an_unchanged_report_lists_no_claim():
+    text = REPORT.read_text(encoding="utf-8")
+    lines = changes_section(text, text)
+    assert not [r for r in lines if re.match(r"^\| [A-Z]?\d+ \|", r)]
+    assert any("is the one of the previous report" in r for r in lines)
+
+
+def test_a_claim_new_or_gone_is_listed_as_such():
+    text = REPORT.read_text(encoding="utf-8")
+    row = _claim_rows(text)[-1]
+    lines = changes_section(text.replace(row + "\n", ""), text)
+    assert any("(new claim)" in r for r in lines)
+    lines = changes_section(text, text.replace(row + "\n", ""))
+    assert any("(claim removed)" in r for r in lines)
