@@ -58,7 +58,7 @@ MAX_ANGLE_STEP = 0.02
 #: nominal step's worth of time covered, may not exceed STRETCH_BUDGET (margins measured by
 #: benchmarks/guards.py)
 PAYBACK = 64.0
-STRETCH_BUDGET = 2.0**20
+STRETCH_BUDGET = 2.0**24
 
 
 @njit(cache=True, inline="always")
