@@ -137,8 +137,10 @@ def exit_wait(s, w, lo, hi):
 @njit(cache=True)
 def enter_wait(s, w, lo, hi):
     """Time (s) until u = sin ω(s+τ) first lies in the open (lo, hi): 0 if it does now, inf
-    if never."""
-    if not lo < hi or lo >= 1.0 or hi <= -1.0:
+    if never.  An interval narrower than 16 ε is empty: its ends are one boundary rounded two
+    ways (throw = 90° − tilt: the effective gravity and with it every load of both walls
+    vanishes at one phase, and a wall's N and pull change sign together)."""
+    if not hi - lo > 16.0 * 2.220446049250313e-16 or lo >= 1.0 or hi <= -1.0:
         return math.inf
     u0 = math.sin(w * s)
     if lo < u0 < hi:
