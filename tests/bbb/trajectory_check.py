@@ -762,7 +762,11 @@ def _slip(fl: Floor, mu, d, th_a, th_b, cusp, tol):
             else:
                 lo = mid
         th_s = hi
-    arc = float(_slip_excess(fl, mu, d, np.array(th_s), cusp)[1])
+    # the wall it slides up: the one whose slip condition holds just after the slip, 2π·2⁻²⁰
+    # rad on (at the slip itself, where the effective gravity vanishes, both walls' loads are
+    # 0 and rounding would pick)
+    after = min(th_s + 2 * math.pi * 2.0**-20, 0.5 * (th_s + th_b)) if th_b > th_s else th_s
+    arc = float(_slip_excess(fl, mu, d, np.array(after), cusp)[1])
     # the least load up to the slip itself (the sample after it may lie past the floor's
     # letting go: a slip where N is about to reach 0, |F_t| ≤ μN failing just before)
     at_slip = float(_floor_load(fl, mu, d, np.array(th_s), cusp))
