@@ -181,7 +181,7 @@ def clear_of_cusp(q, v, dv, h, J, R, q_c):
 
 @njit(cache=True)
 def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos, isamp,
-          cell, tol_t, side):
+          cell, tol_t, side, start_dir=0.0):
     """Integrate one contact stretch from (θ or d = q, v, floor time s, period count tp)
     until an event.  Writes x (mm) at the sample times passed into ``pos``.
 
@@ -189,6 +189,9 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
     time); on a conveyor (gx, Ax): the along-plane gravity (mm/s²) and floor amplitude (mm),
     with g, A then the normal ones (gy, Ay); q, v are relative to the moving floor and the
     positions written are the lab's, cell·S + d + X_f (bbb.conveyor).
+
+    ``start_dir`` (±1) is the direction of a start from rest where the caller knows it (a slip
+    up a cusp's wall, or where the pull is ~0 at the slip: μN ≈ 0); 0: the pull's sign then.
 
     Returns (q, v, s, tp, cell, isamp, event, elapsed time in s, the step debt's peak).  A
     flat floor's q is the offset d, wrapped into [-S/2, S/2) with ``cell``.  The step debt
@@ -201,6 +204,8 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
         # where static friction cannot hold it)
         if side is None:
             sgn = 1.0 if math.sin(q) > 0.0 else -1.0
+        elif start_dir != 0.0:
+            sgn = start_dir
         else:
             sgn = 1.0 if tangential_force(q, s, g, A, w, flat, side) > 0.0 else -1.0
     sin_c = 0.0 if flat else min(0.5 * S / R, 1.0)

@@ -140,6 +140,24 @@ def liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry):
     return best
 
 
+@njit(cache=True, inline="always")
+def wall_met(cell, d, vx, vy, s, Ax, Ay, w, R, S):
+    """(cell, d) of the wall a collision at offset d meets: at a cusp (within CUSP_REACH) the
+    one the particle approaches, relative normal speed < 0 — the nearest arc by rounding may
+    be the one it leaves (a rattle down a steep cusp: Eq. (5) took |u⊥| on the wrong wall)."""
+    side = cusp_side(d, R, S)
+    if side == 0:
+        return cell, d
+    cw = w * math.cos(w * s)
+    ux = vx + Ax * cw
+    uy = vy + Ay * cw
+    nx, ny = arc_normal(d, R)
+    mx, my = arc_normal(d - side * S, R)
+    if ux * nx + uy * ny >= 0.0 and ux * mx + uy * my < 0.0:
+        return cell + side, d - side * S
+    return cell, d
+
+
 @njit(cache=True)
 def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta, tilt,
              throw, t_max, sample_times, pos, rec_from, rec, tol_t, v_stick, h_max_periods,
@@ -276,6 +294,7 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
         vx = vx - gx * tau
         vy = vy - gy * tau
         s, tp = wrap_period(s + tau, tp, T)
+        cell, d = wall_met(cell, d, vx, vy, s, Ax, Ay, w, R, S)
         y = -Ay * math.sin(w * s) - arc_depth(d, R)
         vx, vy, un_out, kicked = collide_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, alpha, beta,
                                            v_stick, not kicked)

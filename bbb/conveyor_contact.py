@@ -26,7 +26,7 @@ import math
 
 from numba import njit
 
-from .contact import BUDGET, CUSP, END, LIFT, normal_force, slide
+from .contact import BUDGET, CUSP, END, LIFT, normal_force, slide, tangential_force
 from .conveyor_search import cusp_side, times_or_zero
 from .kernel import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row, wrap_period
 from .surface import arc_curvature, arc_depth, arc_normal, arc_slope
@@ -216,6 +216,7 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, gx, gy, Ax, Ay, w
     clock the particle was held."""
     ns = sample_times.shape[0]
     t_now = tp * T + (s - s0)
+    start_dir = 0.0
     if stuck:
         t_f, wall = slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)
         # at least tol_t held: a particle sent straight back into a cusp (at a slip's edge)
@@ -236,16 +237,23 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, gx, gy, Ax, Ay, w
         if side != 0:
             # in a cusp it rests at the cusp point (CUSP_REACH): it slides from there, up its
             # own arc or the neighbour's (moving x by ≤ CUSP_REACH·S; from where it lay, up the
-            # neighbour's wall would start on that circle beyond its arc, under the floor)
+            # neighbour's wall would start on that circle beyond its arc, under the floor),
+            # towards that arc's centre
             d = side * 0.5 * S
             if wall != 0:
                 cell += wall
                 d -= wall * S
+            start_dir = -1.0 if d > 0.0 else 1.0
         q = d if flat else math.asin(max(-1.0, min(1.0, d / R)))
+        if side == 0:
+            # the way the pull points just after the slip: at it |F_t| = μN, ~0 for a tiny μN,
+            # where rounding would pick the sign (T·2⁻²⁰ on, the pull's sign is its own)
+            ft = tangential_force(q, s + T * 2.0**-20, gy, Ay, w, flat, (gx, Ax))
+            start_dir = 1.0 if ft > 0.0 else -1.0
         vt = 0.0
     q, vt, s, tp, cell, isamp, ev, el, worst = slide(q, vt, s, tp, s0, T, gy, Ay, w, R, S, mu,
                                                      flat, t_max, sample_times, pos, isamp, cell,
-                                                     tol_t, (gx, Ax))
+                                                     tol_t, (gx, Ax), start_dir)
     if ev == CUSP:
         d = math.copysign(0.5 * S, q)
     else:
