@@ -763,10 +763,9 @@ def _slip(fl: Floor, mu, d, th_a, th_b, cusp, tol):
                 lo = mid
         th_s = hi
     # the wall it slides up: the one whose slip condition holds just after the slip, 2π·2⁻²⁰
-    # rad on (at the slip itself, where the effective gravity vanishes, both walls' loads are
-    # 0 and rounding would pick)
-    after = min(th_s + 2 * math.pi * 2.0**-20, 0.5 * (th_s + th_b)) if th_b > th_s else th_s
-    arc = float(_slip_excess(fl, mu, d, np.array(after), cusp)[1])
+    # rad on, whatever the recorded stretch's length (at the slip itself, where the effective
+    # gravity vanishes, both walls' loads are 0 and rounding would pick)
+    arc = float(_slip_excess(fl, mu, d, np.array(th_s + 2 * math.pi * 2.0**-20), cusp)[1])
     # the least load up to the slip itself (the sample after it may lie past the floor's
     # letting go: a slip where N is about to reach 0, |F_t| ≤ μN failing just before)
     at_slip = float(_floor_load(fl, mu, d, np.array(th_s), cusp))
@@ -844,7 +843,12 @@ def _check_contact(fl: Floor, v_stick, rep: Report, idx, slid, tau, a, b) -> Non
     # friction's sign is fixed over a stretch (the kernel ends one at every stop); a start
     # speed within its rounding (start_tol) of 0 has no sign of its own: the particle moves
     # the way the tangential force pulls it (at rest: F_t, downhill on the paper's arcs)
-    ft0 = _rest_loads(fl, mu, d_a, th0)[0] if not fl.flat else -_effective_gravity(fl, th0)[0]
+    # On the conveyor the pull is read just after the slip (2π·2⁻²⁰ rad on: at it |F_t| = μN,
+    # ~0 for a tiny μN, and rounding would pick), and from a cusp it slides up the wall it
+    # slipped on, towards that arc's centre
+    th_f = th0 + (2 * math.pi * 2.0**-20 if fl.conveyor else 0.0)
+    ft0 = _rest_loads(fl, mu, d_a, th_f)[0] if not fl.flat else -_effective_gravity(fl, th_f)[0]
+    ft0 = np.where(cusp_a & rest_a & fl.conveyor, -d_a, ft0)
     sgn = np.where(np.abs(v) <= start_tol, np.where(ft0 > 0, 1.0, -1.0), np.sign(v))
     # the faster of the floor's period and the arc's pendulum period 2π√(R/g_max)
     swing = math.inf if fl.flat else 2 * math.pi * math.sqrt(fl.R / (fl.g + fl.A * fl.w**2))
