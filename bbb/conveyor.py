@@ -142,20 +142,25 @@ def liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry):
 
 @njit(cache=True, inline="always")
 def wall_met(cell, d, vx, vy, s, Ax, Ay, w, R, S):
-    """(cell, d) of the wall a collision at offset d meets: at a cusp (within CUSP_REACH) the
-    one the particle approaches, relative normal speed < 0 — the nearest arc by rounding may
-    be the one it leaves (a rattle down a steep cusp: Eq. (5) took |u⊥| on the wrong wall)."""
+    """(cell, d, met) of the wall a collision at offset d meets: at a cusp (within CUSP_REACH)
+    the one the particle approaches, relative normal speed < 0 — the nearest arc by rounding
+    may be the one it leaves (a rattle down a steep cusp: Eq. (5) took |u⊥| on the wrong
+    wall); met is False where it leaves both walls there: the root found was the gap's
+    rounding at the cusp point (a bounce 4e-16 mm short of it 'hit' the neighbour 2e-16 s later,
+    again and again), not a collision."""
     side = cusp_side(d, R, S)
     if side == 0:
-        return cell, d
+        return cell, d, True
     cw = w * math.cos(w * s)
     ux = vx + Ax * cw
     uy = vy + Ay * cw
     nx, ny = arc_normal(d, R)
     mx, my = arc_normal(d - side * S, R)
-    if ux * nx + uy * ny >= 0.0 and ux * mx + uy * my < 0.0:
-        return cell + side, d - side * S
-    return cell, d
+    own = ux * nx + uy * ny
+    other = ux * mx + uy * my
+    if own >= 0.0 and other < 0.0:
+        return cell + side, d - side * S, True
+    return cell, d, own < 0.0 or other < 0.0
 
 
 @njit(cache=True)
@@ -294,8 +299,13 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
         vx = vx - gx * tau
         vy = vy - gy * tau
         s, tp = wrap_period(s + tau, tp, T)
-        cell, d = wall_met(cell, d, vx, vy, s, Ax, Ay, w, R, S)
+        cell, d, met = wall_met(cell, d, vx, vy, s, Ax, Ay, w, R, S)
         y = -Ay * math.sin(w * s) - arc_depth(d, R)
+        if not met:
+            # leaving both walls of a cusp: no collision, the flight goes on from here
+            from_surface = True
+            lifting = False
+            continue
         vx, vy, un_out, kicked = collide_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, alpha, beta,
                                            v_stick, not kicked)
         n_coll += 1
