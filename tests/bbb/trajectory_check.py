@@ -355,10 +355,11 @@ def check_particle(p, events: np.ndarray, samples: int = 64, per_period: int = 5
     yp = y0 + vy0 * tau_f - 0.5 * fl.gy * tau_f**2
     vx_end = vx - fl.gx * tau_f
     # rounding of each term, of the clock, of x, and of the floor's sideways displacement in
-    # both ends' lab x (the kernel's and the start row's −A cos ψ sin θ: 16 ε |Aₓ|)
+    # both ends' lab x (the kernel's and the start row's −A cos ψ sin θ: 16 ε |Aₓ|, and the
+    # rounding of sin's argument ω(s + τ), which a flight of many periods makes large)
     x_tol = 4.0 * (np.spacing(np.abs(xb)) + np.spacing(np.abs(vx * tau_f)) + np.spacing(np.abs(x0))
                    + np.spacing(0.5 * fl.gx * tau_f**2)) + np.abs(vx_end) * dtau_clock[k] + dxb \
-        + 16.0 * EPS * abs(fl.Ax)
+        + abs(fl.Ax) * (16.0 * EPS + 4.0 * np.spacing(2 * math.pi + th0 + fl.w * tau_f))
     rep.flag("off_parabola", np.abs(xb - xp) > x_tol, idx[k], np.abs(xb - xp), x_tol)
     # on the surface at its phase, to |G'| δτ (δτ = tol_t + clock) + rounding of y and x
     d_p = fl.offset(xp, thb)
