@@ -276,6 +276,12 @@ def compiled():
          alpha=0.3979875734303109, beta=0.17191560720598842, tilt=-21.83309838835644,
          throw=106.23038599435573, model=("coulomb", 1.2594203117868616), family="launched",
          seed=2775301032)  # a slip up the neighbour's wall from within CUSP_REACH (crawled)
+@example(f=80.0, A=0.5, radius=1.1640625, alpha=0.125, beta=1.0, tilt=2.7552364056913973e-14,
+         throw=90.0, model=("slide", 0.0), family="rest", seed=0)  # leaving both walls of a cusp
+@example(f=159.17797533443758, A=0.9358020402058362, radius=51.84506391172527,
+         alpha=0.32812351320659694, beta=0.9958783676717431, tilt=0.0, throw=17.246952467194383,
+         model=("coulomb", 1.5392620528858287), family="dropped",
+         seed=2646913958)  # x's rounding over a flight of many periods (checker)
 def test_no_contact_model_on_a_tilted_and_thrown_floor_breaks_the_checker(
         f, A, radius, alpha, beta, tilt, throw, model, family, seed):
     """The conveyor kernel under every contact model (stick, slide, Coulomb with μ up to 3)
