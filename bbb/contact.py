@@ -46,6 +46,7 @@ LIFT = 1
 CUSP = 2
 STOP = 3
 END = 4
+BUDGET = 5  # more than STRETCH_BUDGET steps without progress: the caller stops (bbb.simulate raises)
 #: RK4 steps per floor period at most
 STEPS_PER_PERIOD = 256.0
 #: RK4 steps per pendulum period 2π√(R/g_max) at most (the timing error of a stretch grows
@@ -53,6 +54,11 @@ STEPS_PER_PERIOD = 256.0
 STEPS_PER_SWING = 2048.0
 #: largest angle (rad) a step may sweep
 MAX_ANGLE_STEP = 0.02
+#: the step budget of a contact stretch (slide): its debt, tried steps less PAYBACK for each
+#: nominal step's worth of time covered, may not exceed STRETCH_BUDGET (margins measured by
+#: benchmarks/guards.py)
+PAYBACK = 64.0
+STRETCH_BUDGET = 2.0**24
 
 
 @njit(cache=True, inline="always")
@@ -108,15 +114,15 @@ def tangential_force(q, s, g, A, w, flat, side):
 
 @njit(cache=True)
 def rk4(q, v, s, h, g, A, w, R, mu, sgn, flat, side):
-    """One classic RK4 step of length h (s) from floor time s; returns (q, v)."""
+    """One classic RK4 step of length h (s) from floor time s; returns the increments (δq, δv)
+    (the caller adds them: q + δq is the same rounding as before the split)."""
     k1q, k1v = rates(q, v, s, g, A, w, R, mu, sgn, flat, side)
     k2q, k2v = rates(q + 0.5 * h * k1q, v + 0.5 * h * k1v, s + 0.5 * h, g, A, w, R, mu, sgn, flat,
                      side)
     k3q, k3v = rates(q + 0.5 * h * k2q, v + 0.5 * h * k2v, s + 0.5 * h, g, A, w, R, mu, sgn, flat,
                      side)
     k4q, k4v = rates(q + h * k3q, v + h * k3v, s + h, g, A, w, R, mu, sgn, flat, side)
-    return (q + h * (k1q + 2.0 * k2q + 2.0 * k3q + k4q) / 6.0,
-            v + h * (k1v + 2.0 * k2v + 2.0 * k3v + k4v) / 6.0)
+    return h * (k1q + 2.0 * k2q + 2.0 * k3q + k4q) / 6.0, h * (k1v + 2.0 * k2v + 2.0 * k3v + k4v) / 6.0
 
 
 @njit(cache=True)
@@ -160,20 +166,22 @@ def step_bounds(va, vb, h, g, A, w, R, mu, flat, sin_c, side):
 
 @njit(cache=True, inline="always")
 def clear_of_cusp(q, v, dv, h, J, R, q_c):
-    """Whether θ(τ) < θ_c for τ in (0, h] (s) by the cubic bound R θ(τ) ≤ R θ_a + v_a τ
-    + v̇_a τ²/2 + J τ³/6 (J ≥ sup|v̈| on the step), from θ_a = q ≤ θ_c (rad)."""
+    """Whether θ does not reach θ_c from below in (0, h] (s), by the cubic bound R θ(τ) ≤
+    R θ_a + v_a τ + v̇_a τ²/2 + J τ³/6 (J ≥ sup|v̈| on the step) from θ_a = q (rad): θ(τ) < θ_c
+    throughout, or, from θ_a ≥ θ_c (a slip up a neighbour's wall from within CUSP_REACH of the
+    cusp starts just beyond its arc's end), θ(τ) < θ_a throughout (moving back in)."""
     # θ(τ) − θ_a ≤ τ k(τ)/R with k(τ) = v_a + v̇_a τ/2 + J τ²/6 convex: k ≤ max(k(0), k(h))
     kh = v + 0.5 * dv * h + J * h * h / 6.0
     m = max(v, kh)
     if m > 0.0:
         return q + h * m / R < q_c
     # k ≤ 0 on [0, h] and < 0 on (0, h] when k(h) < 0: θ stays below θ_a
-    return q < q_c or (q <= q_c and kh < 0.0)
+    return q < q_c or kh < 0.0
 
 
 @njit(cache=True)
 def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos, isamp,
-          cell, tol_t, side):
+          cell, tol_t, side, start_dir=0.0):
     """Integrate one contact stretch from (θ or d = q, v, floor time s, period count tp)
     until an event.  Writes x (mm) at the sample times passed into ``pos``.
 
@@ -182,14 +190,22 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
     with g, A then the normal ones (gy, Ay); q, v are relative to the moving floor and the
     positions written are the lab's, cell·S + d + X_f (bbb.conveyor).
 
-    Returns (q, v, s, tp, cell, isamp, event, elapsed time in s).  A flat floor's q is the
-    offset d, wrapped into [-S/2, S/2) with ``cell``."""
+    ``start_dir`` (±1) is the direction of a start from rest where the caller knows it (a slip
+    up a cusp's wall, or where the pull is ~0 at the slip: μN ≈ 0); 0: the pull's sign then.
+
+    Returns (q, v, s, tp, cell, isamp, event, elapsed time in s, the step debt's peak).  A
+    flat floor's q is the offset d, wrapped into [-S/2, S/2) with ``cell``.  The step debt
+    counts tried steps less PAYBACK per nominal step's worth of time covered; above
+    :data:`STRETCH_BUDGET` it ends the stretch with the event BUDGET (the caller stops the
+    particle, bbb.simulate raises): no input makes a stretch crawl without end."""
     sgn = 1.0 if v > 0.0 else -1.0
     if v == 0.0:
         # from rest the particle moves downhill (the caller only starts a stretch at rest
         # where static friction cannot hold it)
         if side is None:
             sgn = 1.0 if math.sin(q) > 0.0 else -1.0
+        elif start_dir != 0.0:
+            sgn = start_dir
         else:
             sgn = 1.0 if tangential_force(q, s, g, A, w, flat, side) > 0.0 else -1.0
     sin_c = 0.0 if flat else min(0.5 * S / R, 1.0)
@@ -204,20 +220,38 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
     t_start = tp * T + (s - s0)
     n_a = normal_force(q, v, s, g, A, w, R, flat, side)
     if n_a <= 0.0:
-        return q, v, s, tp, cell, isamp, LIFT, 0.0
+        return q, v, s, tp, cell, isamp, LIFT, 0.0, 0.0
     if not flat and abs(q) >= q_c and q * v > 0.0:
-        return q, v, s, tp, cell, isamp, CUSP, 0.0
+        return q, v, s, tp, cell, isamp, CUSP, 0.0, 0.0
     h = h_nom  # the next step to try
     hunting = False  # an event lies within h of the current state: bisect, never grow
     t_hit = math.inf  # the earliest end (s) of a tried step that met an event
     ns = sample_times.shape[0]
+    # increments of q lost to rounding whole (|δq| < ulp(q)/2: v h/R below ~1e-16 rad) add up
+    # here, and the cusp test takes them into account: a slow particle near a cusp otherwise
+    # never arrived while its speed grew, in steps of ≤ tol_t (~1e6 per stretch, bounded only
+    # by the step budget).  The state q itself keeps its arithmetic (bits unchanged wherever
+    # the test's verdict is: everywhere but within q_lost of θ_c)
+    q_lost = 0.0
+    # the step budget: each tried step adds 1, each accepted one pays back PAYBACK × its
+    # share of the nominal step (a sample time reached pays in full); steps that average
+    # below 1/PAYBACK of the nominal one run the debt up
+    debt = 0.0
+    worst = 0.0
     while True:
         t_now = tp * T + (s - s0)
         if t_max - t_now <= tol_t:
-            return q, v, s, tp, cell, isamp, END, t_now - t_start
+            return q, v, s, tp, cell, isamp, END, t_now - t_start, worst
+        debt += 1.0
+        if debt > worst:
+            worst = debt
+            if debt > STRETCH_BUDGET:
+                return q, v, s, tp, cell, isamp, BUDGET, t_now - t_start, worst
         hs = h
+        cap = h_nom
         if not flat:
-            hs = min(hs, MAX_ANGLE_STEP * R / max(abs(v), 1e-300))
+            cap = min(cap, MAX_ANGLE_STEP * R / max(abs(v), 1e-300))
+            hs = min(hs, cap)
         # end steps on the next sample time and on t_max: positions there are states
         t_lim = t_max
         if isamp < ns and sample_times[isamp] < t_lim:
@@ -225,11 +259,14 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
         sampling = t_lim - t_now <= hs
         if sampling:
             hs = max(t_lim - t_now, 0.0)
-        qb, vb = rk4(q, v, s, hs, g, A, w, R, mu, sgn, flat, side)
+        dq, dv = rk4(q, v, s, hs, g, A, w, R, mu, sgn, flat, side)
+        qb = q + dq
+        vb = v + dv
+        lost = q_lost + dq if qb == q else q_lost
         sb = s + hs
         nb = normal_force(qb, vb, sb, g, A, w, R, flat, side)
         lift = nb <= 0.0
-        cusp = (not flat) and abs(qb) >= q_c
+        cusp = (not flat) and abs(qb + lost) >= q_c
         if side is not None:
             # on a conveyor a particle may leave a cusp from rest (bbb.conveyor_contact): θ then
             # stays at ±θ_c to rounding for a while, which is no arrival at the cusp
@@ -265,6 +302,8 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
                 t_hit = min(t_hit, t_now + hs)
             continue
         # accept the step [t_now, t_now + hs]
+        debt = max(0.0, debt - PAYBACK * (1.0 if sampling else hs / cap))
+        q_lost = lost
         q = qb
         v = vb
         n_a = nb
@@ -288,17 +327,26 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
                 isamp += 1
         t_el = tp * T + (s - s0) - t_start
         if lift:
-            return q, v, s, tp, cell, isamp, LIFT, t_el
+            return q, v, s, tp, cell, isamp, LIFT, t_el, worst
         if cusp:
-            return math.copysign(q_c, q), v, s, tp, cell, isamp, CUSP, t_el
+            return math.copysign(q_c, q), v, s, tp, cell, isamp, CUSP, t_el, worst
         if stop:
-            return q, 0.0, s, tp, cell, isamp, STOP, t_el
+            return q, 0.0, s, tp, cell, isamp, STOP, t_el, worst
         if hs > 0.0:
             h = hs if hunting else min(h_nom, 2.0 * hs)
             if hunting and side is not None:
-                # grow back up to the event met: a step halved for its certificate (from rest
-                # at a slip, v = v̇ = 0) rather than for the event must not pin h for good
-                h = max(hs, min(h_nom, 2.0 * hs, t_hit - (tp * T + (s - s0))))
+                t_after = tp * T + (s - s0)
+                if t_after >= t_hit:
+                    # the event the bisection chased did not come (the longer step's
+                    # truncation error put it there): stop hunting, grow the step again;
+                    # else h stays pinned at hs for the rest of the stretch
+                    hunting = False
+                    t_hit = math.inf
+                    h = min(h_nom, 2.0 * hs)
+                else:
+                    # grow back up to the event met: a step halved for its certificate (from
+                    # rest at a slip, v = v̇ = 0) rather than for the event must not pin h
+                    h = max(hs, min(h_nom, 2.0 * hs, t_hit - t_after))
 
 
 @njit(cache=True)

@@ -28,9 +28,9 @@ import math
 import numpy as np
 from numba import njit
 
-from .conveyor_contact import DONE, HELD, collide_c, contact_c, enter_contact_c
+from .conveyor_contact import DONE, HELD, STALLED, collide_c, contact_c, enter_contact_c
 from .conveyor_search import cusp_side, next_collision_c, round_half_away
-from .kernel import EV_CONTACT, wrap_period
+from .kernel import EV_CONTACT, EVENT_WINDOW, STOP_STEPS, count_event, wrap_period
 from .search import NO_COLLISION, STACK_DEPTH
 from .surface import arc_depth, arc_normal
 
@@ -140,15 +140,39 @@ def liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry):
     return best
 
 
+@njit(cache=True, inline="always")
+def wall_met(cell, d, vx, vy, s, Ax, Ay, w, R, S):
+    """(cell, d, met) of the wall a collision at offset d meets: at a cusp (within CUSP_REACH)
+    the one the particle approaches, relative normal speed < 0 — the nearest arc by rounding
+    may be the one it leaves (a rattle down a steep cusp: Eq. (5) took |u⊥| on the wrong
+    wall); met is False where it leaves both walls there: the root found was the gap's
+    rounding at the cusp point (a bounce 4e-16 mm short of it 'hit' the neighbour 2e-16 s later,
+    again and again), not a collision."""
+    side = cusp_side(d, R, S)
+    if side == 0:
+        return cell, d, True
+    cw = w * math.cos(w * s)
+    ux = vx + Ax * cw
+    uy = vy + Ay * cw
+    nx, ny = arc_normal(d, R)
+    mx, my = arc_normal(d - side * S, R)
+    own = ux * nx + uy * ny
+    other = ux * mx + uy * my
+    if own >= 0.0 and other < 0.0:
+        return cell + side, d - side * S, True
+    return cell, d, own < 0.0 or other < 0.0
+
+
 @njit(cache=True)
 def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta, tilt,
              throw, t_max, sample_times, pos, rec_from, rec, tol_t, v_stick, h_max_periods,
-             stack, counters, friction, times):
+             stack, counters, friction, times, status):
     """bbb.kernel.evolve on the conveyor (angles ``tilt``, ``throw`` in degrees).  Positions
     and recorded x are the lab's, along the floor's plane: cell·S + d + X_f.  ``friction``:
     None (stick) or μ (slide: 0, coulomb), compile-time specialised as in bbb.kernel.evolve;
     sustained contact is bbb.conveyor_contact's.  ``times`` receives the time (s) held at
-    rest relative to the floor and the time sliding, as bbb.kernel.evolve's."""
+    rest relative to the floor and the time sliding, ``status`` the guards' verdict, as
+    bbb.kernel.evolve's."""
     gx = g * math.sin(math.radians(tilt))
     gy = g * math.cos(math.radians(tilt))
     # from ψ − 90° so that ψ → 180° − ψ flips Ax's sign bit-exactly and ψ = 90 gives Ay = A
@@ -179,16 +203,27 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
     if stuck:
         vx = -Ax * w * math.cos(w * s)
         vy = -Ay * w * math.cos(w * s)
+    win = EVENT_WINDOW * T
+    t_mark = -math.inf
+    n_win = 0
     while True:
         t_now = tp * T + (s - s0)
         if t_now >= t_max:
             break
+        t_mark, n_win, spent = count_event(t_now, t_mark, n_win, win, status)
+        if spent:
+            break
         if friction is not None and (stuck or sliding):
             was_held = stuck
+            # held at rest until the lift-off the stuck branch below would take (in a cusp:
+            # both arcs let go), unless static friction lets go first
+            t_n = liftoff_wait_c(s, d, gx, gy, Ax, Ay, w, R, S, retry) if stuck else 0.0
             verdict, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, \
-                dc, ds, dl, el = contact_c(cell, d, s, tp, s0, T, isamp, stuck, q, vt, gx, gy, Ax, Ay,
-                                       w, R, S, alpha, beta, friction, flat, t_max,
-                                       sample_times, pos, rec_from, rec, n_rec, tol_t, v_stick)
+                dc, ds, dl, el, worst = contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt,
+                                                  gx, gy, Ax, Ay, w, R, S, alpha, beta, friction,
+                                                  flat, t_max, sample_times, pos, rec_from, rec,
+                                                  n_rec, tol_t, v_stick)
+            status[1] = max(status[1], worst)
             n_coll += dc
             n_stick += ds
             n_lift += dl
@@ -198,6 +233,10 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
             if was_held:
                 t_held += min(tp * T + (s - s0), t_max) - t_now - el
             if verdict == DONE:
+                break
+            if verdict == STALLED:
+                status[0] = STOP_STEPS
+                status[3] = tp * T + (s - s0)
                 break
             if verdict != HELD:
                 from_surface = True
@@ -260,7 +299,13 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
         vx = vx - gx * tau
         vy = vy - gy * tau
         s, tp = wrap_period(s + tau, tp, T)
+        cell, d, met = wall_met(cell, d, vx, vy, s, Ax, Ay, w, R, S)
         y = -Ay * math.sin(w * s) - arc_depth(d, R)
+        if not met:
+            # leaving both walls of a cusp: no collision, the flight goes on from here
+            from_surface = True
+            lifting = False
+            continue
         vx, vy, un_out, kicked = collide_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, alpha, beta,
                                            v_stick, not kicked)
         n_coll += 1
@@ -273,7 +318,7 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
             if friction is not None:
                 # sustained contact: slide with the tangential speed, or held
                 vt, q, sliding = enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, friction,
-                                                 flat)
+                                                 flat, v_stick)
                 stuck = not sliding
             if stuck:
                 # 'stick': carried with the floor (x fixed relative to it), whatever the tilt
@@ -315,13 +360,13 @@ def evolve_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, b
 @njit(cache=True)
 def evolve_ensemble_c(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta,
                       tilt, throw, t_max, sample_times, pos, rec_from, rec, tol_t, v_stick,
-                      h_max_periods, counters, friction, times):
-    """Run every particle of an ensemble independently on the conveyor; ``friction`` and
-    ``times`` (one row per particle) as in :func:`evolve_c`."""
+                      h_max_periods, counters, friction, times, status):
+    """Run every particle of an ensemble independently on the conveyor; ``friction``,
+    ``times`` and ``status`` (one row per particle) as in :func:`evolve_c`."""
     stack = np.empty(STACK_DEPTH)
     for i in range(cell.shape[0]):
         evolve_c(cell[i], d[i], y[i], vx[i], vy[i], s[i], stuck[i], from_surface[i], g, A, w,
                  R, S, alpha, beta, tilt, throw, t_max, sample_times, pos[i], rec_from, rec[i],
-                 tol_t, v_stick, h_max_periods, stack, counters[i], friction, times[i])
+                 tol_t, v_stick, h_max_periods, stack, counters[i], friction, times[i], status[i])
 
 

@@ -16,7 +16,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .contact import CUSP, END, LIFT, enter_contact, g_eff, holds_at_rest, slide
+from .contact import BUDGET, CUSP, END, LIFT, enter_contact, g_eff, holds_at_rest, slide
 from .search import NO_COLLISION, STACK_DEPTH, next_collision
 from .surface import arc_curvature, arc_depth, arc_normal, floor_a, floor_v, floor_y
 
@@ -26,6 +26,30 @@ EV_CONTACT = 4.0
 EV_CONTACT_LIFT = 5.0
 EV_STOP = 6.0
 EV_CUSP = 7.0
+
+#: the event guard (no input loops without end): more than EVENT_BUDGET events of a particle
+#: within EVENT_WINDOW floor periods stop it, and bbb.simulate raises (margins measured by
+#: benchmarks/guards.py).  A particle's status row: why it stopped (STOP_*), the peak step
+#: debt of its contact stretches, the most events in one window, the time (s) it stopped
+EVENT_WINDOW = 1.0 / 1024.0
+EVENT_BUDGET = 2**20
+STOP_OK, STOP_STEPS, STOP_EVENTS = 0.0, 1.0, 2.0
+
+
+@njit(cache=True, inline="always")
+def count_event(t_now, t_mark, n_win, win, status):
+    # the event guard: (t_mark, n_win) of the window t_now falls in, and whether it is spent
+    if t_now - t_mark >= win:
+        t_mark = t_now
+        n_win = 0
+    n_win += 1
+    if n_win > status[2]:
+        status[2] = n_win
+    if n_win > EVENT_BUDGET:
+        status[0] = STOP_EVENTS
+        status[3] = t_now
+        return t_mark, n_win, True
+    return t_mark, n_win, False
 
 
 @njit(cache=True)
@@ -90,7 +114,7 @@ def wrap_period(s, tp, T):
 @njit(cache=True)
 def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta,
            t_max, sample_times, pos, rec_from, rec, tol_t, v_stick, h_max_periods,
-           stack, counters, friction, times):
+           stack, counters, friction, times, status):
     """Run one particle from its initial state to t_max (s, from its own start).
 
     Writes x at ``sample_times`` into ``pos`` and post-collision (t, x, y, vx, vy, floor phase) at
@@ -123,9 +147,15 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
     sliding = False
     q = 0.0
     vt = 0.0
+    win = EVENT_WINDOW * T
+    t_mark = -math.inf
+    n_win = 0
     while True:
         t_now = tp * T + (s - s0)
         if t_now >= t_max:
+            break
+        t_mark, n_win, spent = count_event(t_now, t_mark, n_win, win, status)
+        if spent:
             break
         if friction is not None:
             mu = friction
@@ -137,12 +167,16 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, bet
                 q = d if flat else math.asin(max(-1.0, min(1.0, d / R)))
                 vt = 0.0
             if sliding:
-                q, vt, s, tp, cell, isamp, ev, el = slide(q, vt, s, tp, s0, T, g, A, w, R, S,
-                                                          mu, flat, t_max, sample_times, pos,
-                                                          isamp, cell, tol_t, None)
+                q, vt, s, tp, cell, isamp, ev, el, worst = slide(q, vt, s, tp, s0, T, g, A, w, R,
+                                                                 S, mu, flat, t_max, sample_times,
+                                                                 pos, isamp, cell, tol_t, None)
                 t_slid += el
-                if ev == END:
+                status[1] = max(status[1], worst)
+                if ev == END or ev == BUDGET:
                     d = q if flat else R * math.sin(q)
+                    if ev == BUDGET:
+                        status[0] = STOP_STEPS
+                        status[3] = tp * T + (s - s0)
                     break
                 if ev == CUSP:
                     d = math.copysign(0.5 * S, q)
@@ -353,11 +387,12 @@ def put_row(rec, n_rec, rec_from, t, t_max, x, y, vx, vy, phase, code, event_onl
 @njit(cache=True)
 def evolve_ensemble(cell, d, y, vx, vy, s, stuck, from_surface, g, A, w, R, S, alpha, beta,
                     t_max, sample_times, pos, rec_from, rec, tol_t, v_stick, h_max_periods,
-                    counters, friction, times):
+                    counters, friction, times, status):
     """Run every particle of an ensemble (arrays of initial states) independently;
-    ``friction``: None (stick) or μ (slide: 0, coulomb), see :func:`evolve`."""
+    ``friction``: None (stick) or μ (slide: 0, coulomb), ``status`` one row of 4 per
+    particle, see :func:`evolve`."""
     stack = np.empty(STACK_DEPTH)
     for i in range(cell.shape[0]):
         evolve(cell[i], d[i], y[i], vx[i], vy[i], s[i], stuck[i], from_surface[i], g, A, w,
                R, S, alpha, beta, t_max, sample_times, pos[i], rec_from, rec[i], tol_t,
-               v_stick, h_max_periods, stack, counters[i], friction, times[i])
+               v_stick, h_max_periods, stack, counters[i], friction, times[i], status[i])

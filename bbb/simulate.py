@@ -6,9 +6,10 @@ import math
 
 import numpy as np
 
+from .contact import PAYBACK, STRETCH_BUDGET
 from .conveyor import evolve_ensemble_c
 from .ensemble import InitialState, initial_state
-from .kernel import evolve_ensemble
+from .kernel import EVENT_BUDGET, EVENT_WINDOW, STOP_EVENTS, STOP_OK, evolve_ensemble
 from .numerics import Numerics
 from .params import Params
 from .record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES, EVENT_FIELDS, SimRun
@@ -31,6 +32,7 @@ def simulate(
     drop_height: tuple[float, float] = (0.0, 2.0),
     launch_speed: tuple[float, float] = (0.0, 200.0),
     _force_conveyor: bool = False,
+    _guards: np.ndarray | None = None,
 ) -> SimRun:
     """Evolve ``n_particles`` independent particles for ``t_max`` seconds.
 
@@ -44,8 +46,17 @@ def simulate(
     seed              -- int or SeedSequence; the same seed gives bit-identical output.
     A floor with ``tilt`` or ``throw`` (bbb.Params) runs bbb.conveyor's kernel; positions and
     recorded x are then along the floor's plane in the lab (x = cell·S + d + X_f(t)).
-    ``_force_conveyor`` runs that kernel on the paper's floor too (tests compare the two).
+    ``_force_conveyor`` runs that kernel on the paper's floor too (tests compare the two);
+    ``_guards`` (an array (n_particles, 4)) receives the guards' status rows (bbb.kernel:
+    why each particle stopped, its peak step debt, its most events in one window, when) —
+    benchmarks/guards.py measures the budgets' margins with it.
     Memory is O(n_particles × (n_samples + record_collisions)), never O(collisions).
+
+    No input loops without end: a particle whose contact stretch takes more than
+    ``bbb.contact.STRETCH_BUDGET`` steps beyond ``PAYBACK`` per nominal step of the time it
+    covers, or that has more than
+    ``bbb.kernel.EVENT_BUDGET`` events within ``EVENT_WINDOW`` floor periods, stops the run
+    with a RuntimeError naming the parameters, the seed and the particle.
     """
     if not isinstance(params, Params):
         raise ValueError(f"params must be a bbb.Params, got {type(params).__name__}")
@@ -89,6 +100,10 @@ def simulate(
     rec = np.full((n_particles, record_collisions, len(fields)), np.nan)
     counters = np.zeros((n_particles, len(COUNTER_NAMES)), dtype=np.int64)
     held = np.zeros((n_particles, len(CONTACT_TIME_NAMES)))
+    status = np.zeros((n_particles, 4)) if _guards is None else _guards
+    if status.shape != (n_particles, 4) or status.dtype != np.float64:
+        raise ValueError(f"_guards must be a float64 array of shape ({n_particles}, 4)")
+    status[:] = 0.0
     p = params
     if p.transport or _force_conveyor:
         # tilted or thrown floor: its own compiled kernel; the paper's floor keeps bbb.kernel
@@ -96,13 +111,14 @@ def simulate(
                           p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, p.tilt, p.throw,
                           float(t_max), times, pos, float(record_from), rec, numerics.tol_t,
                           numerics.v_stick, numerics.max_step, counters,
-                          None if p.contact == "stick" else p.mu, held)
+                          None if p.contact == "stick" else p.mu, held, status)
     else:
         evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
                         p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, float(t_max), times,
                         pos, float(record_from), rec, numerics.tol_t, numerics.v_stick,
                         numerics.max_step, counters, None if p.contact == "stick" else p.mu,
-                        held)
+                        held, status)
+    _raise_on_guard(status, params, numerics, seed, initial)
     contact_time = {name: held[:, i].copy() for i, name in enumerate(CONTACT_TIME_NAMES)}
     return SimRun(
         params=params,
@@ -117,6 +133,28 @@ def simulate(
         liftoffs=record_liftoffs,
         contact_time=contact_time,
     )
+
+
+def _raise_on_guard(status: np.ndarray, p: Params, numerics: Numerics,
+                    seed: np.random.SeedSequence, initial: str) -> None:
+    """The kernel's guards (bbb.contact.slide's step budget, bbb.kernel's event budget) stop a
+    particle with a flag the jitted code cannot put into words: here it becomes one error."""
+    stopped = np.nonzero(status[:, 0] != STOP_OK)[0]
+    if not stopped.size:
+        return
+    i = int(stopped[0])
+    if status[i, 0] == STOP_EVENTS:
+        what = (f"more than {EVENT_BUDGET} events within {EVENT_WINDOW:g} floor period "
+                "(a sequence of events that makes no progress in time)")
+    else:
+        what = (f"a contact stretch ran a step debt above {STRETCH_BUDGET:g} (integration "
+                f"steps tried beyond {PAYBACK:g} per nominal step of the time covered)")
+    raise RuntimeError(
+        f"bbb.simulate: the kernel's guard stopped particle {i} of {status.shape[0]} at "
+        f"t = {status[i, 3]:.17g} s: {what}; it would loop without end.  Parameters: "
+        f"{p.as_dict() | {'tilt': p.tilt, 'throw': p.throw, 'contact': p.contact, 'mu': p.mu}}, "
+        f"numerics {numerics.as_dict()}, initial {initial!r}, seed entropy {seed.entropy} "
+        f"spawn_key {seed.spawn_key}.  Please report these parameters.")
 
 
 def _count(name: str, value: int) -> int:

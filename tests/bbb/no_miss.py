@@ -20,7 +20,7 @@ def assert_no_miss(p: Params, st: InitialState, run, tolerated: tuple[str, ...] 
         rows = run.collisions_dense[i, : run.n_recorded[i]]
         assert np.all(np.isfinite(rows))
         start = start_event(p, st.cell[i], st.d[i], st.y[i], st.vx[i], st.vy[i], st.s[i], st.stuck[i])
-        rep = check_particle(p, run.numerics, np.vstack([start, rows]))
+        rep = check_particle(p, np.vstack([start, rows]))
         failed = {k: v for k, v in rep.failures.items() if v and k not in tolerated}
         assert not failed, rep.messages
         worst, _ = gap_along_flights(p, rows, n_grid=200)

@@ -175,3 +175,26 @@ def test_sliding_contact_is_refused_at_vertical_cusp_walls(contact):
         Params(g=G, A=0.1, f=54.0, R=1.049, S=2.0, alpha=0.7, beta=0.99, contact=contact)
     assert Params(g=G, A=0.1, f=54.0, R=1.05, S=2.0, alpha=0.7, beta=0.99, contact=contact).R > 1
     assert Params(g=G, A=0.1, f=54.0, R=1.0, S=2.0, alpha=0.7, beta=0.99).contact == "stick"
+
+
+@pytest.mark.parametrize(("delta", "conveyor"), [(1e-9, False), (1e-11, False), (1e-13, False),
+                                               (4e-9, True), (1e-8, True)])
+def test_a_particle_sliding_from_rest_just_beside_a_shallow_cusp_reaches_it_on_time(delta, conveyor):
+    """A = 0, R = 10⁴ mm (sin θc = 1e-4), frictionless, at rest δ mm from the cusp: it slides
+    into it under g sin θc along the arc, t = √(2δ/(g sin θc cos θc)).  Its steps v h/R fall
+    below ulp(θ)/2 for v ≲ 1e-4 mm/s: before the lost increments were summed for the cusp test
+    the paper's floor crawled there in steps of ≤ tol_t (the step budget stopped it).  The
+    conveyor kernel (forced here on the same floor) counts a particle within CUSP_REACH·S =
+    2e-9 mm of a cusp as resting in it, so it starts beyond that."""
+    R, S = 1e4, 2.0
+    d = 0.5 * S - delta
+    p = Params(g=G, A=0.0, f=50.0, R=R, S=S, alpha=0.5, beta=0.5, contact="slide")
+    one = np.ones(1)
+    st = InitialState(np.zeros(1, np.int64), d * one, -(R - math.sqrt(R * R - d * d)) * one,
+                      0 * one, 0 * one, 0 * one, np.ones(1, bool), np.ones(1, bool))
+    run = simulate(p, 1, 0.01, seed=0, initial=st, record_collisions=4, record_liftoffs=True,
+                   _force_conveyor=conveyor)
+    cusp = first_row(run, 7.0)
+    sin_c = 0.5 * S / R
+    expected = math.sqrt(2.0 * delta / (G * sin_c * math.sqrt(1.0 - sin_c**2)))
+    assert cusp[0] == pytest.approx(expected, rel=1e-3)

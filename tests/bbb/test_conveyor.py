@@ -53,7 +53,7 @@ def test_a_particle_in_a_cusp_lifts_off_when_both_arcs_let_go():
         assert rows[0, 6] == 1.0  # the first event is the lift-off, from where it rested
         assert abs(rows[0, 5] - both_let_go(p, side)) < 2e-7
         start = start_event(p, st.cell[0], st.d[0], st.y[0], st.vx[0], st.vy[0], st.s[0], st.stuck[0])
-        rep = check_particle(p, run.numerics, np.vstack([start, rows]))
+        rep = check_particle(p, np.vstack([start, rows]))
         assert rep.carried > 0 and rep.failures["liftoff_time"] == 0, rep.messages
 
 

@@ -1,13 +1,17 @@
 """Sliding and Coulomb contact on the conveyor (bbb.conveyor_contact) against analytic
-mechanics and the mirror symmetry."""
+mechanics, the mirror symmetry, and the independent checker on random inputs."""
 
 import math
+from datetime import timedelta
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, example, given, settings
+from hypothesis import strategies as st
 
 from bbb import Params, simulate
-from bbb.ensemble import InitialState
+from bbb.ensemble import InitialState, initial_state
+from tests.bbb.no_miss import assert_no_miss
 from tests.bbb.test_transport import mirrored_runs
 
 G = 9800.0
@@ -220,3 +224,111 @@ def test_conveyor_contact_time_is_the_time_not_in_flight_by_the_record(kw):
     assert complete >= 2
     assert (np.sum(sliding) == 0.0) == (p.contact == "stick")
     assert np.all(held >= 0.0) and np.all(sliding >= 0.0)
+
+
+# ---- random inputs: tilt × throw × contact model, through the checker and brute force -------
+
+#: simulated time per example at most (s, 3 particles): 60 floor periods, but no more than
+#: this, so that no example runs long (a 5 Hz floor would otherwise run 36 particle-seconds)
+T_CAP = 1.0
+
+
+@pytest.fixture(scope="module", autouse=True)
+def compiled():
+    """Compile (or load) the conveyor kernel of each contact model before hypothesis times
+    its examples."""
+    for contact, mu in (("stick", 0.0), ("slide", 0.0), ("coulomb", 0.5)):
+        p = Params.preset("klages2004", f=60.0, tilt=1.0, throw=80.0, contact=contact, mu=mu)
+        simulate(p, 1, 0.01, seed=0, record_collisions=4, record_liftoffs=True)
+
+
+@settings(max_examples=60, deadline=timedelta(seconds=10),
+          suppress_health_check=[HealthCheck.too_slow])
+@given(
+    f=st.floats(5.0, 200.0),
+    A=st.floats(0.0, 1.0),
+    radius=st.one_of(st.floats(1.05, 60.0), st.floats(1.05, 2.0), st.just(math.inf)),
+    alpha=st.floats(0.05, 1.0),
+    beta=st.floats(0.0, 1.0),
+    tilt=st.one_of(st.floats(-30.0, 30.0), st.sampled_from([-30.0, 0.0, 30.0])),
+    throw=st.one_of(st.floats(10.0, 170.0), st.sampled_from([10.0, 90.0, 170.0])),
+    model=st.one_of(st.just(("stick", 0.0)), st.just(("slide", 0.0)),
+                    st.tuples(st.just("coulomb"), st.floats(0.0, 3.0))),
+    family=st.sampled_from(["rest", "dropped", "launched"]),
+    seed=st.integers(0, 2**32 - 1),
+)
+# found by this test or the random search behind it, each a fault fixed (kernel or checker)
+@example(f=10.0, A=1.0, radius=1.125, alpha=1.0, beta=0.0, tilt=0.0, throw=10.0,
+         model=("slide", 0.0), family="rest", seed=0)  # zero-time ping-pong at a cusp (checker)
+@example(f=16.0, A=1.0, radius=1.125, alpha=0.5, beta=0.0, tilt=0.0, throw=60.0,
+         model=("slide", 0.0), family="dropped", seed=0)  # rest in a cusp after a cascade
+@example(f=16.0, A=1.0, radius=1.5, alpha=1.0, beta=0.0, tilt=26.0, throw=64.0,
+         model=("slide", 0.0), family="rest", seed=0)  # slip and lift-off at once
+@example(f=16.0, A=1.0, radius=1.125, alpha=0.5, beta=0.0, tilt=28.0, throw=62.0,
+         model=("slide", 0.0), family="rest", seed=0)  # a one-ulp slip interval
+@example(f=16.0, A=1.0, radius=1.125, alpha=0.5, beta=0.0, tilt=30.0, throw=60.0,
+         model=("slide", 0.0), family="rest", seed=0)  # the wall at a vanishing gravity
+@example(f=19.0, A=1.0, radius=1.25, alpha=0.5, beta=0.0, tilt=0.0, throw=10.0,
+         model=("coulomb", 9.665576467554072e-63), family="rest", seed=0)  # a slip with μN ≈ 0
+@example(f=5.0, A=1.0, radius=1.0625, alpha=0.125, beta=1.0, tilt=0.0, throw=10.0,
+         model=("slide", 0.0), family="rest", seed=0)  # the wall met in a steep cusp
+@example(f=34.338035417555375, A=0.8930488166285763, radius=1.0654771972056567,
+         alpha=0.3979875734303109, beta=0.17191560720598842, tilt=-21.83309838835644,
+         throw=106.23038599435573, model=("coulomb", 1.2594203117868616), family="launched",
+         seed=2775301032)  # a slip up the neighbour's wall from within CUSP_REACH (crawled)
+@example(f=80.0, A=0.5, radius=1.1640625, alpha=0.125, beta=1.0, tilt=2.7552364056913973e-14,
+         throw=90.0, model=("slide", 0.0), family="rest", seed=0)  # leaving both walls of a cusp
+@example(f=159.17797533443758, A=0.9358020402058362, radius=51.84506391172527,
+         alpha=0.32812351320659694, beta=0.9958783676717431, tilt=0.0, throw=17.246952467194383,
+         model=("coulomb", 1.5392620528858287), family="dropped",
+         seed=2646913958)  # x's rounding over a flight of many periods (checker)
+def test_no_contact_model_on_a_tilted_and_thrown_floor_breaks_the_checker(
+        f, A, radius, alpha, beta, tilt, throw, model, family, seed):
+    """The conveyor kernel under every contact model (stick, slide, Coulomb with μ up to 3)
+    on tilted and thrown floors: every flight, carried stretch, lift-off, slip and sliding
+    stretch passes the independent checker (tests/bbb/trajectory_check.py, nothing tolerated),
+    the brute-force grid finds no flight point below the surface, nothing is non-finite, and
+    the kernel's guards never stop a particle (simulate would raise).  R ≥ 1.05 S/2 (bbb.Params
+    refuses sliding on steeper cusp walls); 3 particles for 60 periods, at most T_CAP s."""
+    contact, mu = model
+    p = Params(g=9800.0, A=A, f=f, R=radius, S=2.0, alpha=alpha, beta=beta, tilt=tilt,
+               throw=throw, contact=contact, mu=mu)
+    st_ = initial_state(p, 3, np.random.SeedSequence(seed), family, drop_height=(0.0, 1.0),
+                        launch_speed=(0.0, 150.0))
+    run = simulate(p, 3, min(60.0 / f, T_CAP), seed=seed, initial=st_, record_collisions=400,
+                   record_liftoffs=True, _force_conveyor=True)
+    assert_no_miss(p, st_, run)
+
+
+def pinned(**kw):
+    return test_no_contact_model_on_a_tilted_and_thrown_floor_breaks_the_checker.hypothesis.inner_test(**kw)
+
+
+def test_a_coulomb_particle_held_in_a_cusp_does_not_slide_up_a_wall_that_has_let_go():
+    """One of the two examples the random search found (f = 80.13, A = 0.578, R = 1.2, tilt
+    0.05, throw 10, μ = 2, from rest, seed 988): a particle held in a cusp 'slipped' up the
+    wall whose normal load had turned negative (N = −6731 mm/s² there, the other wall pressing
+    with +15020 and holding it, its pull 29073 mm/s² short of μN) and lifted off that wall at
+    once; all three particles failed the checker (contact_start, path, normal, event)."""
+    pinned(f=80.13102688360905, A=0.5779023108959392, radius=1.2, alpha=0.05, beta=0.0,
+           tilt=0.05, throw=10.0, model=("coulomb", 2.0), family="rest", seed=988)
+
+
+def test_a_coulomb_particle_sliding_slowly_into_a_cusp_reaches_it_without_crawling():
+    """The other example (f = 120.66, A = 0.0375, R = 1.05, α = 0.05, β = 0.118, tilt = throw
+    = 29.6, μ = 2, dropped, seed 341): the same wrong slip, then a Coulomb stop 6e-14 mm from
+    the cusp, and a slide from rest into it whose increments v h/R fell below ulp(θ)/2: the
+    particle did not move while its speed grew, ~3e6 RK4 steps of ≤ tol_t per stretch (67 s
+    for 1.5 particle-seconds).  It passes the checker, and no contact stretch of it runs a step
+    debt (bbb.contact: tried steps beyond 64 per nominal step) within a factor 100 of the
+    crawl's 3.1e6 steps (1.4e3 now)."""
+    pinned(f=120.66361006138334, A=0.03752289548439736, radius=1.05, alpha=0.05,
+           beta=0.1182055142536225, tilt=29.60906544749591, throw=29.60906544749591,
+           model=("coulomb", 2.0), family="dropped", seed=341)
+    p = Params(g=9800.0, A=0.03752289548439736, f=120.66361006138334, R=1.05, S=2.0, alpha=0.05,
+               beta=0.1182055142536225, tilt=29.60906544749591, throw=29.60906544749591,
+               contact="coulomb", mu=2.0)
+    guards = np.zeros((3, 4))
+    simulate(p, 3, 60.0 / p.f, seed=341, initial=initial_state(
+        p, 3, np.random.SeedSequence(341), "dropped", drop_height=(0.0, 1.0)), _guards=guards)
+    assert np.max(guards[:, 1]) < 3.1e6 / 100

@@ -34,7 +34,7 @@ def events() -> np.ndarray:
 
 
 def failed(ev: np.ndarray) -> set[str]:
-    rep = check_particle(P, Numerics(), ev)
+    rep = check_particle(P, ev)
     return {k for k, v in rep.failures.items() if v}
 
 
@@ -112,7 +112,7 @@ def sticky() -> tuple[Params, np.ndarray, int]:
     run = simulate(p, 1, 0.5, seed=1, initial="rest", record_collisions=400, record_liftoffs=True)
     ev = run.collisions_dense[0, : run.n_recorded[0]].copy()
     k = int(np.nonzero(ev[1:, 6] == 1.0)[0][0]) + 1
-    assert check_particle(p, Numerics(), ev).ok
+    assert check_particle(p, ev).ok
     return p, ev, k
 
 
@@ -131,7 +131,7 @@ def liftoff_at(p: Params, ev: np.ndarray, k: int, dt: float) -> np.ndarray:
 @pytest.mark.parametrize("dt_periods", [-1e-6, 1.0], ids=["early", "a period late"])
 def test_a_liftoff_before_the_floor_lets_go_or_after_a_skipped_window_is_flagged(sticky, dt_periods):
     p, ev, k = sticky
-    rep = check_particle(p, Numerics(), liftoff_at(p, ev, k, dt_periods / p.f))
+    rep = check_particle(p, liftoff_at(p, ev, k, dt_periods / p.f))
     assert rep.failures["liftoff_time"] == 1
 
 
@@ -139,7 +139,7 @@ def test_a_stuck_particle_that_moves_is_flagged(sticky):
     p, ev, k = sticky
     ev = ev.copy()
     ev[k, 1] += 1e-9
-    assert check_particle(p, Numerics(), ev).failures["carried"] == 1
+    assert check_particle(p, ev).failures["carried"] == 1
 
 
 @pytest.fixture(scope="module")
@@ -154,7 +154,7 @@ def conveyor() -> tuple[Params, list[np.ndarray]]:
 def test_every_flight_on_tilted_thrown_arcs_is_certified(conveyor):
     # the range bounds alone leave several of these flights 'uncertified'
     p, runs = conveyor
-    reps = [check_particle(p, Numerics(), ev) for ev in runs]
+    reps = [check_particle(p, ev) for ev in runs]
     assert sum(r.flights for r in reps) > 50
     assert all(r.ok for r in reps), [r.messages for r in reps]
 
@@ -163,7 +163,7 @@ def test_a_missed_collision_on_tilted_thrown_arcs_is_flagged(conveyor):
     p, runs = conveyor
     ev = max(runs, key=len)
     k = int(np.nonzero((ev[1:-1, 6] == 0.0) & (ev[:-2, 6] == 0.0))[0][5]) + 1
-    rep = check_particle(p, Numerics(), np.delete(ev, k, axis=0))
+    rep = check_particle(p, np.delete(ev, k, axis=0))
     assert rep.failures["below"] > 0
 
 
@@ -201,7 +201,7 @@ def coulomb_conveyor():
 
 def test_conveyor_contact_runs_pass_the_checker(conveyor_contact):
     p, runs = conveyor_contact
-    reps = [check_particle(p, Numerics(), ev) for ev in runs]
+    reps = [check_particle(p, ev) for ev in runs]
     assert sum(r.contacts for r in reps) >= 30
     assert all(r.ok for r in reps), [(r.failures, r.messages) for r in reps if not r.ok]
 
@@ -270,7 +270,7 @@ def rest_slip(p, ev, j):
 
 
 def failed_on(p: Params, ev: np.ndarray) -> set[str]:
-    return {k for k, v in check_particle(p, Numerics(), ev).failures.items() if v}
+    return {k for k, v in check_particle(p, ev).failures.items() if v}
 
 
 def rebuilt(p, ev, j, dt_end=0.0, dt_slip=0.0, mu=None):
@@ -375,7 +375,7 @@ P_CUSP = Params.preset("klages2004", f=55.0, contact="slide", tilt=3.0, throw=60
 def test_a_grazing_flight_from_a_cusp_on_the_conveyor_is_certified():
     fl = Floor(P_CUSP)
     assert float(fl.offset(CUSP_BOUNCE[1, 1], 2 * math.pi * CUSP_BOUNCE[1, 5])) == -0.5 * P_CUSP.S
-    rep = check_particle(P_CUSP, Numerics(), CUSP_BOUNCE)
+    rep = check_particle(P_CUSP, CUSP_BOUNCE)
     # two flights: the zero-time one from the cusp event to the bounce, and the grazing one
     assert rep.flights == 2 and rep.ok, (rep.failures, rep.messages)
 
@@ -411,7 +411,7 @@ def test_a_dip_below_the_arc_beside_a_cusp_between_samples_is_flagged(side):
     gap = ev[0, 2] + ev[0, 4] * s - 0.5 * fl.gy * s * s - fl.surface(x, 2 * math.pi * ev[0, 5] + fl.w * s)
     below = s[gap < -1e-12]
     assert below.size and below.max() < 1e-3 / 128 and gap[-1] > 0
-    assert check_particle(p, Numerics(), ev).failures["below"] == 1
+    assert check_particle(p, ev).failures["below"] == 1
 
 
 def skim_over_an_arc(p: Params, s_top: float, tau: float, u: float = 2000.0,
@@ -442,4 +442,134 @@ def test_a_dip_below_the_middle_of_three_arcs_is_flagged():
     gap = ev[0, 2] + ev[0, 4] * s - 0.5 * fl.gy * s * s - fl.surface(x, 2 * math.pi * ev[0, 5] + fl.w * s)
     below = s[gap < 0]
     assert below.size and abs(below.mean() - 0.9e-3) < 1e-7 and np.ptp(below) < 1e-6
-    assert check_particle(p, Numerics(), ev).failures["below"] == 1
+    assert check_particle(p, ev).failures["below"] == 1
+
+
+# ---- the checker's own tolerances -----------------------------------------------------------
+
+
+def test_a_run_made_at_a_coarser_root_tolerance_fails_the_checker():
+    """The checker asks event times to its own TOL_T (1e-12 s), whatever the run's Numerics:
+    the same Coulomb conveyor run at tol_t = 1e-9 s has its sliding events 1e-9 s off and is
+    flagged (when the checker read tol_t from the run, it passed)."""
+    p = Params.preset("klages2004", f=55.0, contact="coulomb", mu=0.3, tilt=3.0, throw=60.0)
+
+    def flags(tol_t: float) -> set[str]:
+        run = simulate(p, 4, 1.0, seed=3, initial="rest", record_collisions=3000,
+                       record_liftoffs=True, numerics=Numerics(tol_t=tol_t))
+        return {k for i in range(4)
+                for k, v in check_particle(p, run.collisions_dense[i, : run.n_recorded[i]]).failures.items()
+                if v}
+
+    assert flags(1e-12) == set()
+    assert "contact_path" in flags(1e-9)
+
+
+@pytest.mark.parametrize("A", [0.1, 1e-200, 2.225073858507e-311, 0.0])
+def test_the_floor_velocity_rounding_bound_does_not_underflow(A):
+    # 16 ε Aω relative to Aω where A is a normal number, at least 32 subnormal spacings where
+    # Aω is subnormal (the relative bound 16 ε Aω was 0 at A = 2.2e-311: fails this)
+    fl = Floor(Params(g=9800.0, A=A, f=5.0, R=51.0, S=2.0, alpha=0.5, beta=0.8))
+    aw = A * fl.w
+    assert fl.vf_tol >= 16.0 * np.finfo(float).eps * aw
+    assert fl.vf_tol >= 32.0 * 5e-324
+    assert fl.vf_tol <= 64.0 * np.finfo(float).eps * aw + 32.0 * 5e-324
+
+
+def fly_off(g2: float) -> np.ndarray:
+    """Two events of the paper's floor (P): a flight of 1e-6 s ending in a soft touch
+    (α|u⊥| = v_stick/2) at d = 0.5 mm whose tangential speed makes the kick's G'' =
+    −g − Aω² sin θ + (β u∥)²/√(R² − d²) equal ``g2`` (mm/s²), and the kernel's fly-off from it
+    (u⊥⁺ = v_stick, u∥⁺ = β u∥)."""
+    tc = Floor(P)
+    d, th, tau, vs = 0.5, 3.6, 1e-6, 1e-3
+    q = math.sqrt(P.R**2 - d * d)
+    g_eff = P.g + P.A * P.omega**2 * math.sin(th)
+    ut = math.sqrt((g_eff + g2) * q) / P.beta
+    nx, ny = d / P.R, q / P.R
+    un = -0.5 * vs / P.alpha
+    vf = float(tc.v(th))
+    vx_in, vy_in = un * nx + ut * ny, vf + un * ny - ut * nx
+    vx_out = vs * nx + P.beta * ut * ny
+    vy_out = vf + vs * ny - P.beta * ut * nx
+    y_b = float(tc.surface(np.array(d), th))
+    t_b, ph_b = 0.01, th / (2 * math.pi)
+    a = [t_b - tau, d - vx_in * tau, y_b - vy_in * tau - 0.5 * P.g * tau**2, vx_in, vy_in + P.g * tau,
+         ph_b - tau * P.f, 0.0]
+    return np.array([a, [t_b, d, y_b, vx_out, vy_out, ph_b, 0.0]])
+
+
+@pytest.mark.parametrize("g2", [1e-3, 0.0])
+def test_a_fly_off_where_the_arc_falls_away_passes(g2):
+    assert failed(fly_off(g2)) == set()
+
+
+def test_a_fly_off_where_the_forces_still_press_is_flagged():
+    # G'' = −1e-3 mm/s²: the floor still holds the particle; the kernel must not kick
+    assert failed(fly_off(-1e-3)) == {"velocity"}
+
+
+def test_the_fly_off_bound_is_what_accepts_a_kick_at_the_edge(monkeypatch):
+    """G'' = −1e-5 mm/s² lies within the derived bound (~5e-5 here, dominated by u∥ known to
+    the velocity check's own 2e-6 mm/s): accepted; with the bound removed it is flagged."""
+    import tests.bbb.trajectory_check as tc
+
+    ev = fly_off(-1e-5)
+    assert failed(ev) == set()
+    monkeypatch.setattr(tc, "_kick_tolerance", lambda *a, **k: 0.0)
+    assert failed(ev) == {"velocity"}
+
+
+def test_contact_rtol_is_the_calibrated_need_times_its_stated_margin():
+    # read from tests/bbb/data/checker_calibration.json (benchmarks/checker_calibration.py):
+    # the least rtol every calibration stretch passes at, times a margin fixed beforehand
+    cal = tc_module().CALIBRATION
+    assert cal["contact_rtol_needed"] > 0 and cal["stretches"] > 10_000
+    assert 2.0 <= cal["margin"] <= 100.0
+    assert tc_module().CONTACT_RTOL == cal["contact_rtol_needed"] * cal["margin"]
+
+
+def tc_module():
+    import tests.bbb.trajectory_check as tc
+
+    return tc
+
+
+def calibration_input(k: int):
+    """The k-th random input of benchmarks/checker_calibration.py (stick draws skipped)."""
+    from benchmarks.guards import random_params
+
+    rng = np.random.default_rng(20261126)
+    j = 0
+    while True:
+        p, family, t_max = random_params(rng)
+        if p.contact == "stick":
+            continue
+        if j == k:
+            return p, family, t_max
+        j += 1
+
+
+def test_the_calibrations_worst_input_passes_at_the_tolerance_and_fails_below_its_need(monkeypatch):
+    """The input that set CONTACT_RTOL still needs what the calibration recorded (a worse
+    kernel integration would need more); it passes at CONTACT_RTOL and fails at half its need,
+    so the bound is set by a real discrepancy, not by a margin on nothing."""
+    tc = tc_module()
+    k = int(tc.CALIBRATION["where"].split("#")[1].split()[0])
+    p, family, t_max = calibration_input(k)
+    st = initial_state(p, 3, np.random.SeedSequence(k), family, drop_height=(0.0, 1.0),
+                       launch_speed=(0.0, 150.0))
+    run = simulate(p, 3, t_max, seed=k, initial=st, record_collisions=4000, record_liftoffs=True,
+                   _force_conveyor=True)
+
+    def check():
+        rep = tc.Report()
+        for i in range(3):
+            start = start_event(p, st.cell[i], st.d[i], st.y[i], st.vx[i], st.vy[i], st.s[i], st.stuck[i])
+            rep.add(check_particle(p, np.vstack([start, run.collisions_dense[i, : run.n_recorded[i]]])))
+        return rep
+
+    rep = check()
+    assert rep.ok and rep.contact_need == pytest.approx(tc.CALIBRATION["contact_rtol_needed"], rel=1e-6)
+    monkeypatch.setattr(tc, "CONTACT_RTOL", 0.5 * rep.contact_need)
+    assert check().failures["contact_path"] >= 1

@@ -38,13 +38,21 @@ Sliding on the conveyor (``slide``, ``coulomb``): the stretch is integrated in t
 frame under the effective gravity Gₓ = gₓ + Aₓω² sin θ, G_y = g_y + A_yω² sin θ (states and
 offsets relative to the moving floor); a stretch from rest (a held collision, a stop, a start
 at rest) has no row where it starts to slide, so the checker finds the slip itself: the first
-phase where |F_t| > μN, F_t = G_y sin θ − Gₓ cos θ (in a cusp: where one wall's push up it beyond
-μN; it slides on that wall), by its own sampling and bisection; and a held particle's lift-off
+phase where |F_t| > μN, F_t = G_y sin θ − Gₓ cos θ (in a cusp — within CUSP_REACH of it on the
+conveyor, as for the lift-off — where a wall that presses, N > 0, is pulled up beyond μN; it
+slides on that wall; a wall with N ≤ 0 does not touch the particle, and the floor lets go of it
+only when both walls do), by its own sampling and bisection; and a held particle's lift-off
 must not come after that slip.
 
-Tolerances (all derived, none tuned): the kernel finds a collision time to ``tol_t``
-(bbb.Numerics) and puts the particle on the surface at that time, so a collision point may lie
-off the exact intersection by |G'|·δτ with δτ = tol_t + the clock's rounding, where G' is the
+Tolerances are the checker's own, never read from the run under test (its bbb.Numerics): a run
+made with a coarser root tolerance fails the checker.  Event times are asked to TOL_T = 1e-12 s,
+the accuracy the model documents for a collision (docs/physics.md); that is attainable in
+float64, whose resolution of the floor time within a period is ulp(1/f) < 1e-15 s for
+f ≥ 1 Hz, and the recorded clock's own rounding (ulp(t), 1.8e-12 s at t = 1e4 s) is added
+separately.  The sticking threshold V_STICK = 1e-3 mm/s is a parameter of the model (like α,
+bbb.Numerics' default), passed in where a run used another.  A collision time is then known to
+δτ = TOL_T + the clock's rounding, and the particle is put on the surface at that time, so a
+collision point may lie off the exact intersection by |G'|·δτ, where G' is the
 particle's vertical speed relative to the floor (plus the arc's slope times vₓ); on top of that
 comes the rounding of the numbers involved (16 ε times their size) and the rounding of x
 (spacing(x)), which moves the height by at most min(c'·δx, √(2Rδx)) — the square root near the
@@ -55,8 +63,10 @@ rounding of the phase (16 ε·2π rad).
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import dataclass, field
+from pathlib import Path
 
 import numpy as np
 
@@ -69,12 +79,19 @@ CHECKS = ("clock", "carried", "liftoff_state", "liftoff_time", "stuck_flight", "
 CONTACT, CONTACT_LIFT, STOP, CUSP = 4.0, 5.0, 6.0, 7.0
 #: accuracy asked of the kernel's contact integration (RK4, ≤ T/256 per step) per stretch,
 #: relative to the scales sqrt(g R) (speed) and 1 rad (angle), per period of the stretch (the
-#: floor's or the arc's pendulum period, the shorter);
-#: measured: rows at 50.5-58 Hz under slide and coulomb pass at 1e-10 (2026-11-23)
-CONTACT_RTOL = 1e-8
+#: floor's or the arc's pendulum period, the shorter): the largest discrepancy measured on
+#: the calibration runs times the margin stated there (benchmarks/checker_calibration.py,
+#: stored beside this module in data/checker_calibration.json)
+CALIBRATION = json.loads((Path(__file__).parent / "data" / "checker_calibration.json").read_text())
+CONTACT_RTOL = CALIBRATION["contact_rtol_needed"] * CALIBRATION["margin"]
 #: the model's cusp (docs/physics.md, "Transport"): a particle carried within this fraction
 #: of S of a cusp rests in it, held by both arcs
 CUSP_REACH = 1e-9
+#: the accuracy (s) the checker asks of an event time, its own (module doc)
+TOL_T = 1e-12
+#: the model's sticking threshold (mm/s): a collision whose outgoing relative normal speed is
+#: below it ends in contact (docs/physics.md, "Creeping, sticking and lift-off")
+V_STICK = 1e-3
 
 
 @dataclass
@@ -87,6 +104,9 @@ class Report:
     failures: dict[str, int] = field(default_factory=lambda: dict.fromkeys(CHECKS, 0))
     messages: list[str] = field(default_factory=list)
     worst_gap: float = math.inf  # mm, the lowest sampled gap of any flight
+    #: the least CONTACT_RTOL at which every sliding stretch's path (θ, v) would pass (< 0:
+    #: the derived terms alone cover it): what CONTACT_RTOL is calibrated on
+    contact_need: float = -math.inf
 
     @property
     def ok(self) -> bool:
@@ -108,6 +128,7 @@ class Report:
             self.failures[k] += v
         self.messages += other.messages[: max(0, 10 - len(self.messages))]
         self.worst_gap = min(self.worst_gap, other.worst_gap)
+        self.contact_need = max(self.contact_need, other.contact_need)
 
 
 class Floor:
@@ -124,6 +145,11 @@ class Floor:
         # gravity's magnitudes along −x and −y, the floor's amplitudes along x and y
         self.gx, self.gy = (p.g * math.sin(phi), p.g * math.cos(phi)) if self.conveyor else (0.0, p.g)
         self.Ax, self.Ay = (p.A * math.cos(psi), p.A * math.sin(psi)) if self.conveyor else (0.0, p.A)
+        # the rounding of a floor velocity (mm/s), ~16 ε Aω: 32 spacings of Aω, so that a
+        # subnormal amplitude (absolute spacing 5e-324, not relative) keeps a bound that
+        # does not underflow to 0 (A = 2.2e-311 mm: the kernel's floor velocity and this one
+        # differ by a few spacings at a sticking collision)
+        self.vf_tol = 32.0 * float(np.spacing(self.A * self.w))
 
     def cell(self, x):
         return np.floor(x / self.S + 0.5)
@@ -210,10 +236,12 @@ def start_event(p, cell: int, d: float, y: float, vx: float, vy: float, s: float
     return np.array([0.0, x, y, vx, vy, s * p.f, START_STUCK if stuck else START])
 
 
-def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_period: int = 50) -> Report:
+def check_particle(p, events: np.ndarray, samples: int = 64, per_period: int = 50,
+                   v_stick: float = V_STICK) -> Report:
     """Check one particle's recorded events (rows of EVENT_FIELDS: t, x, y, vx, vy, phase,
     event; the first row may be a ``start_event``) against the model; ``p`` a bbb.Params,
-    ``numerics`` a bbb.Numerics."""
+    ``v_stick`` the model's sticking threshold (mm/s), a parameter of the model like α, not a
+    tolerance: the kernel's default.  Every tolerance is the checker's own (module doc)."""
     fl = Floor(p)
     rep = Report()
     ev = events[np.all(np.isfinite(events), axis=1)]
@@ -231,12 +259,15 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
     rep.flag("clock", (np.abs(tau - (t_b - t_a)) > clock_tol) | (tau < -clock_tol), idx,
              np.abs(tau - (t_b - t_a)), clock_tol)
     dtau_clock = 16.0 * EPS * (1.0 + tau * fl.f) / fl.f
-    vf_tol = 16.0 * EPS * fl.A * fl.w
+    vf_tol = fl.vf_tol
     at_rest = (np.abs(vx_a - fl.vxf(th_a)) <= vf_tol) & (np.abs(vy_a - fl.v(th_a)) <= vf_tol)
     if not fl.conveyor:
         at_rest &= vx_a == 0.0
     stuck_a = ((kind_a == 0) & at_rest) | (kind_a == START_STUCK) | ((kind_a == STOP) & at_rest)
-    dx_b = 2.0 * np.spacing(np.abs(x_b)) + np.spacing(fl.S * np.abs(fl.cell(x_b)) + fl.S)
+    # the rounding of an offset read off x: of x, of the cell's centre, and (conveyor) of the
+    # floor's sideways displacement −A cos ψ sin θ in the lab x (16 ε |Aₓ|)
+    dx_b = 2.0 * np.spacing(np.abs(x_b)) + np.spacing(fl.S * np.abs(fl.cell(x_b)) + fl.S) \
+        + 16.0 * EPS * abs(fl.Ax)
 
     # ---- carried stretches: a collision that ended stuck, then its lift-off
     lift = kind_b == 1
@@ -295,9 +326,9 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
             slipped = np.zeros_like(lift)
             for i in np.nonzero(lift & stuck_a)[0]:
                 d_i = float(fl.offset(x_a[i], th_a[i]))
-                in_cusp = not fl.flat and 0.5 * fl.S - abs(d_i) <= dx_c[i]
+                in_cusp = not fl.flat and 0.5 * fl.S - abs(d_i) <= CUSP_REACH * fl.S
                 th_s = _slip(fl, fl.mu, d_i, th_a[i], th_a[i] + fl.w * tau[i], in_cusp, -slip_tol)[0]
-                slipped[i] = th_s < th_a[i] + fl.w * (tau[i] - numerics.tol_t)  # nan: never
+                slipped[i] = th_s < th_a[i] + fl.w * (tau[i] - TOL_T)  # nan: never
             rep.flag("liftoff_time", slipped, idx, tau, np.zeros_like(tau))
 
     # ---- sliding stretches (contact models): from a contact start, a stop or a start at rest
@@ -305,7 +336,7 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
     slid = (kind_b == CONTACT_LIFT) | (kind_b == STOP) | (kind_b == CUSP)
     rep.contacts = int(np.count_nonzero(slid))
     if rep.contacts:
-        _check_contact(fl, numerics, rep, idx, slid, tau, a, b)
+        _check_contact(fl, v_stick, rep, idx, slid, tau, a, b)
 
     # ---- flights: from a collision that did not stick, or from a lift-off, to a collision
     fly = ~lift & ~slid
@@ -323,13 +354,17 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
     xp = x0 + vx * tau_f - 0.5 * fl.gx * tau_f**2
     yp = y0 + vy0 * tau_f - 0.5 * fl.gy * tau_f**2
     vx_end = vx - fl.gx * tau_f
+    # rounding of each term, of the clock, of x, and of the floor's sideways displacement in
+    # both ends' lab x (the kernel's and the start row's −A cos ψ sin θ: 16 ε |Aₓ|, and the
+    # rounding of sin's argument ω(s + τ), which a flight of many periods makes large)
     x_tol = 4.0 * (np.spacing(np.abs(xb)) + np.spacing(np.abs(vx * tau_f)) + np.spacing(np.abs(x0))
-                   + np.spacing(0.5 * fl.gx * tau_f**2)) + np.abs(vx_end) * dtau_clock[k] + dxb
+                   + np.spacing(0.5 * fl.gx * tau_f**2)) + np.abs(vx_end) * dtau_clock[k] + dxb \
+        + abs(fl.Ax) * (16.0 * EPS + 4.0 * np.spacing(2 * math.pi + th0 + fl.w * tau_f))
     rep.flag("off_parabola", np.abs(xb - xp) > x_tol, idx[k], np.abs(xb - xp), x_tol)
     # on the surface at its phase, to |G'| δτ (δτ = tol_t + clock) + rounding of y and x
     d_p = fl.offset(xp, thb)
     vf_b = fl.v(thb)
-    dtau = numerics.tol_t + dtau_clock[k]
+    dtau = TOL_T + dtau_clock[k]
     g1 = np.abs(vy0 - fl.gy * tau_f - vf_b)
     scale = np.abs(y0) + np.abs(vy0 * tau_f) + 0.5 * fl.g * tau_f**2 + fl.A + fl.depth(d_p) \
         + (np.abs(x0) + np.abs(vx * tau_f) if fl.conveyor else 0.0)
@@ -344,9 +379,9 @@ def check_particle(p, numerics, events: np.ndarray, samples: int = 64, per_perio
     # when G' is small there, so the incoming normal speed may have either sign up to K·that
     K = fl.g + fl.A * fl.w**2
     graze = K * np.minimum(tau_f, np.sqrt(2.0 * rnd / K))
-    _check_velocity(fl, numerics, rep, idx[k], vx_end, vy0 - fl.gy * tau_f, xb, dxb, thb, vxb, vyb,
+    _check_velocity(fl, v_stick, rep, idx[k], vx_end, vy0 - fl.gy * tau_f, xb, dxb, thb, vxb, vyb,
                     kind_a[k], dtau_clock[k], graze, kind_b[k])
-    _check_gap(fl, numerics, rep, idx[k], x0, y0, vx, vy0, th0, tau_f, dxb, samples, per_period,
+    _check_gap(fl, rep, idx[k], x0, y0, vx, vy0, th0, tau_f, dxb, samples, per_period,
                dtau, on_tol)
     return rep
 
@@ -383,7 +418,7 @@ def _check_cusp_liftoff(fl: Floor, rep: Report, index, th_a, tau, d_b, tol) -> N
     rep.flag("liftoff_time", (worst > tol) | late, index, worst, tol)
 
 
-def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, dxb, thb, vxb, vyb,
+def _check_velocity(fl: Floor, v_stick, rep: Report, index, vx_in, vy_in, xb, dxb, thb, vxb, vyb,
                     kind_a, dtau, graze, kind_b) -> None:
     """Eqs. (5)-(6) relative to the moving floor: u⊥⁺ = −α u⊥⁻, u∥⁺ = β u∥⁻, and the
     kernel's sticking rule (α|u⊥⁻| < v_stick: carried with the floor, or, once, a fly-off
@@ -398,7 +433,7 @@ def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, d
     dn = 0.0 if fl.flat else dxb / fl.R + np.sqrt(2.0 * fl.R * dxb) / fl.R
     tol = 32.0 * EPS * (speed + np.abs(vf) + np.hypot(ox, oy)) + 2.0 * speed * dn \
         + (fl.g + fl.A * fl.w**2) * dtau
-    vs = numerics.v_stick
+    vs = v_stick
     ok = np.zeros(d.shape, bool)
     kick = np.zeros(d.shape, bool)
     # at a cusp (d = ±S/2) either arc's normal is the contact normal
@@ -410,8 +445,8 @@ def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, d
         out = fl.alpha * np.abs(un)
         approach = un <= tol + graze
         bounce = (np.abs(on - out) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) & (out >= vs - tol)
-        still = (vxb == 0.0) if not fl.conveyor else (np.abs(ox) <= 16.0 * EPS * fl.A * fl.w)
-        stuck = still & (np.abs(oy) <= 16.0 * EPS * fl.A * fl.w) & (out <= vs + tol)
+        still = (vxb == 0.0) if not fl.conveyor else (np.abs(ox) <= fl.vf_tol)
+        stuck = still & (np.abs(oy) <= fl.vf_tol) & (out <= vs + tol)
         # a contact model: the cascade ends in sliding, relative normal speed 0, β u∥ kept
         slides = (kind_b == CONTACT) & (np.abs(on) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) \
             & (out <= vs + tol)
@@ -420,13 +455,17 @@ def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, d
         with np.errstate(divide="ignore", invalid="ignore"):
             pull = np.where(fl.beta * ut != 0.0, (fl.beta * ut) ** 2 / q_min, 0.0)
         g2 = -fl.gy - fl.Ay * fl.w**2 * np.sin(thb) + pull
+        slope_term = np.zeros_like(g2)
+        sw = np.zeros_like(g2)
         if fl.conveyor and not fl.flat:
             # and the arc's slope against the sideways pull: c'(d)(−gₓ − ẍ_floor)
             sw = -fl.gx - fl.Ax * fl.w**2 * np.sin(thb)
             with np.errstate(invalid="ignore"):
-                g2 = g2 + np.where(sw != 0.0, fl.slope(dd) * sw, 0.0)
+                slope_term = np.where(sw != 0.0, fl.slope(dd) * sw, 0.0)
+            g2 = g2 + slope_term
+        g2_tol = _kick_tolerance(fl, dd, dxb, dtau, ut, tol, q_min, pull, slope_term, sw)
         flies = (np.abs(on - vs) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) & (out <= vs + tol) \
-            & (np.abs(fl.beta * ut) >= vs - tol) & (g2 > -tol * 1e3)
+            & (np.abs(fl.beta * ut) >= vs - tol) & (g2 > -g2_tol)
         ok |= near & approach & ((bounce | stuck | flies) & (kind_b != CONTACT) | slides)
         kick |= near & approach & flies & ~bounce & ~stuck
     # a fly-off never follows a fly-off (kick after kick would be an endless Zeno sequence)
@@ -434,7 +473,25 @@ def _check_velocity(fl: Floor, numerics, rep: Report, index, vx_in, vy_in, xb, d
     rep.flag("velocity", ~ok | twice, index, np.zeros_like(tol), tol)
 
 
-def _check_gap(fl: Floor, numerics, rep: Report, index, x0, y0, vx, vy0, th0, tau, dx, samples,
+def _kick_tolerance(fl: Floor, dd, dxb, dtau, ut, tol, q_min, pull, slope_term, sw):
+    """How far (mm/s²) this checker's G'' of a fly-off (the kick of the sticking rule, which
+    the kernel takes where its own G'' > 0) may lie from the kernel's: the rounding of its
+    terms (16 ε each); the phase known to ω·dtau, in the floor's accelerations A_y ω² sin θ and
+    A_x ω² sin θ (times the slope); u∥ known to ±tol (the velocity check's own bound), in the
+    arc's pull (β u∥)²/√(R² − d²) — already taken at its largest within δd —; and d known to
+    ±dxb, in the slope c'(d), by c''(|d| + dxb)·dxb."""
+    w3 = fl.w**3
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        t = 16.0 * EPS * (fl.gy + abs(fl.Ay) * fl.w**2 + pull + np.abs(slope_term)) \
+            + (abs(fl.Ay) + np.abs(slope_term / np.where(sw != 0.0, sw, 1.0)) * abs(fl.Ax)) * w3 * dtau \
+            + fl.beta**2 * tol * (2.0 * np.abs(ut) + tol) / q_min
+        if fl.conveyor and not fl.flat:
+            c2 = fl.curvature(np.minimum(np.abs(dd) + dxb, fl.R))
+            t = t + np.where(sw != 0.0, c2 * dxb * np.abs(sw), 0.0)
+    return np.where(np.isnan(t), np.inf, t)
+
+
+def _check_gap(fl: Floor, rep: Report, index, x0, y0, vx, vy0, th0, tau, dx, samples,
                per_period, dtau, end_tol) -> None:
     """G ≥ 0 along every flight: dense samples, and a rigorous lower bound of G on
     sub-intervals within one arc, bisected until it is ≥ −tolerance (or the interval is
@@ -446,7 +503,7 @@ def _check_gap(fl: Floor, numerics, rep: Report, index, x0, y0, vx, vy0, th0, ta
     # start offset (the start point's own rounding) is part of every flight's tolerance
     base = 16.0 * EPS * (np.abs(y0) + np.abs(vy0 * tau) + 0.5 * g * tau**2 + A + (0 if fl.flat else fl.R))
     g0 = y0 - fl.surface(x0, th0)
-    base = base + np.maximum(-g0, 0.0) + (g + A * w * w) * numerics.tol_t**2 / 8
+    base = base + np.maximum(-g0, 0.0) + (g + A * w * w) * TOL_T**2 / 8
 
     def rel(i, s):
         # the particle's place relative to the floor (unwrapped: arc k is at kS)
@@ -634,29 +691,61 @@ def _rest_loads(fl: Floor, mu, d, th):
     return ge * nx - gxe * ny, gxe * nx + ge * ny
 
 
-def _slip_excess(fl: Floor, mu, d, th, cusp):
-    """How far (mm/s²) the pull at rest exceeds static friction (> 0: it slips), and the arc
-    it slips on: |F_t| − μN on one arc; in a cusp (d = ±S/2) the larger of the two walls'
-    pushes up the wall, F_t·(away from the cusp) − μN, and that wall's offset."""
+def _slip_parts(fl: Floor, mu, d, th, cusp):
+    """The loads (mm/s², rows) whose signs decide a slip at rest at offset d: on one arc
+    F_t − μN and −F_t − μN (it slips where either is > 0); in a cusp, per wall, its pull up
+    the wall less μN, and N (it slips up a wall where both are > 0: a wall with N ≤ 0 does
+    not touch the particle), own wall first.  Their roots bound every slip window."""
     ft, n = _rest_loads(fl, mu, d, th)
     if not cusp:
-        return np.abs(ft) - mu * n, d
+        return np.stack([ft - mu * n, -ft - mu * n])
     sg = 1.0 if d > 0 else -1.0
-    other = d - sg * fl.S
-    ft2, n2 = _rest_loads(fl, mu, other, th)
-    own, oth = -sg * ft - mu * n, sg * ft2 - mu * n2
+    ft2, n2 = _rest_loads(fl, mu, d - sg * fl.S, th)
+    return np.stack([-sg * ft - mu * n, n, sg * ft2 - mu * n2, n2])
+
+
+def _slip_excess(fl: Floor, mu, d, th, cusp):
+    """How far (mm/s²) the pull at rest exceeds static friction (> 0: it slips), and the arc
+    it slips on: |F_t| − μN on one arc.  In a cusp (within CUSP_REACH of d = ±S/2) the
+    particle leaves up a wall only if that wall presses on it (N > 0: a wall with N ≤ 0 does
+    not touch it) and its pull up the wall, F_t·(away from the cusp), beats μN: per wall
+    min(pull − μN, N), the larger of the two walls, and that wall's offset."""
+    parts = _slip_parts(fl, mu, d, th, cusp)
+    if not cusp:
+        return np.maximum(parts[0], parts[1]), d
+    own = np.minimum(parts[0], parts[1])
+    oth = np.minimum(parts[2], parts[3])
+    other = d - (1.0 if d > 0 else -1.0) * fl.S
     return np.maximum(own, oth), np.where(oth > own, other, d)
 
 
 def _slip(fl: Floor, mu, d, th_a, th_b, cusp, tol):
     """The first floor phase in [θ_a, θ_b] (rad) at which static friction lets go of a particle
     at rest at offset d (pull beyond μN by more than −tol), the arc's offset it then slides on,
-    and the least normal load before it.  Own search: samples at ≤ 2π/4096, then bisection
-    (nan: held to θ_b)."""
+    and the least normal load (_floor_load) until then.  Own search: samples at ≤ 2π/4096,
+    plus samples 2π·2⁻¹² … 2π·2⁻⁴⁸ rad either side of every root of the loads that decide a
+    slip (_slip_parts: a slip window is bounded by such roots, so a window narrower than the
+    grid — a wall's pull beating friction just before its N reaches 0 — is found too), then
+    bisection (nan: held to θ_b)."""
     n = int(np.ceil((th_b - th_a) / (2 * math.pi) * 4096)) + 2
-    th = np.linspace(th_a, th_b, n)
+    grid = np.linspace(th_a, th_b, n)
+    extra = []
+    offsets = 2 * math.pi * 2.0 ** -np.arange(12, 49, 2)
+    for k, part in enumerate(_slip_parts(fl, mu, d, grid, cusp)):
+        for j in np.nonzero(np.sign(part[:-1]) != np.sign(part[1:]))[0]:
+            lo, hi, s_lo = grid[j], grid[j + 1], np.sign(part[j])
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                if mid <= lo or mid >= hi:
+                    break
+                if np.sign(_slip_parts(fl, mu, d, np.array(mid), cusp)[k]) == s_lo:
+                    lo = mid
+                else:
+                    hi = mid
+            extra += [lo - offsets, hi + offsets]
+    th = np.unique(np.clip(np.concatenate([grid, *extra]), th_a, th_b)) if extra else grid
     ex, _ = _slip_excess(fl, mu, d, th, cusp)
-    nn = np.minimum(*_loads_both(fl, mu, d, th, cusp))
+    nn = _floor_load(fl, mu, d, th, cusp)
     hit = np.nonzero(ex > -tol)[0]
     if not hit.size:
         return math.nan, d, float(np.min(nn))
@@ -674,19 +763,26 @@ def _slip(fl: Floor, mu, d, th_a, th_b, cusp, tol):
             else:
                 lo = mid
         th_s = hi
-    arc = float(_slip_excess(fl, mu, d, np.array(th_s), cusp)[1])
-    return th_s, arc, float(np.min(nn[: j + 1]))
+    # the wall it slides up: the one whose slip condition holds just after the slip, 2π·2⁻²⁰
+    # rad on, whatever the recorded stretch's length (at the slip itself, where the effective
+    # gravity vanishes, both walls' loads are 0 and rounding would pick)
+    arc = float(_slip_excess(fl, mu, d, np.array(th_s + 2 * math.pi * 2.0**-20), cusp)[1])
+    # the least load up to the slip itself (the sample after it may lie past the floor's
+    # letting go: a slip where N is about to reach 0, |F_t| ≤ μN failing just before)
+    at_slip = float(_floor_load(fl, mu, d, np.array(th_s), cusp))
+    return th_s, arc, min(float(np.min(nn[:j], initial=math.inf)), at_slip)
 
 
-def _loads_both(fl: Floor, mu, d, th, cusp):
-    # the normal loads of the arc at d and (in a cusp) of its neighbour
+def _floor_load(fl: Floor, mu, d, th, cusp):
+    # the normal load that keeps the floor in touch (mm/s²): the arc's at d; in a cusp the
+    # larger of the two walls' (the floor lets go only when both do)
     n = _rest_loads(fl, mu, d, th)[1]
     if not cusp:
-        return n, n
-    return n, _rest_loads(fl, mu, d - (1.0 if d > 0 else -1.0) * fl.S, th)[1]
+        return n
+    return np.maximum(n, _rest_loads(fl, mu, d - (1.0 if d > 0 else -1.0) * fl.S, th)[1])
 
 
-def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> None:
+def _check_contact(fl: Floor, v_stick, rep: Report, idx, slid, tau, a, b) -> None:
     """Sliding stretches, by this checker's own RK4 (all stretches at once, ≥ 1024 steps per
     floor period or 1/8 of the pendulum period 2π√(R/g_max), whichever is shorter): the
     stretch starts on the surface with relative normal speed 0 (or at rest), N ≥ 0 at every
@@ -699,7 +795,7 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     t_b, x_b, y_b, vx_b, vy_b, ph_b, kind_b = b[k].T
     th_a, th_b = 2 * math.pi * ph_a, 2 * math.pi * ph_b
     tf = tau[k]
-    vf_tol = 16.0 * EPS * fl.A * fl.w
+    vf_tol = fl.vf_tol
     # at rest: a stop, a start at rest, or a collision that ended held (no contact start)
     rest_a = (kind_a == STOP) | (kind_a == START_STUCK) | (kind_a == 0)
     q, v, d_a, un = _contact_state(fl, x_a, vx_a, vy_a, th_a, rest_a)
@@ -725,7 +821,10 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     th0 = th_a.copy()
     gmax = fl.g + fl.A * fl.w**2
     slip_tol = 64.0 * EPS * gmax * (1.0 + mu)
-    cusp_a = ~np.full(k.size, fl.flat) & (np.abs(0.5 * fl.S - np.abs(d_a)) <= dd)
+    # in a cusp: on the conveyor within CUSP_REACH (the model's rule there, as for its
+    # lift-off); on the paper's floor exactly at it (to d's rounding)
+    reach = CUSP_REACH * fl.S if fl.conveyor else dd
+    cusp_a = ~np.full(k.size, fl.flat) & (0.5 * fl.S - np.abs(d_a) <= reach)
     for i in np.nonzero(rest_a & at_rest_a)[0]:
         th_s, arc, n_least = _slip(fl, mu, float(d_a[i]), th_a[i], th_a[i] + fl.w * tf[i],
                                      bool(cusp_a[i]), slip_tol)
@@ -733,6 +832,10 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
             bad[i] = True  # it slid while static friction held it, or after the floor let go
             continue
         th0[i] = th_s
+        if cusp_a[i] and fl.conveyor:
+            # the model's cusp: a particle within CUSP_REACH rests at the cusp point and slides
+            # from there, up the wall it slips on (its own arc's end or the neighbour's)
+            arc = math.copysign(0.5 * fl.S, arc)
         if arc != d_a[i]:
             d_a[i] = arc
             q[i] = math.asin(max(-1.0, min(1.0, arc / fl.R)))
@@ -741,7 +844,12 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     # friction's sign is fixed over a stretch (the kernel ends one at every stop); a start
     # speed within its rounding (start_tol) of 0 has no sign of its own: the particle moves
     # the way the tangential force pulls it (at rest: F_t, downhill on the paper's arcs)
-    ft0 = _rest_loads(fl, mu, d_a, th0)[0] if not fl.flat else -_effective_gravity(fl, th0)[0]
+    # On the conveyor the pull is read just after the slip (2π·2⁻²⁰ rad on: at it |F_t| = μN,
+    # ~0 for a tiny μN, and rounding would pick), and from a cusp it slides up the wall it
+    # slipped on, towards that arc's centre
+    th_f = th0 + (2 * math.pi * 2.0**-20 if fl.conveyor else 0.0)
+    ft0 = _rest_loads(fl, mu, d_a, th_f)[0] if not fl.flat else -_effective_gravity(fl, th_f)[0]
+    ft0 = np.where(cusp_a & rest_a & fl.conveyor, -d_a, ft0)
     sgn = np.where(np.abs(v) <= start_tol, np.where(ft0 > 0, 1.0, -1.0), np.sign(v))
     # the faster of the floor's period and the arc's pendulum period 2π√(R/g_max)
     swing = math.inf if fl.flat else 2 * math.pi * math.sqrt(fl.R / (fl.g + fl.A * fl.w**2))
@@ -783,16 +891,21 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     # tolerances: the kernel's integration (CONTACT_RTOL per period) and event location
     # (tol_t at the event function's rates), plus the rounding of the numbers involved
     grow = CONTACT_RTOL * (1.0 + periods)
-    dt = numerics.tol_t + 16.0 * EPS * (1.0 + tf * fl.f) / fl.f
+    dt = TOL_T + 16.0 * EPS * (1.0 + tf * fl.f) / fl.f
     v_tol = grow * scale_v + gmax * (1.0 + mu) * dt + 64 * EPS * scale_v
-    # θ from d = R sin θ is ill-conditioned at a vertical cusp: δθ ≤ √(2 δd/R)
     dd_x = 4.0 * np.spacing(np.abs(x_b) + fl.S) + 4.0 * np.spacing(np.abs(x_a) + fl.S) \
         + 32.0 * EPS * abs(fl.Ax)
-    q_tol = grow + (np.abs(v) + scale_v) * dt / (1.0 if fl.flat else fl.R) \
-        + (16 * EPS * (np.abs(x_b) + fl.S) if fl.flat
-           else np.sqrt(2.0 * dd_x / fl.R) + dd_x / fl.R)
+    # θ read off the recorded x: rounding, ill-conditioned at a steep cusp (δθ ≤ √(2δd/R))
+    q_read = 16 * EPS * (np.abs(x_b) + fl.S) if fl.flat else np.sqrt(2.0 * dd_x / fl.R) + dd_x / fl.R
+    q_tol = grow + (np.abs(v) + scale_v) * dt / (1.0 if fl.flat else fl.R) + q_read
     miss = np.abs(q - q_b) > q_tol
     rep.flag("contact_path", miss | (np.abs(v - v_b) > v_tol), idx[k], np.abs(v - v_b), v_tol)
+    # the least CONTACT_RTOL at which this stretch's path passes: its discrepancy in θ (rad)
+    # and v (in sqrt(g R)) beyond the derived terms (event location, reading θ off x,
+    # rounding), per period — the integration error CONTACT_RTOL is calibrated on
+    need = np.maximum(np.abs(q - q_b) - (q_tol - grow),
+                      (np.abs(v - v_b) - (v_tol - grow * scale_v)) / scale_v) / (1.0 + periods)
+    rep.contact_need = max(rep.contact_need, float(np.max(need, initial=-math.inf)))
     # no event before the recorded end: N > 0, inside the arc, still moving (friction)
     n_tol = gmax * grow + (fl.A * fl.w**3 + 4 * gmax * scale_v / (1.0 if fl.flat else fl.R)) * (dt + h)
     q_c = math.inf if fl.flat else math.asin(min(0.5 * fl.S / fl.R, 1.0))
@@ -810,16 +923,17 @@ def _check_contact(fl: Floor, numerics, rep: Report, idx, slid, tau, a, b) -> No
     lift = kind_b == CONTACT_LIFT
     dn_b = 0.0 if fl.flat else dd_x / fl.R + np.sqrt(2.0 * fl.R * dd_x) / fl.R
     un_tol = 64 * EPS * (scale_v + fl.A * fl.w) + 2.0 * np.hypot(ub_x, ub_y) * dn_b
-    ev_bad |= lift & ((n_end > n_end_tol) | (np.abs(un_b - numerics.v_stick) > un_tol))
+    ev_bad |= lift & ((n_end > n_end_tol) | (np.abs(un_b - v_stick) > un_tol))
     ev_bad |= (kind_b == CUSP) & (np.abs(np.abs(q) - q_c) > q_tol)
     still_b = np.abs(ub_x) <= vf_tol if fl.conveyor else vx_b == 0.0
     ev_bad |= rest_b & ((mu == 0) | (np.abs(v) > v_tol) | ~still_b | (np.abs(ub_y) > vf_tol))
     rep.flag("contact_event", ev_bad, idx[k], n_end, n_end_tol)
 
 
-def check_run(run, particles=None, last: int | None = None) -> Report:
+def check_run(run, particles=None, last: int | None = None, v_stick: float = V_STICK) -> Report:
     """Check the recorded events of ``particles`` (all by default) of a bbb.SimRun made with
-    ``record_liftoffs=True``; ``last``: only each particle's last that many events."""
+    ``record_liftoffs=True``; ``last``: only each particle's last that many events; ``v_stick``
+    the model's threshold (check_particle)."""
     if not run.liftoffs:
         raise ValueError("the trajectory checker needs simulate(..., record_liftoffs=True)")
     rep = Report()
@@ -827,5 +941,5 @@ def check_run(run, particles=None, last: int | None = None) -> Report:
         ev = run.collisions_dense[i, : run.n_recorded[i]]
         if last is not None:
             ev = ev[-last:]
-        rep.add(check_particle(run.params, run.numerics, ev))
+        rep.add(check_particle(run.params, ev, v_stick=v_stick))
     return rep
