@@ -9,9 +9,10 @@ and |Δv| in units of sqrt(g R) beyond the derived terms — event location, rea
 rounding —, over 1 + the stretch's length in periods: the kernel's RK4 against the checker's
 finer one; < 0 where the derived terms alone cover it): the paper's floor under slide and
 Coulomb (0.05, 0.3) at 46-99 Hz from rest and launched, the soak's six conveyor contact rows,
-and random inputs of the conveyor contact hypothesis test's domain.  ``--write`` stores the largest rtol needed
-and the margin in tests/bbb/data/checker_calibration.json; the checker sets CONTACT_RTOL =
-largest × MARGIN from it, and tests/bbb/test_trajectory_check.py holds it to that.  Rules
+and random inputs of the conveyor contact hypothesis test's domain.  ``--write`` stores the
+largest rtol needed and the margin in tests/bbb/data/checker_calibration.json; the checker sets
+CONTACT_RTOL = largest × MARGIN from it, and tests/bbb/test_trajectory_check.py holds it to
+that.  Rules
 before data: MARGIN is fixed here, before the measurement, not fitted to it.
 """
 
