@@ -56,3 +56,25 @@ def test_d_resolved_is_read_from_the_scenes_workflow(tmp_path, capsys):
     last = capsys.readouterr().out.strip().splitlines()[-1]
     assert rc == 1 and last.startswith("2/5 frequencies agree (40.0 %")
     assert "d_resolved = 9 mm²/s" in last and "by the CIs alone 1/5; n/a 1" in last
+
+
+def _latest_figure2_agreement():
+    """(agree, total, percent, by CIs alone) of the newest committed Fig. 2 agreement run."""
+    import re
+    runs = sorted((ROOT / "benchmarks" / "results").glob("agreement-figure2-*-resolution.txt"))
+    assert runs, "no committed agreement-figure2-*-resolution.txt"
+    text = runs[-1].read_text()
+    m = re.search(r"^(\d+)/(\d+) frequencies agree \(([\d.]+) %.*by the CIs alone (\d+)/\2",
+                  text, re.M)
+    assert m, f"{runs[-1].name}: no summary line"
+    return m.groups()
+
+
+def test_the_readme_and_accuracy_doc_quote_the_latest_figure2_agreement():
+    agree, total, percent, by_ci = _latest_figure2_agreement()
+    readme = " ".join((ROOT / "README.md").read_text().split())
+    accuracy = " ".join((ROOT / "docs" / "accuracy.md").read_text().split())
+    assert f"at {agree} of {total} frequencies ({percent} %)" in readme
+    assert f"({by_ci} of {total})" in readme
+    assert f"{agree} of {total} frequencies agree ({percent} %; within the CIs alone {by_ci})" \
+        in accuracy
