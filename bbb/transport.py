@@ -54,6 +54,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import stats
+from .stats.interval import FAILED, OK, DInterval
 
 __all__ = ["TransportEstimate", "per_particle_drift", "drift_velocity", "drift_change",
            "msd_slope_ratio", "transport", "steady_tolerance", "STEADY_REL", "STEADY_ABS",
@@ -85,7 +86,9 @@ class TransportEstimate:
                       v_by = "mirror symmetry" 0, 0, 0 exactly: a property of the ensemble's
                       design, not an estimate
     v_by           -- how the particles were counted (:data:`PAIRING`)
-    D, D_lo, D_hi  -- D of x − v t and its bootstrap CI, mm²/s
+    D, D_lo, D_hi  -- D of x − v t and its bootstrap CI, mm²/s; NaN where the estimator
+                      failed (the CI lies below 0: the MSD about the drift falls with the lag)
+    D_status       -- "ok", or the failed fit's numbers (bbb.stats.interval's wording)
     Pe             -- Péclet number v S / D (S the scatterer spacing), dimensionless
     fit_from, fit_to -- lag window of both fits, s
     dv, dv_lo, dv_hi -- v of the analysed run's second half minus its first half (each fitted
@@ -119,6 +122,7 @@ class TransportEstimate:
     curvature_lo: float = math.nan
     curvature_hi: float = math.nan
     diffusive: bool | None = None
+    D_status: str = OK
 
 
 def _window(xs: np.ndarray, times: np.ndarray, fit: dict) -> tuple[int, int, int, float]:
@@ -193,6 +197,7 @@ def transport(x: ArrayLike, sample_times: ArrayLike, S: float, *, n_resamples: i
         xd = xs - v[0] * times[None, :]
     d = stats.bootstrap_D(xd, times, seed=s_d, **kw, **fit)
     est = stats.diffusion_coefficient(xs[:1], times, **fit)
+    d, status = _unless_failed(d, xs.shape[0])
     pe = v[0] * S / d.D if d.D > 0 else math.nan
     tol = steady_tolerance(*v, ci=ci)
     a = msd_slope_ratio(xd, times, n_resamples=n_resamples, ci=ci, seed=s_a, units=units, **fit)
@@ -201,7 +206,17 @@ def transport(x: ArrayLike, sample_times: ArrayLike, S: float, *, n_resamples: i
                              dv_hi=dv[2], steady=not (dv[1] > tol or dv[2] < -tol), v_by=pairing,
                              dv_tol=tol, curvature=a[0], curvature_lo=a[1],
                              curvature_hi=a[2],
-                             diffusive=None if math.isnan(a[1]) else not a[1] > 1.0 + CURVATURE_TOL)
+                             diffusive=None if math.isnan(a[1]) else not a[1] > 1.0 + CURVATURE_TOL,
+                             D_status=status)
+
+
+def _unless_failed(d: stats.BootstrapCI, n: int) -> tuple[stats.BootstrapCI, str]:
+    """(D, lo, hi) and OK, or NaNs and the failure's note where the CI lies below 0 (a D
+    significantly below 0 is an estimator failure, never a value with a CI)."""
+    if not d.hi < 0.0:
+        return d, OK
+    note = DInterval(d.D, d.lo, d.hi, FAILED, n, 0.0, math.nan, math.nan).note()
+    return stats.BootstrapCI(math.nan, math.nan, math.nan), note
 
 
 def drift_change(x: ArrayLike, sample_times: ArrayLike, *, n_resamples: int, ci: float = 0.95,

@@ -56,7 +56,9 @@ v_by         how the particles count (the families' mirror key, Study.pairing): 
              estimate); "pairs" -- simulated mirror pairs, every bootstrap of the row (D, v,
              D_drift, dv, dD, the MSD slope ratio; not EB) resamples pairs; "independent"
 D_drift, D_drift_lo, D_drift_hi  D about the drift (MSD of x - v t), mm^2/s, with its CI;
-             there the column D still holds the raw MSD's D, drift included
+             there the column D still holds the raw MSD's D, drift included; NaN where its CI
+             lies below 0 (an estimator failure, as for D)
+D_drift_status  "ok", or the failed fit's numbers
 Pe           Péclet number v S / D_drift
 dv, dv_lo, dv_hi  v of the analysed run's second half minus its first half, mm/s, paired CI
 dv_tol       the band that CI must leave to flag, mm/s: 5 % of |v| + k SE(v) + 1e-6 mm/s
@@ -116,7 +118,7 @@ __all__ = ["reduce_store", "diffusion_table", "counters_table", "default_out_dir
 _UNITS = (  # the mechanisms table's neighbours, contrasts, λ split (pipeline.mechanisms)
           (r"f_(dn|up)", "Hz"), (r"(ln|share)_.*", "1"), (r"lam_(move|conf)(_lo|_hi)?", "1/s"),
           (r"lam.*_(distinct|tie)", "1"), (r"tau_coll", "s"), (r"(max_)?lag_coll", "1"),
-          (r"f", "Hz"), (r"D_status", ""), (r"(D_cover|CV.*|mover_share_hi)", "1"),
+          (r"f", "Hz"), (r"D(_drift)?_status", ""), (r"(D_cover|CV.*|mover_share_hi)", "1"),
           (r"lam(_lo|_hi)?", "1/s"), (r"lag_s", "s"),
           (r"(lam_coll.*|lag|max_lag|frac_creep)", "1"), (r"D(_.*)?", "mm^2/s"),
           (r"(t_max|fit_from|fit_to|eb_lag|task_seconds)", "s"),
@@ -369,7 +371,7 @@ def _transport_columns(x: np.ndarray, times: np.ndarray, study: Study,
                       seed.entropy, spawn_key=(*seed.spawn_key, zlib.crc32(b"transport"))),
                   pairing=pairing, units=units, **fit)
     return {"v": t.v, "v_lo": t.v_lo, "v_hi": t.v_hi, "v_by": t.v_by, "D_drift": t.D,
-            "D_drift_lo": t.D_lo, "D_drift_hi": t.D_hi, "Pe": t.Pe, "dv": t.dv,
+            "D_drift_lo": t.D_lo, "D_drift_hi": t.D_hi, "D_drift_status": t.D_status, "Pe": t.Pe, "dv": t.dv,
             "dv_lo": t.dv_lo, "dv_hi": t.dv_hi, "dv_tol": t.dv_tol, "steady": t.steady,
             "msd_slope_ratio": t.curvature, "msd_slope_ratio_lo": t.curvature_lo,
             "msd_slope_ratio_hi": t.curvature_hi, "diffusive": t.diffusive}

@@ -170,3 +170,22 @@ def test_an_ensemble_at_rest_has_no_exponent_and_is_not_judged():
     est = transport(np.zeros((10, SCENE_TIMES.size)), SCENE_TIMES, 2.0, n_resamples=50, seed=0,
                     **SCENE_FIT)
     assert np.isnan(est.curvature) and est.diffusive is None
+
+
+# -- estimator failure ---------------------------------------------------------------------
+def _oscillating(period: float) -> np.ndarray:
+    """Particles oscillating about fixed points (amplitude ~1 mm, random phases): the MSD about
+    the drift rises to a lag of half the period, then falls."""
+    rng = np.random.default_rng(1)
+    phase, amp = rng.uniform(0, 2 * np.pi, (200, 1)), rng.uniform(0.5, 1.5, (200, 1))
+    return amp * np.sin(2 * np.pi * TIMES[None, :] / period + phase)
+
+
+def test_a_d_about_the_drift_significantly_below_zero_is_no_value_but_a_failure():
+    # period 10 s: the fit lags (2.3-11.2 s) straddle the falling half of the MSD
+    est = transport(_oscillating(10.0), TIMES, 2.0, n_resamples=300, seed=1)
+    assert np.isnan([est.D, est.D_lo, est.D_hi, est.Pe]).all()
+    assert est.D_status.startswith("estimator failed: fit D = -")
+    # period 20 s: the MSD still rises over the fit lags -- a (small) D with its CI
+    ok = transport(_oscillating(20.0), TIMES, 2.0, n_resamples=300, seed=1)
+    assert ok.D_status == "ok" and 0.0 < ok.D_lo < ok.D < ok.D_hi
