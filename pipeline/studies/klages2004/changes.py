@@ -19,9 +19,10 @@ _ROW = re.compile(r"^\| ((?:[A-Z])?\d+) \| (.*?) \| .*? \| \*\*(.+?)\*\* \| (.*?
 
 
 def verdicts(report: str) -> dict[str, tuple[str, str, str]]:
-    """{claim id ("5", "M1", "T3"): (claim text, verdict, judged by)} of a REPORT.md text."""
+    """{claim id ("5", "M1", "T3"): (claim text, verdict, judged by)} of a REPORT.md text (its
+    claims tables, not its own section of changes)."""
     out = {}
-    for line in report.splitlines():
+    for line in report.split(HEADING, 1)[0].splitlines():
         m = _ROW.match(line)
         if m:
             out[m.group(1)] = (m.group(2), m.group(3), m.group(4))

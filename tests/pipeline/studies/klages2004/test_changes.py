@@ -11,8 +11,9 @@ REPORT = Path(__file__).resolve().parents[4] / "figures" / "REPORT.md"
 
 
 def _claim_rows(text: str) -> list[str]:
-    """Rows of the numbered claims tables: first cell an id (5, M1, T3), fourth a verdict."""
-    return [line for line in text.splitlines()
+    """Rows of the numbered claims tables (before the section of changes, whose rows look
+    alike): first cell an id (5, M1, T3), fourth a verdict."""
+    return [line for line in text.split(HEADING, 1)[0].splitlines()
             if re.match(r"^\| [A-Z]?\d+ \|", line) and " | **" in line]
 
 
@@ -50,3 +51,12 @@ def test_a_claim_new_or_gone_is_listed_as_such():
     assert any("(new claim)" in r for r in lines)
     lines = changes_section(text, text.replace(row + "\n", ""))
     assert any("(claim removed)" in r for r in lines)
+
+
+def test_the_rows_of_a_reports_own_section_of_changes_are_not_read_as_its_verdicts():
+    text = REPORT.read_text(encoding="utf-8").split(HEADING, 1)[0]
+    cid, (claim, verdict, _) = next(iter(verdicts(text).items()))
+    other = "agrees" if verdict != "agrees" else "disagrees"
+    # a section of changes whose row for cid matches the claims-table pattern
+    fake = f"{HEADING}\n\n| {cid} | {claim} | **{other}** | **{other}** | x |\n"
+    assert verdicts(text + fake)[cid][1] == verdict
