@@ -53,9 +53,29 @@ def test_a_resolved_zero_agrees_at_the_scenes_resolution_and_nowhere_else(tmp_pa
 def test_d_resolved_is_read_from_the_scenes_workflow(tmp_path, capsys):
     old, new = _files(tmp_path)
     rc = agreement.main([old, new, "--workflow", str(ROOT / "workflows" / "figure2.toml")])
-    last = capsys.readouterr().out.strip().splitlines()[-1]
-    assert rc == 1 and last.startswith("2/5 frequencies agree (40.0 %")
-    assert "d_resolved = 9 mm²/s" in last and "by the CIs alone 1/5; n/a 1" in last
+    summary, misses = capsys.readouterr().out.strip().splitlines()[-2:]
+    assert rc == 1 and summary.startswith("2/5 frequencies agree (40.0 %")
+    assert "d_resolved = 9 mm²/s" in summary and "by the CIs alone 1/5; n/a 1" in summary
+    # judged by the CIs: 54 (miss), 58 (res, D = 120 > 9: miss), 60 (agrees)
+    assert misses.startswith("CI misses 2 of 3 judged by the CIs")
+
+
+def test_a_frequency_where_neither_table_measures_d_is_not_compared(tmp_path, capsys):
+    old, new = _files(tmp_path)
+    OLD.assign(D=[1e-3, 2e-3, 100.0, 300.0, -2e-7], D_lo=[9e-4, 1.8e-3, 95.0, 291.0, -3e-7],
+               D_hi=[1.1e-3, 2.2e-3, 105.0, 309.0, -1e-7]).to_csv(old, index=False)
+    rows = agreement.compare(agreement.read_table(old), agreement.read_table(new), 9.0)
+    assert rows[-1].by == "none"  # old D significantly < 0 is an estimator failure, like NaN
+    agreement.main([old, new, "--d-resolved", "9"])
+    summary = capsys.readouterr().out.strip().splitlines()[-2]
+    assert summary.startswith("2/4 frequencies agree (50.0 %")
+    assert summary.endswith("n/a 0; not compared (no D in either table) 1")
+
+
+def test_the_binomial_tail_of_ci_misses():
+    assert abs(agreement.binom_tail(0, 7, 0.05) - 1.0) < 1e-15
+    assert abs(agreement.binom_tail(1, 2, 0.5) - 0.75) < 1e-15
+    assert abs(agreement.binom_tail(2, 2, 0.05) - 0.0025) < 1e-15
 
 
 def _latest_figure2_agreement():
