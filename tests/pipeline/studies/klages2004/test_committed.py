@@ -186,3 +186,60 @@ def test_every_figure_listed_in_the_report_has_a_caption_declared_in_code():
         declared.update(getattr(importlib.import_module(f"pipeline.studies.{study}"),
                                 "CAPTIONS", {}))
     assert not [stem for stem in _figure_captions() if not declared.get(stem, "").strip()]
+
+
+# -- the committed D(f) tables: what their intervals promise ---------------------------------
+def _diffusion_tables() -> dict[str, pd.DataFrame]:
+    """{scene: its committed D(f) table} (figures/diffusion_<scene>.csv, <study>_diffusion.csv)."""
+    out = {}
+    for p in sorted(FIGURES.glob("*diffusion*.csv")):
+        scene = p.stem.removeprefix("diffusion_").removesuffix("_diffusion")
+        out[scene] = pd.read_csv(p)
+    return out
+
+
+def _intervals(t: pd.DataFrame) -> list[str]:
+    """The D columns with an interval: D, D_<family>, D_drift (not dD, a difference)."""
+    return [c[:-3] for c in t.columns if re.fullmatch(r"D(_[a-z]+)?_lo", c) and c[:-3] + "_hi" in t]
+
+
+def test_no_committed_interval_of_d_has_zero_width():
+    tables = _diffusion_tables()
+    assert len(tables) >= 10
+    for scene, t in tables.items():
+        for c in _intervals(t):
+            same = t[(t[c + "_lo"] == t[c + "_hi"])]
+            assert same.empty, f"{scene}: {c} has a zero-width CI at f = {list(same['f'])}"
+
+
+def _stops(text: str) -> dict[str, str]:
+    """{column of D: stop reason} of a stop text ("target met" or "rest: cap; launched: ...")."""
+    if ":" not in text:
+        return {"D": text.strip()}
+    return {f"D_{fam.strip()}": why.strip()
+            for fam, why in (part.split(":", 1) for part in text.split(";"))}
+
+
+def test_no_row_that_stopped_with_its_target_met_shows_a_wider_ci_than_the_target():
+    from pipeline.scenes import scene_path
+    from pipeline.workflow import parse_workflow
+
+    checked = 0
+    for scene, t in _diffusion_tables().items():
+        if "stop" not in t:
+            continue
+        target = parse_workflow(scene_path(scene).read_text(), scene).accuracy.target_ci
+        for _, row in t.iterrows():
+            for col, why in _stops(row["stop"]).items():
+                if why != "target met":
+                    continue
+                hw = 0.5 * (row[col + "_hi"] - row[col + "_lo"])
+                assert hw <= target * row[col] * (1 + 1e-12), (scene, row["f"], col, hw)
+                checked += 1
+    assert checked >= 300
+
+
+def test_the_level_floor_vibrated_vertically_carries_no_current_in_the_committed_table():
+    t = pd.read_csv(FIGURES / "transport_t0_diffusion.csv")
+    assert len(t) >= 20 and (t["v_by"] == "mirror symmetry").all()
+    assert t[["v", "v_lo", "v_hi"]].abs().max().max() <= 1e-9
