@@ -23,6 +23,7 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from .identity import f_key
 from .lock import run_lock
 from .store import StudyStore, _is_local, normalize_path
 from .study import Study
@@ -103,7 +104,7 @@ def parse_fail_chunks(spec: str | None) -> set[tuple[int, str, int]]:
             continue
         try:
             f, fam, ci = item.strip().split(":")
-            out.add((round(float(f) * 1000), fam, int(ci)))
+            out.add((f_key(float(f)), fam, int(ci)))
         except ValueError:
             raise ValueError(f"{FAIL_ENV}: bad item {item!r}; allowed: F:FAMILY:CHUNK") from None
     return out
@@ -289,9 +290,9 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
     futures = {}
     for i, (fi, mi, ci) in enumerate(todo):
         f, fam = study.frequencies[fi], study.families[mi]
-        fail = (round(f * 1000), fam.name, ci) in fails
+        fail = (f_key(f), fam.name, ci) in fails
         fut = client.submit(compute_chunk, store, fi, mi, ci, fail,
-                            key=f"bbb-{round(f * 1000)}mHz-{fam.name}-{ci}-{token}",
+                            key=f"bbb-{f_key(f)}mHz-{fam.name}-{ci}-{token}",
                             priority=len(todo) - i, retries=0, pure=False)
         futures[fut] = (f, fam.name, ci)
     bar = tqdm(total=len(todo), unit="chunk", disable=not progress, file=sys.stderr,
@@ -302,7 +303,7 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
             try:
                 res: ChunkResult = fut.result()
             except Exception as e:
-                _failed(fut, study, study.f_mhz.index(round(f * 1000)),
+                _failed(fut, study, study.f_mhz.index(f_key(f)),
                         [m.name for m in study.families].index(fam), ci, e,
                         lambda: client.cancel(list(futures)))
             report.computed.append(res.key)

@@ -33,6 +33,7 @@ import zarr
 from bbb.provenance import kernel_identity
 from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES
 
+from .identity import SEEDING  # importable from here as before identity.py
 from .schema import as_dict
 from .store_layout import (  # importable from here as before the split
     COUNTERS,
@@ -59,8 +60,6 @@ _OLDER_LAYOUTS = {2: "it records no kernel hash, so whether its chunks were comp
 JSON_ATTRS = ("workflow", "params", "numerics", "accuracy")
 #: root attributes naming the kernel that computed the chunks (bbb.provenance.kernel_identity)
 KERNEL_ATTRS = ("kernel_hash", "numba_version", "numpy_version")
-SEEDING = ("SeedSequence(workflow seed, spawn_key=(round(f * 1000), "
-           "zlib.crc32(family name), chunk index))")
 
 
 class StoreError(ValueError):

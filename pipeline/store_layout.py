@@ -62,6 +62,7 @@ import zarr
 
 from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES
 
+from .identity import f_key
 from .study import Study
 
 __all__ = ["COUNTERS", "FIELD_UNITS", "collision_field_units", "create_layout", "n_periods"]
@@ -95,8 +96,8 @@ def create_layout(g: zarr.Group, study: Study) -> None:
     coord("frequency", list(study.frequencies), "float64", "Hz", "floor frequency f",
           chunk=n_base)
     if study.refine is not None:
-        added = {round(f * 1000) for f in study.refined}
-        coord("refined", [round(f * 1000) in added for f in study.frequencies], "bool", "",
+        added = {f_key(f) for f in study.refined}
+        coord("refined", [f_key(f) in added for f in study.frequencies], "bool", "",
               "frequency added by adaptive refinement", dim="frequency", chunk=n_base)
     coord("family", [f.name for f in study.families], str, "", "initial-condition family")
     coord("initial", [f.initial for f in study.families], str, "", "initial condition kind",
