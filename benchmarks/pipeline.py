@@ -88,9 +88,9 @@ class Cluster:
     """A LocalCluster of n single-threaded worker processes, as `bbb run` starts it."""
 
     def __init__(self, n: int):
-        from pipeline.run import _connect
+        from pipeline.run import connect
 
-        self.client, self.cluster = _connect(None, n, False)
+        self.client, self.cluster = connect(None, n, False)
         self.address = self.cluster.scheduler_address
 
     def peak_rss_mib(self) -> list[float]:

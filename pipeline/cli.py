@@ -23,6 +23,7 @@ from importlib import metadata
 from pathlib import Path
 
 from .identity import f_key
+from .store_layout import default_store_path  # importable from here as before
 
 __all__ = ["main", "default_store_path"]
 
@@ -37,11 +38,6 @@ class UsageError(Exception):
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str):  # argparse prints usage + message; we want one line
         raise UsageError(f"{self.prog}: {message} (see {self.prog} --help)")
-
-
-def default_store_path(name: str) -> str:
-    """``runs/<name>.zarr`` relative to the current directory."""
-    return os.path.join("runs", f"{name}.zarr")
 
 
 def _build_parser() -> argparse.ArgumentParser:
@@ -267,7 +263,7 @@ def _cmd_reduce(args) -> int:
 def _store_with_analysis_of(path: str, workflow: str):
     """The store at ``path`` carrying the reduce settings of ``workflow``; refused (one line)
     if the workflow would have simulated other data."""
-    from .store import StudyStore, _difference
+    from .store import StudyStore, fingerprint_difference
     from .workflow import load_workflow
 
     new = load_workflow(workflow)
@@ -282,7 +278,7 @@ def _store_with_analysis_of(path: str, workflow: str):
                                        "the workflow does not"))
     new_here = new.with_frequencies(old.base_frequencies)  # a store of a --frequencies subset
     if new_here.fingerprint() != old.fingerprint():
-        raise UsageError(refuse.format(_difference(old, new_here)))
+        raise UsageError(refuse.format(fingerprint_difference(old, new_here)))
     acc = replace(old.accuracy, n_resamples=new.accuracy.n_resamples)
     return replace(store, study=replace(old, analysis=new.analysis, accuracy=acc))
 

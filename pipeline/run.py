@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 
 from .identity import f_key
 from .lock import run_lock
-from .store import StudyStore, _is_local, normalize_path
+from .store import StudyStore, is_local, normalize_path
 from .study import Study
 from .task import (  # the task and what it reports, importable from here as before the split
     FAIL_ENV,
@@ -143,7 +143,7 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
                 t_start) -> RunReport:
     # An existing scheduler is reached first, so that a wrong address leaves no store behind;
     # a LocalCluster starts only once the store is known to need work.
-    client, cluster = _connect(scheduler, None, dashboard) if scheduler else (None, None)
+    client, cluster = connect(scheduler, None, dashboard) if scheduler else (None, None)
     waves = None
     try:
         store = StudyStore.create_or_open(store_path, study)
@@ -176,7 +176,7 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
 
         warm = warm_numba(study)  # compile here first: workers then only load the cache
         if client is None:
-            client, cluster = _connect(None, workers, dashboard)
+            client, cluster = connect(None, workers, dashboard)
         report.workers = len(client.scheduler_info(n_workers=-1)["workers"])
         report.dashboard = _dashboard(client, cluster, dashboard)
         link = report.dashboard or ("off" if not dashboard else "unavailable (pip install bokeh)")
@@ -209,7 +209,9 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
     return report
 
 
-def _connect(scheduler: str | None, workers: int | None, dashboard: bool):
+def connect(scheduler: str | None, workers: int | None, dashboard: bool):
+    """(client, cluster): a client of the running scheduler at ``scheduler`` (cluster None), or
+    of a new LocalCluster of ``workers`` processes (None: one per core)."""
     from distributed import Client, LocalCluster
 
     if scheduler:
@@ -254,7 +256,7 @@ def _dashboard(client, cluster, wanted: bool) -> str | None:
 
 def _check_workers_see_store(client, store_path: str) -> None:
     """With a remote scheduler the store must be on storage every worker sees."""
-    if not _is_local(store_path):
+    if not is_local(store_path):
         return  # an fsspec URL: the workers open it themselves
     seen = client.run(os.path.exists, os.path.join(store_path, "zarr.json"))
     blind = sorted(w for w, ok in seen.items() if not ok)

@@ -56,6 +56,7 @@ no chunk written before is rewritten.
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import zarr
@@ -65,10 +66,17 @@ from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES
 from .identity import f_key
 from .study import Study
 
-__all__ = ["COUNTERS", "FIELD_UNITS", "collision_field_units", "create_layout", "n_periods"]
+__all__ = ["COUNTERS", "default_store_path", "FIELD_UNITS", "collision_field_units", "create_layout",
+           "n_periods"]
 
 # Per-particle counters kept from bbb's SimRun.counters ('recorded' is stored as n_recorded).
 COUNTERS = tuple(c for c in COUNTER_NAMES if c != "recorded")
+
+
+def default_store_path(name: str) -> str:
+    """The store of the study ``name`` when none is given: ``runs/<name>.zarr`` relative to
+    the current directory (``bbb run``, :func:`pipeline.api.run_study`)."""
+    return os.path.join("runs", f"{name}.zarr")
 
 
 def create_layout(g: zarr.Group, study: Study) -> None:
