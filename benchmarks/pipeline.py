@@ -40,6 +40,7 @@ sys.path.insert(0, str(ROOT))
 
 from benchmarks.kernel import cpu_name  # noqa: E402
 from pipeline.accuracy import ACCURACY_PRESETS  # noqa: E402
+from pipeline.identity import f_key  # noqa: E402
 from pipeline.scenes import toml_dump as _toml_dump  # noqa: E402
 from pipeline.workflow import parse_workflow  # noqa: E402
 
@@ -87,9 +88,9 @@ class Cluster:
     """A LocalCluster of n single-threaded worker processes, as `bbb run` starts it."""
 
     def __init__(self, n: int):
-        from pipeline.run import _connect
+        from pipeline.run import connect
 
-        self.client, self.cluster = _connect(None, n, False)
+        self.client, self.cluster = connect(None, n, False)
         self.address = self.cluster.scheduler_address
 
     def peak_rss_mib(self) -> list[float]:
@@ -127,7 +128,7 @@ def task_overheads(stream, store: Path) -> tuple[float, float, float]:
 
     g = zarr.open_group(str(store), mode="r")
     secs = np.asarray(g["chunk_seconds"][...])
-    f_mhz = {round(float(f) * 1000): i for i, f in enumerate(np.asarray(g["frequency"][...]))}
+    f_mhz = {f_key(float(f)): i for i, f in enumerate(np.asarray(g["frequency"][...]))}
     fams = {str(n): i for i, n in enumerate(np.asarray(g["family"][...]))}
     per, walls, sims = [], 0.0, 0.0
     for t in stream:

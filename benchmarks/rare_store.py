@@ -26,7 +26,7 @@ from bbb import stats  # noqa: E402
 from bbb.stats.bootstrap import with_rare_movers  # noqa: E402
 from bbb.stats.rare import effective_movers, is_rare  # noqa: E402
 from pipeline.adaptive import OPEN, STOP_LEGEND, advance  # noqa: E402
-from pipeline.reduce import _reduce_seed  # noqa: E402
+from pipeline.identity import reduce_seed  # noqa: E402
 from pipeline.store import StudyStore  # noqa: E402
 from pipeline.waves import _prefix, rule_of, unit_ci  # noqa: E402
 
@@ -55,7 +55,7 @@ def main(argv: list[str] | None = None) -> int:
                  for mi in range(len(study.families))]
         x = np.concatenate([p for p in parts if p.shape[0] >= 2])
         ci = stats.bootstrap_D(x, times, n_resamples=acc.n_resamples, ci=an.ci,
-                               seed=_reduce_seed(study, f), method=an.ci_method, rare=False,
+                               seed=reduce_seed(study, f), method=an.ci_method, rare=False,
                                **fit)
         d_i = stats.per_particle_D(x, times, **fit)
         rare = not a.no_rare and is_rare(d_i)

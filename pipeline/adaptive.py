@@ -43,6 +43,8 @@ import numpy as np
 
 from bbb.extrema import Significance, critical_z, find_extrema
 
+from .identity import f_key
+
 __all__ = ["OPEN", "TARGET", "ZERO", "CAP", "STOP_LEGEND", "StoppingRule", "UnitState",
            "advance", "decide", "chunks_needed", "remaining", "refine_frequencies"]
 
@@ -170,7 +172,7 @@ def refine_frequencies(f_mhz: Sequence[int], D: Sequence[float], lo: Sequence[fl
     f, D, lo, hi = f[ok], D[ok], lo[ok], hi[ok]
     order = np.argsort(f, kind="stable")
     f, D, lo, hi = f[order], D[order], lo[order], hi[order]
-    to_mhz = round(to * 1000)
+    to_mhz = f_key(to)
     gaps: set[int] = set()  # index i: the gap between points i and i + 1
     if extrema and f.size >= 3:
         for e in find_extrema(f / 1000.0, D, lo, hi, ci=ci, alpha=alpha):

@@ -76,8 +76,8 @@ def run_study(workflow: str | os.PathLike | Study, store: str | os.PathLike | No
 
     Raises RunFailed naming the chunk if a task fails (finished chunks stay done).
     """
-    from .cli import default_store_path
     from .run import run_study as _run
+    from .store_layout import default_store_path
 
     study = load_study(workflow)
     if client is not None and workers is not None:

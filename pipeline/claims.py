@@ -2,8 +2,8 @@
 
 This module knows no paper.  A study declares its claims as a list of :class:`Claim` records
 (the paper's sentence, the quantity, where it is measured, the tolerance band and why);
-:func:`evaluate` measures each with a function from :data:`MEASURES` (generic ones in
-:mod:`pipeline.claim_measures`; a study may register its own) and judges the measured
+:func:`evaluate` measures each with the function the claim holds (generic ones in
+:mod:`pipeline.claim_measures`, a study's own beside its claims) and judges the measured
 :class:`Quantity` -- a value with its CI -- against the claim's :class:`Band`.
 
 The verdict rule (:func:`judge`), fixed before looking at any claim it turns:
@@ -29,12 +29,14 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
-__all__ = ["VERDICTS", "Quantity", "Band", "Part", "Measured", "Claim", "Row", "MEASURES",
+__all__ = ["VERDICTS", "Quantity", "Band", "Part", "Measured", "Claim", "Row", "Measure",
            "measure", "judge", "combine", "evaluate", "markdown_table", "md_cell"]
 
 VERDICTS = ("agrees", "agrees within the CI", "inconclusive", "partly", "disagrees",
             "not measured")
 _POSITIVE = ("agrees", "agrees within the CI")
+#: a measure: (claim, ctx) -> Measured (ctx: the tables, stores, curves, ... it reads)
+Measure = Callable[["Claim", Mapping], "Measured"]
 
 
 @dataclass(frozen=True)
@@ -116,7 +118,8 @@ class Claim:
     """One claim of a paper, declared.
 
     text     -- the paper's sentence (short form)
-    quantity -- name of the measure in MEASURES
+    measure  -- the function that measures it: measure(claim, ctx) -> Measured, named by the
+                :func:`measure` decorator (its name is the claim's :attr:`quantity`)
     scene    -- the table it is measured in ("figure2", "locking", ...)
     band     -- tolerance band and why (None: the measure decides)
     family   -- initial-condition family of the claim's main curve
@@ -128,7 +131,7 @@ class Claim:
     """
 
     text: str
-    quantity: str
+    measure: Measure
     scene: str = ""
     band: Band | None = None
     family: str = "rest"
@@ -137,6 +140,11 @@ class Claim:
     options: Mapping = field(default_factory=dict)
     note: str = ""
     explain: Callable[[Mapping], str] | None = None
+
+    @property
+    def quantity(self) -> str:
+        """The name of the claim's measure ("extremum", "klages2004.loops", ...)."""
+        return getattr(self.measure, "measure_name", self.measure.__name__)
 
 
 @dataclass(frozen=True)
@@ -151,14 +159,11 @@ class Row:
     judged_by: str = ""
 
 
-#: name -> measure(claim, ctx) -> Measured
-MEASURES: dict[str, Callable[[Claim, Mapping], Measured]] = {}
-
-
 def measure(name: str):
-    """Decorator: register a measure under ``name``."""
+    """Decorator: name a measure (``fn.measure_name``, shown as its claims' quantity).  Nothing
+    is registered: a claim holds its measure function."""
     def deco(fn):
-        MEASURES[name] = fn
+        fn.measure_name = name
         return fn
     return deco
 
@@ -208,11 +213,10 @@ def _margin(q: Quantity, band: Band) -> str:
 
 def evaluate_claim(claim: Claim, ctx: Mapping) -> Row:
     """Measure one claim and judge it."""
-    fn = MEASURES.get(claim.quantity)
-    if fn is None:
-        raise KeyError(f"claim {claim.text!r}: no measure {claim.quantity!r}; known: "
-                       f"{', '.join(sorted(MEASURES))}")
-    m = fn(claim, ctx)
+    if not callable(claim.measure):
+        raise TypeError(f"claim {claim.text!r}: its measure {claim.measure!r} is not a function "
+                        "measure(claim, ctx) -> Measured")
+    m = claim.measure(claim, ctx)
     band = claim.band
     judged_by = ("" if band is None else f"{band.text()}: {band.why}" if band.text()
                  else band.why)

@@ -22,6 +22,9 @@ from dataclasses import replace
 from importlib import metadata
 from pathlib import Path
 
+from .identity import f_key
+from .store_layout import default_store_path  # importable from here as before
+
 __all__ = ["main", "default_store_path"]
 
 EXIT_USAGE = 2
@@ -35,11 +38,6 @@ class UsageError(Exception):
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str):  # argparse prints usage + message; we want one line
         raise UsageError(f"{self.prog}: {message} (see {self.prog} --help)")
-
-
-def default_store_path(name: str) -> str:
-    """``runs/<name>.zarr`` relative to the current directory."""
-    return os.path.join("runs", f"{name}.zarr")
 
 
 def _build_parser() -> argparse.ArgumentParser:
@@ -126,10 +124,10 @@ def _frequency_list(text: str) -> tuple[float, ...]:
             f = float(item)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{item.strip()!r} is not a number; {allowed}") from None
-        if not math.isfinite(f) or f <= 0 or abs(f * 1000 - round(f * 1000)) > 1e-6 * f:
+        if not math.isfinite(f) or f <= 0 or abs(f * 1000 - f_key(f)) > 1e-6 * f:
             raise argparse.ArgumentTypeError(f"{item.strip()} is out of range; allowed: "
                                              "finite frequencies > 0 Hz, multiples of 0.001 Hz")
-        if round(f * 1000) in {round(g * 1000) for g in out}:
+        if f_key(f) in {f_key(g) for g in out}:
             raise argparse.ArgumentTypeError(f"{item.strip()} is repeated; {allowed}")
         out.append(f)
     return tuple(out)
@@ -222,7 +220,7 @@ def _cmd_run(args) -> int:
 def _frequency_subset(study, wanted: tuple[float, ...], workflow: str):
     """The study at the frequencies asked for, each of which must be one of the workflow's."""
     have = set(study.f_mhz)
-    missing = [f for f in wanted if round(f * 1000) not in have]
+    missing = [f for f in wanted if f_key(f) not in have]
     if missing:
         fs = study.frequencies
         listing = (", ".join(f"{f:g}" for f in fs) if len(fs) <= 8
@@ -265,7 +263,7 @@ def _cmd_reduce(args) -> int:
 def _store_with_analysis_of(path: str, workflow: str):
     """The store at ``path`` carrying the reduce settings of ``workflow``; refused (one line)
     if the workflow would have simulated other data."""
-    from .store import StudyStore, _difference
+    from .store import StudyStore, fingerprint_difference
     from .workflow import load_workflow
 
     new = load_workflow(workflow)
@@ -274,13 +272,13 @@ def _store_with_analysis_of(path: str, workflow: str):
     refuse = (f"{workflow}: simulation settings differ from the store {store.path} "
               "({}); allowed: a workflow that differs from the store's only in [analysis] "
               "and accuracy.n_resamples")
-    extra = sorted({round(f * 1000) for f in old.base_frequencies} - set(new.f_mhz))
+    extra = sorted({f_key(f) for f in old.base_frequencies} - set(new.f_mhz))
     if extra:
         raise UsageError(refuse.format(f"frequencies: store has {extra[0] / 1000:g} Hz, "
                                        "the workflow does not"))
     new_here = new.with_frequencies(old.base_frequencies)  # a store of a --frequencies subset
     if new_here.fingerprint() != old.fingerprint():
-        raise UsageError(refuse.format(_difference(old, new_here)))
+        raise UsageError(refuse.format(fingerprint_difference(old, new_here)))
     acc = replace(old.accuracy, n_resamples=new.accuracy.n_resamples)
     return replace(store, study=replace(old, analysis=new.analysis, accuracy=acc))
 
@@ -356,13 +354,13 @@ def _status_text(store) -> str:
 
         width = max(width, 22)
         lines[0] += f"; target CI half-width {study.accuracy.target_ci:g} of D"
-    refined = {round(f * 1000) for f in study.refined}
+    refined = {f_key(f) for f in study.refined}
     lines.append("f (Hz)    " + "  ".join(n.rjust(max(width, 5)) for n in names))
     for fi, f in enumerate(study.frequencies):
         cells = [f"{int(done[fi, mi].sum())}/{done.shape[2]}" for mi in range(len(names))]
         if stops is not None:
             cells = [c + f" {STOP_LEGEND[int(stops[1][fi, mi])]}" for mi, c in enumerate(cells)]
-        mark = "*" if round(f * 1000) in refined else " "
+        mark = "*" if f_key(f) in refined else " "
         lines.append(f"{f:<8g}{mark} " + "  ".join(c.rjust(max(width, 5)) for c in cells))
     if refined:
         lines.append(f"* added by refinement ({len(refined)} frequencies, to "

@@ -29,7 +29,6 @@ v_max_lo, v_max_hi, k_max_lo, k_max_hi, v_peak_lo, v_peak_hi, k_peak_lo, k_peak_
 from __future__ import annotations
 
 import os
-import zlib
 from collections.abc import Iterable
 
 import numpy as np
@@ -37,6 +36,7 @@ import pandas as pd
 
 from bbb.locking import bootstrap_locking, flight_times, locking_estimate
 
+from .identity import table_seed
 from .store import StudyStore
 
 __all__ = ["as_store", "field_names", "states", "locking_table", "LOCKING_COLUMNS"]
@@ -100,8 +100,7 @@ def locking_table(store: str | os.PathLike | StudyStore) -> pd.DataFrame:
             s = states(st, f, fam.name)
             fl = flight_times(s["t"], s["y"], s["vy"], p.g) if s["t"].size else np.zeros(0)
             est = locking_estimate(s["vy"], p.A, f, p.g, flights=fl)
-            seed = np.random.SeedSequence(study.seed, spawn_key=(
-                round(f * 1000), zlib.crc32(fam.name.encode()), zlib.crc32(b"locking")))
+            seed = table_seed(study, f, fam, "locking")
             ci = bootstrap_locking(s["vy"], p.A, f, p.g, n_resamples=LOCK_RESAMPLES, seed=seed)
             rows.append({
                 "f": f, "family": fam.name, "initial": fam.initial, "n_states": est.n,

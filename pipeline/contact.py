@@ -18,11 +18,11 @@ particles are, not only how they move once stationary.
 from __future__ import annotations
 
 import math
-import zlib
 
 import numpy as np
 import pandas as pd
 
+from .identity import table_seed
 from .store import StudyStore
 
 __all__ = ["contact_table", "bootstrap_mean", "FRACTIONS"]
@@ -63,8 +63,7 @@ def contact_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
                      for col, arr in FRACTIONS.items()}
             row["n_particles"] = len(times["held_frac"])
             for col, t in times.items():
-                seed = np.random.SeedSequence(study.seed, spawn_key=(
-                    round(f * 1000), zlib.crc32(fam.name.encode()), zlib.crc32(col.encode())))
+                seed = table_seed(study, f, fam, col)
                 m, lo, hi = bootstrap_mean(t / acc.t_max, acc.n_resamples, an.ci, seed)
                 row.update({col: m, f"{col}_lo": lo, f"{col}_hi": hi})
             row["contact_frac"] = row["held_frac"] + row["slide_frac"]

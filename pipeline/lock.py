@@ -15,7 +15,7 @@ import socket
 from collections.abc import Iterator
 from contextlib import contextmanager
 
-from .store import StoreError, _is_local, normalize_path
+from .store import StoreError, is_local, normalize_path
 
 __all__ = ["run_lock"]
 
@@ -29,7 +29,7 @@ def run_lock(path: str) -> Iterator[None]:
     taken over.  fsspec URLs are not locked (no atomic create on object stores).
     """
     path = normalize_path(path)
-    if not _is_local(path):
+    if not is_local(path):
         yield
         return
     lock = path.rstrip("/") + ".lock"

@@ -54,11 +54,11 @@ fraction of the floor periods, rounded up; per collision: the recording starts a
 from __future__ import annotations
 
 import math
-import zlib
 
 import numpy as np
 import pandas as pd
 
+from .identity import mechanisms_seed
 from .store import StudyStore
 from .store_layout import n_periods
 
@@ -79,8 +79,7 @@ def mechanisms_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
     rows, gks = [], {"": {}, "_coll": {}}
     for fi, f in enumerate(study.frequencies):
         row: dict = {"f": f, "Gamma": study.params(f).gamma}
-        seed = np.random.SeedSequence(study.seed, spawn_key=(round(f * 1000),
-                                                             zlib.crc32(b"mechanisms")))
+        seed = mechanisms_seed(study, f)
         if obs.jumps:
             cols, gks[""][f] = _expansion_columns(store, fi, f, done, seed)
             row.update(cols)

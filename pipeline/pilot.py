@@ -33,8 +33,9 @@ from dataclasses import replace
 from datetime import UTC, datetime
 from pathlib import Path
 
-import numpy as np
-
+# PILOT_CHUNK, the pilot's chunk index in the seed (no real chunk has it): importable from here
+# as before pipeline.identity
+from .identity import PILOT_CHUNK, f_key, pilot_seed  # noqa: F401
 from .plan import Cell, Rates
 from .study import Study
 
@@ -42,8 +43,6 @@ __all__ = ["pilot_rates", "benchmark_rate", "PILOT_PARTICLES", "TIMING_FLOOR_S"]
 
 #: pilot particles per (frequency, family)
 PILOT_PARTICLES = 8
-#: the pilot's chunk index in the seed: no real chunk has it
-PILOT_CHUNK = 2**31
 #: a pilot that measured less CPU than this, s, is timed again (same seeds) until its repeats
 #: add up to it, and each cell keeps its fastest repeat: on a shared 2-core VM a 0.3 s pilot
 #: timed once can read slow enough to push the tiny scene of tests/pipeline/test_plan.py past
@@ -76,9 +75,9 @@ def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
         stored = json.loads(path.read_text()) if path and path.exists() else {}
         caches[fam.name] = (path, stored)
         for f in study.frequencies:
-            key = str(round(f * 1000))
+            key = str(f_key(f))
             if key in stored:
-                cells[(round(f * 1000), fam.name)] = Cell(**stored[key]["cell"])
+                cells[(f_key(f), fam.name)] = Cell(**stored[key]["cell"])
             else:
                 todo.append((f, fam))
     when = {s.get("_measured") for _, s in caches.values() if s}
@@ -127,13 +126,13 @@ def _fastest_timings(study: Study, todo, n: int) -> dict[tuple[int, str], Cell]:
     """The pilot cell at each (f, family) of ``todo``, keyed (f in mHz, family name), its
     cpu_s the least of its timings: the pilot is timed again (same seeds, so the same
     collisions) until all its timings add up to TIMING_FLOOR_S, at most 20 rounds."""
-    cells = {(round(f * 1000), fam.name): _pilot_cell(study, f, fam, n) for f, fam in todo}
+    cells = {(f_key(f), fam.name): _pilot_cell(study, f, fam, n) for f, fam in todo}
     timed = sum(c.cpu_s for c in cells.values())
     for _ in range(20):
         if timed >= TIMING_FLOOR_S:
             break
         for f, fam in todo:
-            key = (round(f * 1000), fam.name)
+            key = (f_key(f), fam.name)
             cpu = _pilot_cpu(study, f, fam, n)
             timed += cpu
             cells[key] = replace(cells[key], cpu_s=min(cells[key].cpu_s, cpu))
@@ -146,7 +145,7 @@ def _pilot_run(study: Study, f: float, fam, n: int):
 
     acc = study.accuracy
     positions = bool(study.observables.positions)
-    seed = np.random.SeedSequence(study.seed, spawn_key=(round(f * 1000), fam.key, PILOT_CHUNK))
+    seed = pilot_seed(study, f, fam)
     t0 = time.process_time()
     run = simulate(study.params(f), n, acc.t_max, seed,
                    sample_times=study.sample_times() if positions else None,

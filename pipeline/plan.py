@@ -31,6 +31,7 @@ import heapq
 import math
 from dataclasses import dataclass, replace
 
+from .identity import f_key
 from .study import Study
 
 __all__ = ["Cell", "Rates", "Overheads", "TaskRow", "Plan", "predict", "plan_table",
@@ -208,7 +209,7 @@ def predict(study: Study, rates: Rates, workers: int, overheads: Overheads = Ove
     rows, durations = [], []
     for f in study.frequencies:
         for fam in study.families:
-            cell = rates.cells[(round(f * 1000), fam.name)]
+            cell = rates.cells[(f_key(f), fam.name)]
             n, why = particles_needed(study, cell)
             chunk_cpu = acc.chunk_size * acc.t_max * cell.per_particle_s / r
             chunks = n // acc.chunk_size

@@ -96,7 +96,6 @@ import json
 import math
 import os
 import re
-import zlib
 from collections.abc import Callable
 from pathlib import Path
 
@@ -106,6 +105,7 @@ import pyarrow as pa
 import pyarrow.parquet as pq
 
 from .adaptive import OPEN, STOP_LEGEND
+from .identity import child_seed, reduce_seed
 from .store import StudyStore, package_version
 from .store_layout import COUNTERS
 from .study import Study
@@ -226,7 +226,7 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
             continue
         x = np.concatenate(list(fams.values()))
         pairing, units = _pairing(study, fams)
-        seed = _reduce_seed(study, f)
+        seed = reduce_seed(study, f)
         est = stats.diffusion_coefficient(x, times, **fit)
         named = {study.families[mi].name: r for mi, r in fam_ci.items()}
         verdict = stats.ergodic_verdict(
@@ -350,8 +350,7 @@ def _stationarity_columns(x: np.ndarray, times: np.ndarray, an, acc,
 
     try:
         s = stationarity(x, times, n_resamples=acc.n_resamples, ci=an.ci,
-                         seed=np.random.SeedSequence(seed.entropy, spawn_key=(
-                             *seed.spawn_key, zlib.crc32(b"stationarity"))),
+                         seed=child_seed(seed, "stationarity"),
                          discard=an.discard, fit_from=an.fit_from, fit_to=an.fit_to,
                          units=units)
     except ValueError:  # a half too short for two fit lags: no check, not a flag
@@ -367,8 +366,7 @@ def _transport_columns(x: np.ndarray, times: np.ndarray, study: Study,
 
     an = study.analysis
     t = transport(x, times, study.base_params["S"], n_resamples=study.accuracy.n_resamples,
-                  ci=an.ci, method=an.ci_method, seed=np.random.SeedSequence(
-                      seed.entropy, spawn_key=(*seed.spawn_key, zlib.crc32(b"transport"))),
+                  ci=an.ci, method=an.ci_method, seed=child_seed(seed, "transport"),
                   pairing=pairing, units=units, **fit)
     return {"v": t.v, "v_lo": t.v_lo, "v_hi": t.v_hi, "v_by": t.v_by, "D_drift": t.D,
             "D_drift_lo": t.D_lo, "D_drift_hi": t.D_hi, "D_drift_status": t.D_status, "Pe": t.Pe, "dv": t.dv,
@@ -381,6 +379,4 @@ def _ratio(a: float, b: float) -> float:
     return a / b if b > 0 else math.nan  # EB = 0 (identical trajectories) or NaN (none move)
 
 
-def _reduce_seed(study: Study, f: float) -> np.random.SeedSequence:
-    # Keyed by value like the chunk seeds, and apart from them by the extra "reduce" key.
-    return np.random.SeedSequence(study.seed, spawn_key=(round(f * 1000), zlib.crc32(b"reduce")))
+

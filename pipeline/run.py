@@ -23,8 +23,9 @@ import uuid
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from .identity import f_key
 from .lock import run_lock
-from .store import StudyStore, _is_local, normalize_path
+from .store import StudyStore, is_local, normalize_path
 from .study import Study
 from .task import (  # the task and what it reports, importable from here as before the split
     FAIL_ENV,
@@ -103,7 +104,7 @@ def parse_fail_chunks(spec: str | None) -> set[tuple[int, str, int]]:
             continue
         try:
             f, fam, ci = item.strip().split(":")
-            out.add((round(float(f) * 1000), fam, int(ci)))
+            out.add((f_key(float(f)), fam, int(ci)))
         except ValueError:
             raise ValueError(f"{FAIL_ENV}: bad item {item!r}; allowed: F:FAMILY:CHUNK") from None
     return out
@@ -142,7 +143,7 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
                 t_start) -> RunReport:
     # An existing scheduler is reached first, so that a wrong address leaves no store behind;
     # a LocalCluster starts only once the store is known to need work.
-    client, cluster = _connect(scheduler, None, dashboard) if scheduler else (None, None)
+    client, cluster = connect(scheduler, None, dashboard) if scheduler else (None, None)
     waves = None
     try:
         store = StudyStore.create_or_open(store_path, study)
@@ -175,7 +176,7 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
 
         warm = warm_numba(study)  # compile here first: workers then only load the cache
         if client is None:
-            client, cluster = _connect(None, workers, dashboard)
+            client, cluster = connect(None, workers, dashboard)
         report.workers = len(client.scheduler_info(n_workers=-1)["workers"])
         report.dashboard = _dashboard(client, cluster, dashboard)
         link = report.dashboard or ("off" if not dashboard else "unavailable (pip install bokeh)")
@@ -208,7 +209,9 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
     return report
 
 
-def _connect(scheduler: str | None, workers: int | None, dashboard: bool):
+def connect(scheduler: str | None, workers: int | None, dashboard: bool):
+    """(client, cluster): a client of the running scheduler at ``scheduler`` (cluster None), or
+    of a new LocalCluster of ``workers`` processes (None: one per core)."""
     from distributed import Client, LocalCluster
 
     if scheduler:
@@ -253,7 +256,7 @@ def _dashboard(client, cluster, wanted: bool) -> str | None:
 
 def _check_workers_see_store(client, store_path: str) -> None:
     """With a remote scheduler the store must be on storage every worker sees."""
-    if not _is_local(store_path):
+    if not is_local(store_path):
         return  # an fsspec URL: the workers open it themselves
     seen = client.run(os.path.exists, os.path.join(store_path, "zarr.json"))
     blind = sorted(w for w, ok in seen.items() if not ok)
@@ -289,9 +292,9 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
     futures = {}
     for i, (fi, mi, ci) in enumerate(todo):
         f, fam = study.frequencies[fi], study.families[mi]
-        fail = (round(f * 1000), fam.name, ci) in fails
+        fail = (f_key(f), fam.name, ci) in fails
         fut = client.submit(compute_chunk, store, fi, mi, ci, fail,
-                            key=f"bbb-{round(f * 1000)}mHz-{fam.name}-{ci}-{token}",
+                            key=f"bbb-{f_key(f)}mHz-{fam.name}-{ci}-{token}",
                             priority=len(todo) - i, retries=0, pure=False)
         futures[fut] = (f, fam.name, ci)
     bar = tqdm(total=len(todo), unit="chunk", disable=not progress, file=sys.stderr,
@@ -302,7 +305,7 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
             try:
                 res: ChunkResult = fut.result()
             except Exception as e:
-                _failed(fut, study, study.f_mhz.index(round(f * 1000)),
+                _failed(fut, study, study.f_mhz.index(f_key(f)),
                         [m.name for m in study.families].index(fam), ci, e,
                         lambda: client.cancel(list(futures)))
             report.computed.append(res.key)

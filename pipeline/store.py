@@ -33,6 +33,7 @@ import zarr
 from bbb.provenance import kernel_identity
 from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES
 
+from .identity import SEEDING  # importable from here as before identity.py
 from .schema import as_dict
 from .store_layout import (  # importable from here as before the split
     COUNTERS,
@@ -59,8 +60,6 @@ _OLDER_LAYOUTS = {2: "it records no kernel hash, so whether its chunks were comp
 JSON_ATTRS = ("workflow", "params", "numerics", "accuracy")
 #: root attributes naming the kernel that computed the chunks (bbb.provenance.kernel_identity)
 KERNEL_ATTRS = ("kernel_hash", "numba_version", "numpy_version")
-SEEDING = ("SeedSequence(workflow seed, spawn_key=(round(f * 1000), "
-           "zlib.crc32(family name), chunk index))")
 
 
 class StoreError(ValueError):
@@ -83,7 +82,8 @@ def normalize_path(path: str | os.PathLike) -> str:
     return path if "://" in path else os.path.abspath(path)
 
 
-def _is_local(path: str) -> bool:
+def is_local(path: str) -> bool:
+    """Whether a store path is on the local filesystem (no ``scheme://``)."""
     return "://" not in path
 
 
@@ -122,7 +122,7 @@ class StudyStore:
             if attrs.get("workflow_fingerprint") != study.fingerprint():
                 old = Study.from_dict(attrs["workflow"])
                 raise StoreError(f"{path}: made by a different workflow "
-                                 f"({_difference(old, study)}); "
+                                 f"({fingerprint_difference(old, study)}); "
                                  "allowed: the same workflow, or another --store")
             if attrs["fingerprint"] != store_fingerprint(study.fingerprint(), kernel):
                 raise StoreError(f"{path}: its fingerprint does not match its own workflow and "
@@ -133,7 +133,7 @@ class StudyStore:
             store = cls(path, study)
             store._update_reduce_settings(existing, study)
             return store
-        if _is_local(path) and os.path.exists(path):
+        if is_local(path) and os.path.exists(path):
             raise StoreError(f"{path}: exists and is not a Zarr store; allowed: a new path or a "
                              "store made by the same workflow")
         return cls._create(path, study, overwrite=False)
@@ -363,7 +363,7 @@ def _jsonable(o: Any) -> Any:
     return o
 
 
-def _difference(old: Study, new: Study) -> str:
+def fingerprint_difference(old: Study, new: Study) -> str:
     """Name the first data-determining key that differs, e.g. 'params.alpha: 0.7 -> 0.5'."""
     a, b = old.data_identity(), new.data_identity()
     for k in a:

@@ -56,18 +56,27 @@ no chunk written before is rewritten.
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import zarr
 
 from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES
 
+from .identity import f_key
 from .study import Study
 
-__all__ = ["COUNTERS", "FIELD_UNITS", "collision_field_units", "create_layout", "n_periods"]
+__all__ = ["COUNTERS", "default_store_path", "FIELD_UNITS", "collision_field_units", "create_layout",
+           "n_periods"]
 
 # Per-particle counters kept from bbb's SimRun.counters ('recorded' is stored as n_recorded).
 COUNTERS = tuple(c for c in COUNTER_NAMES if c != "recorded")
+
+
+def default_store_path(name: str) -> str:
+    """The store of the study ``name`` when none is given: ``runs/<name>.zarr`` relative to
+    the current directory (``bbb run``, :func:`pipeline.api.run_study`)."""
+    return os.path.join("runs", f"{name}.zarr")
 
 
 def create_layout(g: zarr.Group, study: Study) -> None:
@@ -95,8 +104,8 @@ def create_layout(g: zarr.Group, study: Study) -> None:
     coord("frequency", list(study.frequencies), "float64", "Hz", "floor frequency f",
           chunk=n_base)
     if study.refine is not None:
-        added = {round(f * 1000) for f in study.refined}
-        coord("refined", [round(f * 1000) in added for f in study.frequencies], "bool", "",
+        added = {f_key(f) for f in study.refined}
+        coord("refined", [f_key(f) in added for f in study.frequencies], "bool", "",
               "frequency added by adaptive refinement", dim="frequency", chunk=n_base)
     coord("family", [f.name for f in study.families], str, "", "initial-condition family")
     coord("initial", [f.initial for f in study.families], str, "", "initial condition kind",

@@ -18,6 +18,7 @@ import numpy as np
 
 from bbb.params import Params
 
+from .identity import chunk_seed, f_key
 from .schema import as_dict
 from .workflow_keys import Accuracy, Analysis, Family, Observables, RefineTable
 
@@ -58,13 +59,13 @@ class Study:
 
     @property
     def f_mhz(self) -> tuple[int, ...]:
-        return tuple(round(f * 1000) for f in self.frequencies)
+        return tuple(f_key(f) for f in self.frequencies)
 
     @property
     def base_frequencies(self) -> tuple[float, ...]:
         """The workflow's own frequencies, Hz (``frequencies`` without the refined ones)."""
-        added = {round(f * 1000) for f in self.refined}
-        return tuple(f for f in self.frequencies if round(f * 1000) not in added)
+        added = {f_key(f) for f in self.refined}
+        return tuple(f for f in self.frequencies if f_key(f) not in added)
 
     @property
     def adaptive(self) -> bool:
@@ -85,7 +86,7 @@ class Study:
     def seed_sequence(self, f: float, family: Family, chunk: int) -> np.random.SeedSequence:
         """The seed of one chunk, keyed by values (f in mHz, family name hash, chunk index), so
         adding frequencies or families never changes the results of the others."""
-        return np.random.SeedSequence(self.seed, spawn_key=(round(f * 1000), family.key, chunk))
+        return chunk_seed(self, f, family, chunk)
 
     @property
     def mirror_symmetric(self) -> bool:
@@ -105,9 +106,9 @@ class Study:
     def with_frequencies(self, frequencies: tuple[float, ...]) -> Study:
         """The same study at some of its frequencies (Hz): every chunk keeps its seed, so it
         computes the same numbers as in the whole sweep."""
-        mhz = {round(f * 1000) for f in frequencies}
+        mhz = {f_key(f) for f in frequencies}
         return replace(self, frequencies=tuple(f for f in self.base_frequencies
-                                               if round(f * 1000) in mhz), refined=())
+                                               if f_key(f) in mhz), refined=())
 
     # -- serialisation ------------------------------------------------------------------------
     def to_dict(self) -> dict[str, Any]:
@@ -169,7 +170,7 @@ class Study:
         d = {
             "seed": self.seed,
             "params": self.base_params,
-            "f_mhz": [round(f * 1000) for f in self.base_frequencies],
+            "f_mhz": [f_key(f) for f in self.base_frequencies],
             "families": [self._family_identity(fam) for fam in self.families],
             "accuracy": acc,
             "observables": as_dict(self.observables, identity=True),

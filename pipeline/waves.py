@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import sys
 import uuid
-import zlib
 from collections.abc import Callable
 
 import numpy as np
@@ -37,6 +36,7 @@ from .adaptive import (
     refine_frequencies,
     remaining,
 )
+from .identity import f_key, reduce_seed, stop_seed  # stop_seed: importable from here as before
 from .store import StudyStore
 from .study import Study
 
@@ -51,14 +51,6 @@ def rule_of(study: Study) -> StoppingRule:
     if not acc.adaptive:
         return StoppingRule.fixed(acc.n_chunks)
     return StoppingRule(acc.target_ci, acc.d_resolved, acc.n_chunks, 1)
-
-
-def stop_seed(study: Study, f: float, family, n: int) -> np.random.SeedSequence:
-    """The bootstrap seed of D's CI of a (frequency, family) from its first n chunks (the
-    decision after them, and the table's CI when it ends there): keyed by values, apart from
-    the chunk seeds and the reduction's by the extra key crc32("stop")."""
-    return np.random.SeedSequence(study.seed, spawn_key=(round(f * 1000), family.key,
-                                                         zlib.crc32(b"stop"), n))
 
 
 def interval_of(study: Study, x: np.ndarray, seed, units: np.ndarray | None = None
@@ -101,7 +93,6 @@ def row_intervals(study: Study, fi: int, parts: dict[int, tuple[np.ndarray, int]
     :func:`stop_seed` with its chunk count, so it is the CI its last stopping decision read;
     the pooled CI is that same CI when one family has data, else the bootstrap of all pooled
     (seeded by the reduction's key)."""
-    from .reduce import _reduce_seed
 
     f = study.frequencies[fi]
     fam = study.families
@@ -114,7 +105,7 @@ def row_intervals(study: Study, fi: int, parts: dict[int, tuple[np.ndarray, int]
         return fams, None
     x = np.concatenate([parts[mi][0] for mi in fams])
     units = pair_units(study, [(fam[mi], parts[mi][0].shape[0]) for mi in fams])
-    return fams, interval_of(study, x, _reduce_seed(study, f), units)
+    return fams, interval_of(study, x, reduce_seed(study, f), units)
 
 
 def _as_ci(r: DInterval | None) -> tuple[float, float, float]:
@@ -276,9 +267,9 @@ class Waves:
             study = self.store.study
             for fi, mi, ci in chunks:
                 f, fam = study.frequencies[fi], study.families[mi]
-                fail = (round(f * 1000), fam.name, ci) in fails
+                fail = (f_key(f), fam.name, ci) in fails
                 fut = client.submit(compute_chunk, self.store, fi, mi, ci, fail,
-                                    key=f"bbb-{round(f * 1000)}mHz-{fam.name}-{ci}-{token}",
+                                    key=f"bbb-{f_key(f)}mHz-{fam.name}-{ci}-{token}",
                                     priority=-fi, retries=0, pure=False)
                 pending[fut] = (fi, mi, ci)
                 outstanding.setdefault((fi, mi), set()).add(ci)

@@ -49,6 +49,7 @@ from bbb.numerics import Numerics
 from bbb.params import Params
 
 from .accuracy import ACCURACY_PRESETS, NUMERICS_KNOBS
+from .identity import f_key
 from .schema import InputError, Reader, declared, tname
 from .study import Study  # the validated workflow; importable from here as before the split
 from .workflow_keys import (
@@ -210,7 +211,7 @@ def _frequencies(r: Reader, doc: dict) -> tuple[tuple[float, ...], RefineTable |
 
 
 def _mhz(r: Reader, v: float, path: tuple[str, ...], allowed: str) -> int:
-    m = round(v * 1000)
+    m = f_key(v)
     # f enters the seed as an integer number of mHz, so it must be exactly representable.
     if abs(v * 1000 - m) > 1e-6 * max(1.0, abs(v)):
         r.fail(path, f"{v!r} is not a multiple of 0.001 Hz", allowed)

@@ -23,7 +23,6 @@ made before the key existed keep their fingerprint):
 
 from __future__ import annotations
 
-import zlib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -33,6 +32,7 @@ from bbb.params import CONTACT_MODELS
 from bbb.params import PRESETS as PARAM_PRESETS
 
 from .accuracy import ACCURACY_PRESETS, DEFAULT_ACCURACY, NUMERICS_KNOBS
+from .identity import family_key
 from .schema import REQUIRED, declared, key, reference
 
 __all__ = ["Family", "Accuracy", "RefineTable", "Observables", "Analysis", "SECTIONS", "DEFAULT_ANALYSIS",
@@ -139,7 +139,7 @@ class Family:
     @property
     def key(self) -> int:
         """A stable 32-bit number for the seed: depends on the name only, not on its position."""
-        return zlib.crc32(self.name.encode("utf-8"))
+        return family_key(self.name)
 
     def simulate_kwargs(self) -> dict[str, Any]:
         kw: dict[str, Any] = {"initial": self.initial}

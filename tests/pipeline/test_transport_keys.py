@@ -154,7 +154,7 @@ def test_a_conveyor_chunk_with_mirror_pairs_is_the_familys_draw_then_the_partner
     from bbb import simulate
     from bbb.ensemble import initial_state, mirror_pair_units
     from bbb.stats import bootstrap_D
-    from pipeline.reduce import _reduce_seed
+    from pipeline.identity import reduce_seed
 
     text = _mirror(_with("tilt = 2.0"), "true")
     study = parse_workflow(text)
@@ -176,6 +176,6 @@ def test_a_conveyor_chunk_with_mirror_pairs_is_the_familys_draw_then_the_partner
     xs = np.concatenate([s.read_done("positions", 0, mi, s.done()[0, mi]) for mi in range(2)])
     units = np.concatenate([mirror_pair_units(8, 4), 4 + mirror_pair_units(8, 4)])
     T = study.analysis.duration(acc.t_max)
-    d = bootstrap_D(xs, study.sample_times(), n_resamples=acc.n_resamples, seed=_reduce_seed(
+    d = bootstrap_D(xs, study.sample_times(), n_resamples=acc.n_resamples, seed=reduce_seed(
         study, 54.0), fit_from=0.05 * T, fit_to=0.25 * T, discard=0.1, units=units)
     assert (row["D"], row["D_lo"], row["D_hi"]) == tuple(d)

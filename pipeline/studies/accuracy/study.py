@@ -151,7 +151,7 @@ def run_accuracy_study(
     Returns {"rows", "summary", "scaling"} (columns: ROW_/SUMMARY_/SCALING_COLUMNS).
     """
     from ...reduce import counters_table, diffusion_table
-    from ...run import _connect, run_study
+    from ...run import connect, run_study
     from ...store import StudyStore
 
     text = Path(workflow).read_text(encoding="utf-8")
@@ -166,7 +166,7 @@ def run_accuracy_study(
     results = {}
     # One cluster for every variant (a LocalCluster costs seconds to start); each variant is
     # still a separate `run_study`, with its own store, warm-up and timing.
-    client, cluster = _connect(None, workers, False) if scheduler is None else (None, None)
+    client, cluster = connect(None, workers, False) if scheduler is None else (None, None)
     address = scheduler or cluster.scheduler_address
     try:
         for v in variants:

@@ -32,7 +32,7 @@ from bbb.params import Params
 
 from ...claims import Row
 from ..klages2004.claims import CLAIMS as PAPER_CLAIMS
-from ..klages2004.report import evaluate
+from ..klages2004.claims import evaluate
 
 __all__ = ["MODELS", "LABELS", "SCENES", "CLAIM_PREFIXES", "CLAIMS", "FWER", "Difference",
            "model_tables", "model_rows", "model_differences", "report_lines"]

@@ -1,7 +1,8 @@
 """The claims of Klages, Barna & Mátyás (2004) as data: one :class:`~pipeline.claims.Claim`
 record each, with the tolerance it is judged by and why, and the explanations a report adds
 to a claim that fails.  The few measures only this paper needs (the loops of the spiral,
-ergodicity, the spiral approximation, Mátyás 2004) are :mod:`.measures`, registered by name.
+ergodicity, the spiral approximation, Mátyás 2004) are :mod:`.measures`; each claim holds
+its measure function.  :func:`evaluate` judges them on a study's tables.
 
 To add a claim: append one record to :data:`CLAIMS`.  Tolerances were set before the data
 (they are those of the first report) and are only explained here, not tuned.
@@ -10,16 +11,35 @@ To add a claim: append one record to :data:`CLAIMS`.  Tolerances were set before
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping, Sequence
 
 import numpy as np
+import pandas as pd
 
-from ...claims import Band, Claim
+from bbb.extrema import Extremum
 
-# importing .measures registers the paper's own measures by name (klages2004.loops, ...);
-# its names stay importable from here
-from .measures import K_TOL, MAIN, families, spiral_closeness
+from ... import claims as _claims
+from ...claim_measures import extremum, growth, onset_measure, table_value
+from ...claims import Band, Claim, Row
 
-__all__ = ["CLAIMS", "MAIN", "K_TOL", "period1_limit", "spiral_closeness", "families"]
+# the paper's own measures, held by the claims below; K_TOL, MAIN, families and
+# spiral_closeness stay importable from here
+from .measures import (
+    K_TOL,
+    MAIN,
+    curve_extrema,
+    curves_and_meta,
+    ergodic_above_58,
+    families,
+    finescale_extrema,
+    loops,
+    matyas_integer,
+    nonergodic_near_55,
+    spiral_approx,
+    spiral_closeness,
+)
+
+__all__ = ["CLAIMS", "MAIN", "K_TOL", "period1_limit", "spiral_closeness", "families", "evaluate"]
 
 _AROUND = ("'around f0' in the paper; ± 2 Hz = the spacing of the landmarks it names "
            "(58, 60, 62 Hz) — a value read off its Fig. 2, not a fit")
@@ -91,31 +111,31 @@ def _kmax_extra(r) -> str:
 
 
 def _k_claim(f0: float, k0: float) -> Claim:
-    return Claim(f"k ≈ {k0:g} around f = {f0:g} (maximal v_y⁺ of the spiral)", "table_value",
+    return Claim(f"k ≈ {k0:g} around f = {f0:g} (maximal v_y⁺ of the spiral)", table_value,
                  "locking", Band.around(k0, K_TOL, _K_WHY), f0=f0,
                  options={"column": "k_max", "all_families": False, "extra": _kmax_extra})
 
 
 def _ext(kind: str, f0: float, text: str, window: float = 2.0, why: str = _AROUND,
          explain=None) -> Claim:
-    return Claim(text, "extremum", "figure2", Band.around(f0, window, why, "Hz"), f0=f0,
+    return Claim(text, extremum, "figure2", Band.around(f0, window, why, "Hz"), f0=f0,
                  window=window, options={"kind": kind}, explain=explain)
 
 
 #: the paper's claims in its order
 CLAIMS: list[Claim] = [
-    Claim("Onset of diffusion around f = 50", "onset", "figure2",
+    Claim("Onset of diffusion around f = 50", onset_measure, "figure2",
           Band.around(50.0, 2.5, "'around f = 50', read off the paper's Fig. 2; ± 2.5 Hz as "
                       "set for the first report (half the 5 Hz between the named 50 and 55)",
                       "Hz"), f0=50.0, explain=_note_onset),
     _ext("max", 54.0, "Local maximum of D(f) around f = 54", explain=_note_54),
-    Claim("f = 54: 1/1 frequency locking, a spot at v_y⁺ ≈ 100 mm/s (k ≈ 1)", "table_value",
+    Claim("f = 54: 1/1 frequency locking, a spot at v_y⁺ ≈ 100 mm/s (k ≈ 1)", table_value,
           "locking", Band.around(1.0, 0.1, "'k ≃ 1' from the spot of the paper's Fig. 3a; "
                                  "± 0.1 in k = ± 9 mm/s at 54 Hz, the spot's size there"),
           f0=54.0, options={"column": "k_peak", "extra": _spot_extra}),
     _ext("min", 58.0, "Local minimum around f = 58 (1/1 resonance destroyed, creeping dominates)"),
     _ext("max", 60.0, "Local maximum at f = 60"),
-    Claim("f = 60: virtual harmonic oscillator mode (VHO) at v_y⁺ ≈ 70 mm/s", "table_value",
+    Claim("f = 60: virtual harmonic oscillator mode (VHO) at v_y⁺ ≈ 70 mm/s", table_value,
           "locking", Band.around(70.0, 10.0, "'v_y⁺ ≃ 70' read off the paper's Fig. 3c; ± 10 "
                                  "mm/s, a fifth of the 50 mm/s between its axis ticks", "mm/s"),
           f0=60.0, options={"column": "v_peak", "unit": "mm/s", "all_families": False,
@@ -123,10 +143,10 @@ CLAIMS: list[Claim] = [
     _ext("min", 62.0, "Local minimum around f = 62 (VHO unstable)"),
     Claim("Spiral: the VHO 'spirals out' at f = 66, a two-loop spiral at 72, a third loop from "
           "76 (complete near 80), a fourth from 86 (complete near 90), a fifth from 96",
-          "klages2004.loops", "locking",
+          loops, "locking",
           Band(-math.inf, math.inf, "each loop's start: the frequency the paper names ± 2.5 Hz "
                "(read off its Figs. 2–3); two loops at 72 Hz: 2 ≤ k_max < 3")),
-    Claim("Drastic increase of D(f) on a global scale from f = 66", "growth", "figure2",
+    Claim("Drastic increase of D(f) on a global scale from f = 66", growth, "figure2",
           Band(2.0, math.inf, "'drastic increase on a global scale' read as at least a "
                "doubling of D from 66 Hz (no number in the paper)"), f0=66.0, window=20.0),
     _ext("max", 80.0, "Washed-out local maximum around f = 80", window=3.0,
@@ -136,27 +156,46 @@ CLAIMS: list[Claim] = [
     _k_claim(80.0, 3.43),
     _k_claim(90.0, 4.5),
     Claim("The flat-floor approximation Eqs. (8)–(9), no fit parameter, reproduces the spiral "
-          "from the VHO on (Fig. 3 d–f)", "klages2004.spiral_approx", "figure3",
+          "from the VHO on (Fig. 3 d–f)", spiral_approx, "figure3",
           Band(-math.inf, 0.7, "ours, not the paper's (no number in it): the states lie closer "
                "to the curve than 0.7 × the distance of uniformly scattered points"),
           note="The outer loops follow the curve; the inner part (short flights) does not, as "
                "the paper says. Points sit lower in y than the curve by up to the arc depth "
                "R − √(R² − S²/4), which the flat-floor approximation leaves out."),
     Claim("Non-ergodic (depends on the initial condition) only near the peak around f = 55",
-          "klages2004.nonergodic_near_55", "ergodicity",
+          nonergodic_near_55, "ergodicity",
           Band(-math.inf, math.inf, "families' D disagree (95 % CIs apart) in 53–57 Hz and "
                "nowhere else ('around 55': ± 2 Hz as the extrema)")),
-    Claim("Ergodic for f ≥ 58", "klages2004.ergodic_above_58", "ergodicity",
+    Claim("Ergodic for f ≥ 58", ergodic_above_58, "ergodicity",
           Band(-math.inf, math.inf, "reduce's rule at every f ≥ 58: (a) families' D within "
                "each other's 95 % CIs, (b) per-particle D spread CV ≤ 25 % not excluded "
                "(rule calibrated on synthetic populations, docs/statistics.md)")),
     Claim("Earlier parameters (R = 25, α = 0.5; Mátyás & Klages 2004): the largest maxima of "
-          "D(f) are integer frequency lockings", "klages2004.matyas_integer",
+          "D(f) are integer frequency lockings", matyas_integer,
           "figure2_matyas2004", Band(-math.inf, math.inf, f"k_peak within ± {K_TOL:g} of the "
                                      "nearest integer (as the k claims)")),
     Claim("Outlook: D(f) may show irregularities on finer and finer scales (refined window "
-          "58–64 Hz, 0.4 → 0.05 Hz)", "klages2004.finescale", "finescale",
+          "58–64 Hz, 0.4 → 0.05 Hz)", finescale_extrema, "finescale",
           Band(1.0, math.inf, "at least one significant extremum that only the finer "
                "resolution shows (a D(f) smooth on the 0.4 Hz scale gives 0; set before the "
                "data)", "extrema")),
 ]
+
+
+def evaluate(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str] | None = None,
+             f_gamma1: float | None = None, params: Mapping[str, float] | None = None,
+             claims: Sequence[Claim] = CLAIMS
+             ) -> tuple[list[Row], dict[str, list[Extremum]]]:
+    """All claim rows, and the significant extrema of every D(f) curve.
+
+    tables   -- the study's reduce tables by scene ("figure2", "locking", ...)
+    stores   -- store paths by scene, for the claims that read post-collision states
+    f_gamma1 -- f (Hz) at which Γ = 1, for explanatory notes
+    params   -- the Fig. 2 scene's parameters (g, A, alpha, ...), for explanatory notes
+    claims   -- the claim records to judge (default: the paper's)
+    """
+    cv, meta = curves_and_meta(tables)
+    ctx = {"tables": tables, "stores": dict(stores or {}), "curves": cv, "curve_meta": meta,
+           "extrema": {label: curve_extrema(t, cols) for label, (t, cols) in cv.items()},
+           "f_gamma1": f_gamma1, "params": params}
+    return _claims.evaluate(claims, ctx), ctx["extrema"]

@@ -118,9 +118,9 @@ def figure2_params(stores: Mapping[str, str] | None = None, fast: bool = False
 
 def claim_rows(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str] | None = None,
                fast: bool = False):
-    """This study's claim rows and extrema (:func:`~.report.evaluate`) with the Fig. 2
+    """This study's claim rows and extrema (:func:`~.claims.evaluate`) with the Fig. 2
     scene's parameters."""
-    from .report import evaluate
+    from .claims import evaluate
 
     f_gamma1, params = figure2_params(stores, fast)
     return evaluate(tables, stores or {}, f_gamma1, params)
@@ -132,7 +132,7 @@ def claim_sections(out_dir: str | os.PathLike, studies: Sequence[str] | None = N
     ``out_dir``: this study's claims table under :data:`CLAIMS_HEADING`, and each further
     study's ``report_lines`` split at its ``## `` headings.  ``stores``: only claims that read
     a store (post-collision states) need them; without, those claims are 'not measured'."""
-    from .make_figures import EXTRA_STUDIES
+    from .scene_list import EXTRA_STUDIES
 
     rows, _ = claim_rows(read_tables(out_dir), stores)
     sections = {CLAIMS_HEADING: markdown_table(rows, claim_header="the paper says")}

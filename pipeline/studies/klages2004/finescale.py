@@ -36,6 +36,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from bbb.extrema import Extremum, find_extrema
+from pipeline.identity import f_key, f_keys
 
 __all__ = ["LEVELS", "LevelCount", "Located", "subsample", "extrema_per_hz",
            "located_extrema", "new_extrema", "table_arrays", "figure_finescale",
@@ -76,8 +77,7 @@ class Located:
 
 def subsample(f_hz, h: float, origin: float) -> np.ndarray:
     """Mask of the frequencies on the grid origin + k h (to the mHz)."""
-    f_mhz = np.rint(np.asarray(f_hz, dtype=np.float64) * 1000).astype(np.int64)
-    return (f_mhz - round(origin * 1000)) % round(h * 1000) == 0
+    return (f_keys(f_hz) - f_key(origin)) % f_key(h) == 0
 
 
 def table_arrays(table: pd.DataFrame, cols=("f", "D", "D_lo", "D_hi")):

@@ -46,15 +46,10 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 from ...scenes import ROOT, load_scene, scene_label
+from .scene_list import EXTRA_STUDIES, SCENES  # importable from here as before
 
 __all__ = ["SCENES", "run_log_entry", "make_figures", "main"]
 
-#: the scenes this study runs, in order
-SCENES = ("figure2", "ergodicity", "figure3", "locking", "figure2_matyas2004",
-          "locking_matyas2004", "finescale")
-#: further studies drawn in the same run (modules under pipeline.studies exposing SCENES,
-#: draw(tables, stores, out_dir) -> paths, and report_lines(tables) -> REPORT.md lines)
-EXTRA_STUDIES = ("mechanisms", "transport", "contact")
 
 
 def run_log_entry(name: str, store: str) -> dict[str, str]:
@@ -203,10 +198,10 @@ def _one_cluster(wanted: bool, workers: int | None, log: dict) -> Iterator[str |
     if not wanted:
         yield None
         return
-    from ...run import _connect
+    from ...run import connect
 
     t0 = time.perf_counter()
-    client, cluster = _connect(None, workers, False)
+    client, cluster = connect(None, workers, False)
     log["cluster_s"] = time.perf_counter() - t0
     try:
         yield cluster.scheduler_address

@@ -1,27 +1,71 @@
-"""The measures only Klages, Barna & Mátyás (2004) needs, registered by name for its claims
-(:mod:`.claims`): the loops of the spiral, where the families' D disagree (ergodicity), how
+"""The measures only Klages, Barna & Mátyás (2004) needs, each held by its claims
+(:mod:`.claims`) -- the loops of the spiral, where the families' D disagree (ergodicity), how
 close the collision states lie to the spiral approximation, integer lockings of Mátyás &
-Klages 2004, and the extrema the finer scales show.  f in Hz, v in mm/s, D in mm²/s.
+Klages 2004, the extrema the finer scales show -- and the D(f) curves and extrema rule that
+they and the report read.  f in Hz, v in mm/s, D in mm²/s.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
 
 from bbb.approx import spiral
+from bbb.extrema import Extremum, find_extrema
 from bbb.locking import creep_speed, flight_time_max, flight_times
 
 from ...claim_measures import row_at
 from ...claims import Band, Claim, Measured, Part, Quantity, combine, judge, measure
 from ...collisions import as_store, states
 
-__all__ = ["MAIN", "K_TOL", "families", "spiral_closeness"]
+__all__ = ["MAIN", "K_TOL", "DEPTH_FRACTION", "families", "spiral_closeness", "curve_columns",
+           "curves", "curves_and_meta", "curve_extrema", "loops", "nonergodic_near_55",
+           "ergodic_above_58", "spiral_approx", "matyas_integer", "finescale_extrema"]
 
 MAIN = "rest"  # the main initial-condition family (Fig. 2's curve)
 K_TOL = 0.15  # k: the paper quotes k to 2 decimals read off Fig. 3
+
+
+DEPTH_FRACTION = 0.01  # extrema: differences below this fraction of max D do not count
+
+
+def curve_columns(table: pd.DataFrame, family: str | None) -> tuple[str, str, str]:
+    """The (D, lo, hi) columns of ``family``'s curve in a reduce table (None: the pooled D)."""
+    if family is None:
+        return "D", "D_lo", "D_hi"
+    return f"D_{family}", f"D_{family}_lo", f"D_{family}_hi"
+
+
+def curves_and_meta(tables: Mapping[str, pd.DataFrame]) -> tuple[dict, dict]:
+    """The D(f) curves to look at: the main one (Fig. 2 scene) and every family of the
+    ergodicity scene: ({label: (table, (D, lo, hi) columns)}, {label: (scene, family)})."""
+    out, meta = {}, {}
+    main = tables.get("figure2")
+    if main is not None and "D" in main:
+        label = f"{MAIN} (Fig. 2 scene)"
+        out[label], meta[label] = (main, curve_columns(main, None)), ("figure2", MAIN)
+    ergo = tables.get("ergodicity")
+    if ergo is not None:
+        for fam in families(ergo):
+            label = f"{fam} (ergodicity scene)"
+            out[label], meta[label] = (ergo, curve_columns(ergo, fam)), ("ergodicity", fam)
+    return out, meta
+
+
+def curves(tables: Mapping[str, pd.DataFrame]) -> dict[str, tuple[pd.DataFrame, tuple[str, str, str]]]:
+    """{label: (table, (D, lo, hi) columns)} of every D(f) curve in the tables."""
+    return curves_and_meta(tables)[0]
+
+
+def curve_extrema(table: pd.DataFrame, cols: tuple[str, str, str]) -> list[Extremum]:
+    """Significant extrema of one D(f) curve (D in mm²/s, f in Hz; differences below 1 % of
+    its max D ignored): the extrema rule of the claims and the report."""
+    D = table[cols[0]].to_numpy(float)
+    depth = DEPTH_FRACTION * float(np.nanmax(D)) if np.isfinite(D).any() else 0.0
+    return find_extrema(table["f"], D, table[cols[1]], table[cols[2]], min_depth=max(depth, 0.0))
 
 
 def families(table: pd.DataFrame) -> list[str]:
@@ -31,7 +75,7 @@ def families(table: pd.DataFrame) -> list[str]:
 
 
 @measure("klages2004.loops")
-def _loops(claim: Claim, ctx) -> Measured:
+def loops(claim: Claim, ctx) -> Measured:
     """f where k_max first reaches n = 2..5 (CI: where k_max_hi / k_max_lo first do, ± half
     the grid spacing), each against the paper's start ± 2.5 Hz; and 2 ≤ k_max(72) < 3."""
     lock = ctx["tables"].get("locking")
@@ -117,7 +161,7 @@ def _spread_text(sel: pd.DataFrame) -> str:
 
 
 @measure("klages2004.nonergodic_near_55")
-def _nonergodic(claim: Claim, ctx) -> Measured:
+def nonergodic_near_55(claim: Claim, ctx) -> Measured:
     """Families' D disagree (CIs do not overlap) in 53–57 Hz and nowhere else: agrees; also
     elsewhere: partly; nowhere: disagrees (the CIs are reduce's bootstrap CIs)."""
     ergo = ctx["tables"].get("ergodicity")
@@ -141,7 +185,7 @@ def _nonergodic(claim: Claim, ctx) -> Measured:
 
 
 @measure("klages2004.ergodic_above_58")
-def _ergodic(claim: Claim, ctx) -> Measured:
+def ergodic_above_58(claim: Claim, ctx) -> Measured:
     """(a) families' D agree and (b) EB converges at every f ≥ 58: agrees; (a) only: partly."""
     ergo = ctx["tables"].get("ergodicity")
     if ergo is None or len(families(ergo)) < 2:
@@ -196,7 +240,7 @@ def spiral_closeness(y: np.ndarray, v: np.ndarray, A: float, f: float, g: float,
 
 
 @measure("klages2004.spiral_approx")
-def _spiral_approx(claim: Claim, ctx) -> Measured:
+def spiral_approx(claim: Claim, ctx) -> Measured:
     """Median distance ratio (points vs uniform scatter) at 66, 72, 78 Hz, each < 0.7; no CI."""
     stores = [s for s in (ctx["stores"].get("figure3"), ctx["stores"].get("locking")) if s]
     if not stores:
@@ -223,11 +267,9 @@ def _spiral_approx(claim: Claim, ctx) -> Measured:
 
 
 @measure("klages2004.matyas_integer")
-def _matyas(claim: Claim, ctx) -> Measured:
+def matyas_integer(claim: Claim, ctx) -> Measured:
     """The 3 largest significant maxima of the matyas2004 D(f): k_peak of the main family
     (bootstrap CI) against the nearest integer ± K_TOL."""
-    from .report import curve_extrema  # the extrema rule of the report
-
     table, lock = ctx["tables"].get("figure2_matyas2004"), ctx["tables"].get("locking_matyas2004")
     if table is None or lock is None:
         return Measured(missing="no matyas2004 tables")
@@ -257,7 +299,7 @@ def _matyas(claim: Claim, ctx) -> Measured:
 
 
 @measure("klages2004.finescale")
-def _finescale(claim: Claim, ctx) -> Measured:
+def finescale_extrema(claim: Claim, ctx) -> Measured:
     """Significant extrema that the 0.05 Hz resolution shows and the 0.4 Hz grid does not, in
     the refined window (scene finescale; pipeline/studies/klages2004/finescale.py)."""
     from .finescale import extrema_per_hz, located_extrema, new_extrema, table_arrays

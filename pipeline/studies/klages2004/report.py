@@ -20,81 +20,29 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from bbb.extrema import Extremum, critical_z, find_extrema
+from bbb.extrema import Extremum, critical_z
 from bbb.locking import CREEP_MARGIN, FLIGHT_TOL, MAX_QUANTILE, TMAX_QUANTILE
 from bbb.stationarity import TOLERANCE as STATIONARITY_TOL
 from bbb.stats.ergodicity import cv2_ci_coverage
 
-from ... import claims as _claims
 from ...claim_measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
 from ...claims import Row, markdown_table, md_cell
 from ...collisions import as_store
-from .claims import CLAIMS, period1_limit
+from .claims import CLAIMS, evaluate, period1_limit  # evaluate: importable from here as before
 from .committed import CLAIMS_HEADING, claim_rows
-from .measures import MAIN, families, spiral_closeness
+from .measures import DEPTH_FRACTION, curve_extrema, curves, spiral_closeness
 
 __all__ = ["Row", "CLAIMS", "curve_extrema", "onset", "evaluate", "write_report",
            "spiral_closeness", "period1_limit"]
 
-DEPTH_FRACTION = 0.01  # extrema: differences below this fraction of max D do not count
 _fmt_d = fmt_d
 _row_at = row_at
-
-
-def _cols(table: pd.DataFrame, family: str | None) -> tuple[str, str, str]:
-    if family is None:
-        return "D", "D_lo", "D_hi"
-    return f"D_{family}", f"D_{family}_lo", f"D_{family}_hi"
-
-
-def _curves(tables: Mapping[str, pd.DataFrame]) -> tuple[dict, dict]:
-    """The D(f) curves to look at: the main one (Fig. 2 scene) and every family of the
-    ergodicity scene: ({label: (table, (D, lo, hi) columns)}, {label: (scene, family)})."""
-    out, meta = {}, {}
-    main = tables.get("figure2")
-    if main is not None and "D" in main:
-        label = f"{MAIN} (Fig. 2 scene)"
-        out[label], meta[label] = (main, _cols(main, None)), ("figure2", MAIN)
-    ergo = tables.get("ergodicity")
-    if ergo is not None:
-        for fam in families(ergo):
-            label = f"{fam} (ergodicity scene)"
-            out[label], meta[label] = (ergo, _cols(ergo, fam)), ("ergodicity", fam)
-    return out, meta
-
-
-def curves(tables: Mapping[str, pd.DataFrame]) -> dict[str, tuple[pd.DataFrame, tuple[str, str, str]]]:
-    """{label: (table, (D, lo, hi) columns)} of every D(f) curve in the tables."""
-    return _curves(tables)[0]
-
-
-def curve_extrema(table: pd.DataFrame, cols: tuple[str, str, str]) -> list[Extremum]:
-    """Significant extrema of one D(f) curve (differences below 1 % of its max D ignored)."""
-    D = table[cols[0]].to_numpy(float)
-    depth = DEPTH_FRACTION * float(np.nanmax(D)) if np.isfinite(D).any() else 0.0
-    return find_extrema(table["f"], D, table[cols[1]], table[cols[2]], min_depth=max(depth, 0.0))
 
 
 def _fmt_ext(e: Extremum) -> str:
     rng = f"{e.f_lo:g}–{e.f_hi:g}" if e.f_hi > e.f_lo else f"{e.f:g}"
     return (f"{e.kind} at f = {e.f:g} Hz (range {rng}), D = {_fmt_d(e.D)} "
             f"[{_fmt_d(e.lo)}, {_fmt_d(e.hi)}]")
-
-
-def evaluate(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str] | None = None,
-             f_gamma1: float | None = None, params: Mapping[str, float] | None = None,
-             claims: Sequence[_claims.Claim] = CLAIMS
-             ) -> tuple[list[Row], dict[str, list[Extremum]]]:
-    """All claim rows, and the significant extrema of every D(f) curve.
-
-    params -- the Fig. 2 scene's parameters (g, A, alpha, ...), for explanatory notes
-    claims -- the claim records to judge (default: the paper's)
-    """
-    cv, meta = _curves(tables)
-    ctx = {"tables": tables, "stores": dict(stores or {}), "curves": cv, "curve_meta": meta,
-           "extrema": {label: curve_extrema(t, cols) for label, (t, cols) in cv.items()},
-           "f_gamma1": f_gamma1, "params": params}
-    return _claims.evaluate(claims, ctx), ctx["extrema"]
 
 
 def _stationarity_lines(tables: Mapping[str, pd.DataFrame]) -> list[str]:

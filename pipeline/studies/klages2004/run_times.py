@@ -43,7 +43,7 @@ def _row(label: str, entries: list[Mapping]) -> str:
 
 def table(log: Mapping) -> list[str]:
     """The markdown table of the run times in ``log`` (run_log.json as a dict)."""
-    from .make_figures import EXTRA_STUDIES, SCENES
+    from .scene_list import EXTRA_STUDIES, SCENES
 
     scenes = log.get("scenes", {})
     lines = ["| scenes | wall time of the runs | chunks computed (of the scene's most) | workers "

@@ -163,12 +163,12 @@ def _rule_why() -> str:
 
 CLAIMS = [
     Claim(f"The {kind}imum of D at {f0:g} Hz: carried by the random walk (D_0) or by the "
-          "memory (D_∞/D_0), against both grid neighbours", "extremum_carrier", "mechanisms",
+          "memory (D_∞/D_0), against both grid neighbours", extremum_carrier, "mechanisms",
           Band(-math.inf, math.inf, _rule_why()), f0=f0, options={"kind": kind})
     for f0, kind in EXTREMA
 ] + [
     Claim(f"λ is larger in the spiral regime (f ≥ {SPIRAL_FROM:g} Hz) than at the VHO "
-          f"({VHO:g} Hz), for the particles that move", "lyapunov_ratio", "mechanisms",
+          f"({VHO:g} Hz), for the particles that move", lyapunov_ratio, "mechanisms",
           Band(1.0, math.inf, "rule: ratio of the mean λ of moving particles over f ≥ 66 Hz "
                "to theirs at 60 Hz above 1"), f0=VHO),
 ]

@@ -265,26 +265,26 @@ def sliding(claim: Claim, ctx) -> Measured:
 
 CLAIMS = [
     Claim("Mirror symmetry: a level floor vibrated vertically carries no current",
-          "transport_no_current", HOPPING[0],
+          no_current, HOPPING[0],
           Band(0.0, 0.0, "rule: no frequency with a significant v (Bonferroni, α = 0.05); "
                "with mirror pairs v = 0 by construction")),
     Claim("Integer frequency lockings produce extrema of the transport rate (paper's outlook, "
-          "after Hongler et al.)", "transport_v_extrema", "",
+          "after Hongler et al.)", v_extrema, "",
           Band(1.0, math.inf, "rule: at least one significant extremum of v(f) per conveyor "
                "scene (bbb.extrema, family-wise α = 0.05), none counted where D about the "
                "drift is not diffusive")),
     Claim("Current reversals: the sign of the current changes with the driving (paper's "
-          "outlook, after Grochowski et al.)", "transport_reversals", "",
+          "outlook, after Grochowski et al.)", v_reversals, "",
           Band(1.0, math.inf, "rule: at least one sign change between frequencies whose v is "
                "significant (Bonferroni over the curve)")),
     Claim("Not only the current, but also the diffusion coefficient may be irregular functions "
-          "of control parameters", "transport_d_extrema", "",
+          "of control parameters", d_extrema, "",
           Band(2.0, math.inf, "rule: at least 2 significant extrema of D about the drift "
                "(a maximum and a minimum) per conveyor scene, none counted where it is not "
                "diffusive")),
     Claim("Below lift-off a vibratory conveyor transports by sliding only: the stick model "
           "carries no current there, Coulomb friction does (conveyor theory's sliding regime; "
-          "issue 13)", "transport_sliding", "",
+          "issue 13)", sliding, "",
           Band(-math.inf, math.inf, "rule: below the lift-off frequency (bbb.liftoff) the "
                "number of frequencies with a significant v (Bonferroni over the curve) is 0 "
                "under stick and ≥ 1 under Coulomb friction")),

@@ -112,6 +112,7 @@ def test_the_report_states_parameters_amplitude_accuracy_and_run_time(tmp_path_f
 
 
 # --- the generic verdict rule (pipeline.claims) on synthetic numbers --------------------------
+from pipeline.claim_measures import extremum  # noqa: E402
 from pipeline.claims import Band, Claim, Quantity, combine, judge  # noqa: E402
 
 BAND = Band.around(60.0, 2.0, "test")
@@ -173,7 +174,7 @@ def test_an_extremum_location_carries_a_ci_of_half_the_grid_spacing():
 def test_adding_a_claim_is_one_record_and_it_appears_in_the_report(tmp_path):
     from pipeline.studies.klages2004.claims import CLAIMS as PAPER
 
-    extra = Claim("Local maximum near f = 80 (a claim added by a test)", "extremum", "figure2",
+    extra = Claim("Local maximum near f = 80 (a claim added by a test)", extremum, "figure2",
                   Band.around(80.0, 1.0, "added for the test", "Hz"), f0=80.0, window=1.0,
                   options={"kind": "max"})
     rows, _ = evaluate({"figure2": _paper_like()}, claims=[*PAPER, extra])
