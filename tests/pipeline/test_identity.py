@@ -14,6 +14,8 @@ import pytest
 from pipeline import identity
 from pipeline.workflow_keys import Family
 
+from .helpers import TINY
+
 SEEDS = (2004, 7, 0, 2**32 + 5)
 # the committed grids' kinds of frequency: integers, half and quarter Hz, mHz steps, and
 # values whose f * 1000 is not exact in binary (54.3, 0.001, 72.125, 100.1)
@@ -100,27 +102,11 @@ def test_the_study_and_the_pipeline_modules_use_these_seeds():
     from pipeline import pilot, store, waves
     from pipeline.workflow import parse_workflow
 
-    study = parse_workflow("""
-        [study]
-        name = "ids"
-        seed = 11
-        [params]
-        preset = "klages2004"
-        [frequencies]
-        values = [54.3, 60.0]
-        [families.rest]
-        initial = "rest"
-        [accuracy]
-        preset = "draft"
-        n_particles = 8
-        chunk_size = 4
-        t_max = 10.0
-        [observables.positions]
-    """)
-    fam = study.families[0]
-    for f in study.frequencies:
-        assert same(study.seed_sequence(f, fam, 1), _old_chunk(11, f, "rest", 1))
-        assert same(waves.stop_seed(study, f, fam, 2), _old_stop(11, f, "rest", 2))
+    study = parse_workflow(TINY)  # seed 7, 54 and 60 Hz, families rest and launched
+    for fam in study.families:
+        for f in study.frequencies:
+            assert same(study.seed_sequence(f, fam, 1), _old_chunk(7, f, fam.name, 1))
+            assert same(waves.stop_seed(study, f, fam, 2), _old_stop(7, f, fam.name, 2))
     assert pilot.PILOT_CHUNK == 2**31
     assert store.SEEDING == ("SeedSequence(workflow seed, spawn_key=(round(f * 1000), "
                              "zlib.crc32(family name), chunk index))")
