@@ -44,9 +44,9 @@ for contact, mu in (("stick", 0.0), ("slide", 0.0), ("coulomb", 0.05), ("coulomb
 """
 
 
-def hashes(tree: str, cache: str, n: int, t_max: float) -> list[str]:
+def hashes(tree: str, cache: str, n: int, t_max: float, snippet: str = SNIPPET) -> list[str]:
     env = dict(os.environ, PYTHONPATH=tree, NUMBA_CACHE_DIR=cache, PYTHONDONTWRITEBYTECODE="1")
-    res = subprocess.run([sys.executable, "-c", SNIPPET, str(n), str(t_max)], env=env, check=True,
+    res = subprocess.run([sys.executable, "-c", snippet, str(n), str(t_max)], env=env, check=True,
                          capture_output=True, text=True, cwd=tree)
     return res.stdout.splitlines()
 
