@@ -30,10 +30,11 @@ from importlib import metadata, resources
 __all__ = ["KERNEL_SOURCES", "kernel_hash", "kernel_identity"]
 
 #: the bbb modules (file names) that determine a simulated trajectory
-KERNEL_SOURCES = ("dynamics/__init__.py", "dynamics/collide.py", "dynamics/contact_conveyor.py",
+KERNEL_SOURCES = ("dynamics/__init__.py", "dynamics/bounds_conveyor.py", "dynamics/bounds_level.py",
+                  "dynamics/collide.py", "dynamics/contact_conveyor.py",
                   "dynamics/contact_level.py", "dynamics/events.py", "dynamics/evolve.py",
                   "dynamics/liftoff.py", "dynamics/motion.py", "dynamics/options.py",
-                  "dynamics/search_conveyor.py", "dynamics/search_level.py", "dynamics/slide.py",
+                  "dynamics/search.py", "dynamics/slide.py",
                   "ensemble.py", "numerics.py", "params.py", "record.py", "simulate.py", "surface.py")
 
 

@@ -9,7 +9,8 @@ branches, so each floor compiles to its own code.  Modules, one idea each:
 - motion: positions, floor velocity and flights (Eqs. 1-4) on either floor
 - collide: the collision rule, Eqs. (5)-(6), per floor
 - liftoff: when a particle held at rest lifts off, per floor
-- search_level / search_conveyor: the certified collision search, per floor
+- bounds_level / bounds_conveyor: each floor's gap and certificates (lower bounds, start step)
+- search: the certified collision search, one driver and one refine_root for both floors
 - slide: the contact phase's integrator with certified events (both floors)
 - contact_level / contact_conveyor: a contact step and its rules, per floor
 - evolve: the map itself, evolve and evolve_ensemble

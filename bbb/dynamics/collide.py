@@ -10,7 +10,7 @@ import math
 from numba import njit
 
 from ..surface import arc_curvature, arc_normal, arc_slope, floor_a, floor_v
-from .search_conveyor import cusp_side, times_or_zero
+from .bounds_conveyor import cusp_side, times_or_zero
 
 
 @njit(cache=True)

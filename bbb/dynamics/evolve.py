@@ -36,8 +36,7 @@ from .events import (
 )
 from .liftoff import liftoff_wait_c, rest_wait
 from .motion import fill_carried, fill_flight, floor_velocity, fly, lab_x, on_arc_velocity, surface_y
-from .search_conveyor import next_collision_c
-from .search_level import NO_COLLISION, STACK_DEPTH, next_collision
+from .search import NO_COLLISION, STACK_DEPTH, next_collision
 
 __all__ = ["evolve", "evolve_ensemble"]
 
@@ -67,19 +66,6 @@ def start_contact(vx, vy, d, s, fl, frame, mu, flat, v_stick):
         return enter_contact(vx, vy, d, s, fl.g, fl.A, fl.w, fl.R, fl.S, mu, flat)
     return enter_contact_c(vx, vy, d, s, frame.gx, frame.gy, frame.Ax, frame.Ay, fl.w, fl.R,
                            fl.S, mu, flat, v_stick)
-
-
-@njit(cache=True, inline="always")
-def find_collision(y, vy, vx, d, s, from_surface, lifting, fl, frame, tau_limit, tol_t, h_max,
-                   stack):
-    # (τ, j): the next collision and the cell offset of its arc (the conveyor's is 0: fly()
-    # takes the nearest arc), NO_COLLISION before tau_limit
-    if frame is None:
-        return next_collision(y, vy, vx, d, s, from_surface, lifting, fl.g, fl.A, fl.w, fl.R,
-                              fl.S, tau_limit, tol_t, h_max, stack)
-    tau = next_collision_c(y, vy, vx, d, s, from_surface, lifting, frame.gx, frame.gy, frame.Ax,
-                           frame.Ay, fl.w, fl.R, fl.S, tau_limit, tol_t, h_max, stack)
-    return tau, 0
 
 
 @njit(cache=True)
@@ -177,8 +163,8 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
             from_surface = True
             n_lift += 1
             continue
-        tau, j = find_collision(y, vy, vx, d, s, from_surface, lifting, fl, frame, t_max - t_now,
-                                tol_t, h_max, stack)
+        tau, j = next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, frame,
+                                t_max - t_now, tol_t, h_max, stack)
         x0 = lab_x(cell, d, s, S, w, frame)
         if tau == NO_COLLISION:
             isamp = fill_flight(pos, isamp, sample_times, math.inf, x0, vx, t_now, frame)

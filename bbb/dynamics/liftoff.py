@@ -9,7 +9,7 @@ import math
 from numba import njit
 
 from ..surface import arc_normal
-from .search_conveyor import cusp_side
+from .bounds_conveyor import cusp_side
 
 
 @njit(cache=True)
@@ -61,7 +61,7 @@ def liftoff_wait_c(s, d, gx, gy, Ax, Ay, w, R, S, retry):
     """Time (s) until a particle carried by the floor at offset d lifts off: the normal
     contact force per unit mass, n·(a_floor + (gx, gy)) = An ω² sin ωs + gn, turns negative
     (An, gn: the floor amplitude and gravity along the arc's normal n).  inf if never.
-    In a cusp (bbb.dynamics.search_conveyor.cusp_side) both arcs must let go."""
+    In a cusp (bbb.dynamics.bounds_conveyor.cusp_side) both arcs must let go."""
     side = cusp_side(d, R, S)
     if side != 0:
         return liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry)

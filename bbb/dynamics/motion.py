@@ -13,7 +13,7 @@ import math
 from numba import njit
 
 from ..surface import arc_depth, floor_v, floor_y
-from .search_conveyor import round_half_away
+from .bounds_conveyor import round_half_away
 
 
 @njit(cache=True, inline="always")

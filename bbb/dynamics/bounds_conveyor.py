@@ -1,5 +1,6 @@
-"""The certified collision search of the conveyor (a floor tilted by φ, thrown at ψ): the
-first time τ (s) at which a flight meets the moving arcs, never missing one.
+"""The conveyor's gap and its certificates (a floor tilted by φ, thrown at ψ), for the
+collision search of :mod:`bbb.dynamics.search`: the first time τ (s) at which a flight meets
+the moving arcs, never missing one.
 
 Coordinates are the floor's: x along its mean plane, y normal to it.  Gravity is
 (−gx, −gy) = (−g sin φ, −g cos φ) (mm/s²); the floor moves rigidly by
@@ -15,7 +16,7 @@ concave kinks at cusps, so chord bounds that need an upper bound on G'' stay val
 them, and the bounds that need a lower bound are used only on intervals that cannot reach a
 cusp (|d''| ≤ Dx = |gx| + |Ax| ω² bounds where d can go).
 
-Same scheme as :mod:`bbb.dynamics.search_level` for the paper's floor; docs/physics.md,
+The paper floor's are :mod:`bbb.dynamics.bounds_level`'s; docs/physics.md,
 "Transport", derives the rest.
 """
 
@@ -26,7 +27,6 @@ import math
 from numba import njit
 
 from ..surface import arc_curvature, arc_depth, arc_slope
-from .search_level import NO_COLLISION
 
 #: a carried particle within CUSP_REACH·S of a cusp rests in it: both arcs hold it, and it
 #: lifts off only when both let go (docs/physics.md, "Transport"); 1e-9 S is far above the
@@ -120,34 +120,6 @@ def lower_bound_c(h, Ga, G1a, Gb, da, db, d1a, d1b, Dx, gy, Ay, w, R, S):
     return lb
 
 
-@njit(cache=True)
-def refine_root_c(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S, tol_t):
-    """Newton safeguarded by bisection on a bracket with G(a) > 0 ≥ G(b)."""
-    t = b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else 0.5 * (a + b)
-    if not (a < t < b):
-        t = 0.5 * (a + b)
-    for _ in range(200):
-        G, G1, _d, _d1 = gap_c(t, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S)
-        if G > 0.0:
-            a = t
-            Ga = G
-        else:
-            b = t
-            Gb = G
-        tn = t
-        if G1 != 0.0 and math.isfinite(G1):
-            tn = t - G / G1
-            if a <= tn <= b and abs(tn - t) <= tol_t:
-                return tn
-        if b - a <= tol_t:
-            break
-        if not (G1 != 0.0 and a < tn < b):
-            tn = 0.5 * (a + b)
-        t = tn
-    t = b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else b
-    return min(max(t, a), b)
-
-
 @njit(cache=True, inline="always")
 def cusp_side(d, R, S):
     """±1 when the offset d (mm, |d| ≤ S/2) lies within CUSP_REACH·S of the cusp on that
@@ -231,97 +203,3 @@ def start_step_arc(h_max, G1, e0, r, cap, d10, s, gx, gy, Ax, Ay, w, R, Dx, lift
                     break
                 tr *= 0.5
     return min(sigma, h_max)
-
-
-@njit(cache=True)
-def next_collision_c(y, vy, vx, d0, s, from_surface, lifting, gx, gy, Ax, Ay, w, R, S,
-                     tau_limit, tol_t, h_max, stack):
-    """Time τ (s) of the first collision of the flight, NO_COLLISION if none before
-    ``tau_limit``; the window logic of bbb.kernel.next_collision with gy and |Ay|."""
-    cmax = arc_depth(0.5 * S, R)
-    top = abs(Ay)
-    bottom = -abs(Ay) - cmax
-    yb = bottom - 1e-9 * (1.0 + abs(bottom))
-    tau_b = (vy + math.sqrt(vy * vy + 2.0 * gy * max(y - yb, 0.0))) / gy
-    w0a = 0.0
-    w0b = tau_b
-    w1a = 0.0
-    w1b = -1.0
-    if y > top:
-        w0a = (vy + math.sqrt(vy * vy + 2.0 * gy * (y - top))) / gy
-    else:
-        disc = vy * vy - 2.0 * gy * (top - y)
-        if vy > 0.0 and disc > 0.0:
-            sq = math.sqrt(disc)
-            w0b = 2.0 * (top - y) / (vy + sq)
-            w1a = (vy + sq) / gy
-            w1b = tau_b
-    Dx = abs(gx) + abs(Ax) * w * w
-    sin_s = math.sin(w * s)
-    for win in range(2):
-        wa = w0a if win == 0 else w1a
-        wb = min(w0b if win == 0 else w1b, tau_limit)
-        if wb < wa or (wb == wa and not (wa == 0.0 and from_surface)):
-            continue
-        tau = search_c(wa, wb, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S, Dx,
-                       from_surface and wa == 0.0, lifting, tol_t, h_max, stack)
-        if tau != NO_COLLISION:
-            return tau
-    return NO_COLLISION
-
-
-@njit(cache=True)
-def search_c(pa, pb, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S, Dx, from_surface,
-             lifting, tol_t, h_max, stack):
-    """First root of G in [pa, pb]; NO_COLLISION if none (bbb.kernel.search_piece's scheme)."""
-    a = pa
-    Ga, G1a, da, d1a = gap_c(a, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S)
-    if from_surface:
-        if pb <= pa:
-            return a if G1a < 0.0 else NO_COLLISION
-        sigma = start_step_c(min(h_max, pb - pa), G1a, da, d1a, s, gx, gy, Ax, Ay, w, R, S,
-                             Dx, lifting)
-        if sigma <= 0.0:
-            return a
-        a = a + sigma
-        if a >= pb:
-            return NO_COLLISION
-        Ga, G1a, da, d1a = gap_c(a, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S)
-        if Ga <= 0.0:
-            return a
-    elif Ga <= 0.0:
-        return a
-    n = 0
-    h = h_max
-    b = min(a + h, pb)
-    while True:
-        Gb, G1b, db, d1b = gap_c(b, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S)
-        width = b - a
-        if Gb <= 0.0:
-            amax, _amin, _cusp = offset_range(da, db, width, Dx, S)
-            D1 = max(abs(d1a), abs(d1b)) + 0.5 * Dx * width
-            M = upper_curvature(amax, D1, Dx, gy, Ay, w, R)
-            if G1a + max(M, 0.0) * width < 0.0 or width <= tol_t:
-                return refine_root_c(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay,
-                                     w, R, S, tol_t)
-        else:
-            lb = lower_bound_c(width, Ga, G1a, Gb, da, db, d1a, d1b, Dx, gy, Ay, w, R, S)
-            if lb > 0.0 or width <= tol_t:
-                a = b
-                Ga = Gb
-                G1a = G1b
-                da = db
-                d1a = d1b
-                if n > 0:
-                    n -= 1
-                    b = stack[n]
-                else:
-                    if a >= pb:
-                        return NO_COLLISION
-                    h = min(2.0 * width, h_max)
-                    b = min(a + h, pb)
-                continue
-        if n < stack.shape[0]:
-            stack[n] = b
-            n += 1
-        b = 0.5 * (a + b)
