@@ -13,16 +13,8 @@ times; the rows that differ are printed.  Commit the output under benchmarks/res
 from __future__ import annotations
 
 import argparse
-import datetime
-import os
-import platform
-import subprocess
-import tempfile
 
-import numba
-import numpy as np
-from kernel import baseline_tree, cpu_name
-from paper_floor_bits import hashes
+from paper_floor_bits import side_by_side
 
 SNIPPET = """
 import hashlib, sys
@@ -56,26 +48,8 @@ def main() -> None:
     ap.add_argument("--particles", type=int, default=8)
     ap.add_argument("--t-max", type=float, default=4.0)
     args = ap.parse_args()
-    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=here, check=True,
-                          capture_output=True, text=True).stdout.strip()
-    with tempfile.TemporaryDirectory() as tmp, tempfile.TemporaryDirectory() as c1, \
-            tempfile.TemporaryDirectory() as c2:
-        ref_tree, ref_label = baseline_tree(args.baseline, tmp)
-        ref = hashes(ref_tree, c1, args.particles, args.t_max, SNIPPET)
-        this = hashes(here, c2, args.particles, args.t_max, SNIPPET)
-    print(f"# bbb conveyor floor, bits side by side  {datetime.datetime.now().isoformat(timespec='seconds')}")
-    print(f"# CPU: {cpu_name()}  python {platform.python_version()}  numba {numba.__version__}  "
-          f"numpy {np.__version__}")
-    print(f"# ref = {ref_label}, this = HEAD ({head}); {args.particles} particles x {args.t_max:g} s "
-          f"per row, positions at 201 times, 500 events per particle")
-    print("# columns: contact mu tilt throw R f family hash collisions")
-    differ = [(a, b) for a, b in zip(ref, this, strict=True) if a != b]
-    for a, b in differ:
-        print(f"DIFFERS  ref: {a}\n         this: {b}")
-    total = sum(int(line.split()[-1]) for line in this)
-    print(f"{len(this)} ensembles, {total} collisions: {len(differ)} differ"
-          + ("  -> bit-identical" if not differ and len(ref) == len(this) else ""))
+    side_by_side("conveyor floor", SNIPPET, args.baseline, args.particles, args.t_max,
+                 "contact mu tilt throw R f family hash collisions")
 
 
 if __name__ == "__main__":

@@ -27,6 +27,7 @@ import math
 from numba import njit
 
 from ..surface import arc_curvature, arc_depth, arc_slope
+from .bounds_level import quartic_step
 
 #: a carried particle within CUSP_REACH·S of a cusp rests in it: both arcs hold it, and it
 #: lifts off only when both let go (docs/physics.md, "Transport"); 1e-9 S is far above the
@@ -191,15 +192,9 @@ def start_step_arc(h_max, G1, e0, r, cap, d10, s, gx, gy, Ax, Ay, w, R, Dx, lift
         ae = Ay + cs * Ax
         G2 = -(gy + cs * gx) - ae * w * w * math.sin(w * s)
         if lifting:
-            # as in bbb.kernel.start_step: drop rounding below the window's edge
+            # as in bbb.dynamics.bounds_level.start_step: drop rounding below the window's edge
             G2 = max(G2, 0.0)
         if G2 >= 0.0:
-            G3 = -ae * w * w * w * math.cos(w * s)
-            K = abs(ae) * w * w * w * w
-            tr = h_max
-            for _ in range(80):
-                if 0.5 * G2 + G3 * tr / 6.0 - K * tr * tr / 24.0 > 0.0:
-                    sigma = max(sigma, tr)
-                    break
-                tr *= 0.5
+            sigma = quartic_step(sigma, G2, -ae * w * w * w * math.cos(w * s),
+                                 abs(ae) * w * w * w * w, h_max)
     return min(sigma, h_max)

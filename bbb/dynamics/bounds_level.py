@@ -75,12 +75,18 @@ def start_step(h_max, G1, vx, s, g, A, w, lifting):
             # the rounding of G'', ≲ 1e-14 mm: docs/physics.md, "Why the lift-off step may clamp")
             G2 = max(G2, 0.0)
         if G2 >= 0.0:
-            G3 = -A * w * w * w * math.cos(w * s)
-            K = A * w * w * w * w
-            tr = h_max
-            for _ in range(80):
-                if 0.5 * G2 + G3 * tr / 6.0 - K * tr * tr / 24.0 > 0.0:
-                    sigma = max(sigma, tr)
-                    break
-                tr *= 0.5
+            sigma = quartic_step(sigma, G2, -A * w * w * w * math.cos(w * s), A * w * w * w * w,
+                                 h_max)
     return min(sigma, h_max)
+
+
+@njit(cache=True, inline="always")
+def quartic_step(sigma, G2, G3, K, h_max):
+    # a flight from G = G' = 0 with G'' = G2 >= 0, G''' = G3, |G''''| <= K: G > 0 on (0, t] where
+    # G2/2 + G3 t/6 - K t^2/24 > 0 (Taylor to 4th order); the longest h_max/2^k so, if > sigma
+    tr = h_max
+    for _ in range(80):
+        if 0.5 * G2 + G3 * tr / 6.0 - K * tr * tr / 24.0 > 0.0:
+            return max(sigma, tr)
+        tr *= 0.5
+    return sigma

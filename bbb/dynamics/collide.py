@@ -13,6 +13,16 @@ from ..surface import arc_curvature, arc_normal, arc_slope, floor_a, floor_v
 from .bounds_conveyor import cusp_side, times_or_zero
 
 
+@njit(cache=True, inline="always")
+def restitute(ux, uy, nx, ny, alpha, beta):
+    # Eqs. (5)-(6): outgoing normal and tangential speeds of the velocity (ux, uy) relative to
+    # the floor at the normal (nx, ny); |un|: a grazing contact rounded to un ≥ 0 still
+    # reflects outward
+    un = ux * nx + uy * ny
+    ut = ux * ny - uy * nx
+    return alpha * abs(un), beta * ut
+
+
 @njit(cache=True)
 def collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, allow_kick):
     """Eqs. (5)-(6): restitution in the arc's normal/tangential frame, relative to the
@@ -20,13 +30,7 @@ def collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, allow_kick):
     below ``v_stick`` means the particle sticks."""
     nx, ny = arc_normal(d, R)
     vf = floor_v(s, A, w)
-    ux = vx
-    uy = vy - vf
-    un = ux * nx + uy * ny
-    ut = ux * ny - uy * nx
-    # |un|: a grazing contact rounded to un ≥ 0 still reflects outward
-    un_out = alpha * abs(un)
-    ut_out = beta * ut
+    un_out, ut_out = restitute(vx, vy - vf, nx, ny, alpha, beta)
     if un_out < v_stick:
         # A cascade of ever smaller bounces (which ends in sticking) needs the surface to
         # press on the particle: G'' ≤ 0 at G = G' = 0.  Where the arc falls away faster
@@ -48,12 +52,7 @@ def collide_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, alpha, beta, v_stick, allow_ki
     cw = w * math.cos(w * s)
     vfx = -Ax * cw
     vfy = -Ay * cw
-    ux = vx - vfx
-    uy = vy - vfy
-    un = ux * nx + uy * ny
-    ut = ux * ny - uy * nx
-    un_out = alpha * abs(un)
-    ut_out = beta * ut
+    un_out, ut_out = restitute(vx - vfx, vy - vfy, nx, ny, alpha, beta)
     if un_out < v_stick:
         # collide's kick, with the gap's G'' at G = G' = 0 under the tilted forces:
         # −gy − ÿ_f + c'' d'² + c' (−gx − ẍ_f), d' = ut ny the relative tangential motion

@@ -98,17 +98,11 @@ def contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt
                           alpha, beta, mu, flat, t_max, rec_from, rec, n_rec, v_stick, isamp, tp,
                           el, worst)
     # STOP (Coulomb): v = 0; static friction holds it or it slides back
-    vx = 0.0
-    vy = vf
-    n_stick = 0
-    if holds_at_rest(d, R, S, mu, flat):
-        sliding = False
-        stuck = True
-        n_stick = 1
-    n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy, s / T, EV_STOP,
+    held = holds_at_rest(d, R, S, mu, flat)
+    n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, 0.0, vf, s / T, EV_STOP,
                     True)
-    return NEXT, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, 0, \
-        n_stick, 0, el, worst
+    return NEXT, cell, d, y, 0.0, vf, s, tp, isamp, held, not held, q, vt, kicked, n_rec, 0, \
+        1 if held else 0, 0, el, worst
 
 
 @njit(cache=True, inline="always")
@@ -130,22 +124,20 @@ def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, g, A, w, R, S, 
     code = EV_COLLISION
     stuck = False
     sliding = False
-    n_stick = 0
     if un_out < v_stick:
         vt, q, sliding = enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat)
-        if abs(vt) < v_stick:
-            sliding = False  # at rest in the cusp: held by both walls
+        # at rest in the cusp below v_stick: held by both walls
+        sliding = sliding and abs(vt) >= v_stick
+        stuck = not sliding
         if sliding:
             nx, ny = arc_normal(d, R)
             vx = vt * ny
             vy = vf - vt * nx
             code = EV_CONTACT
         else:
-            stuck = True
             vx = 0.0
             vy = vf
-            n_stick = 1
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy, s / T, code,
                     False)
     return NEXT, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, 1, \
-        n_stick, 0, el, worst
+        1 if stuck else 0, 0, el, worst

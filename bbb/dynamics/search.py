@@ -28,8 +28,17 @@ def gap_at(t, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame):
     # Eq. (2): G, G' and the offset d, d' (relative to the arc d0 refers to) at flight time t
     if frame is None:
         G, G1 = gap(t, y, vy, s, d0, vx, g, A, w, R, 0.5 * S)
-        return G, G1, d0 + vx * t, vx
+        return G, G1, 0.0, vx
     return gap_c(t, y, vy, s, d0, vx, sin_s, frame.gx, frame.gy, frame.Ax, frame.Ay, w, R, S)
+
+
+@njit(cache=True, inline="always")
+def offset(t, d0, vx, d, frame):
+    # the offset at flight time t for a bound: the paper floor's d0 + vx t afresh (a value not
+    # carried through the search loop), the conveyor's d as gap_c returned it
+    if frame is None:
+        return d0 + vx * t
+    return d
 
 
 @njit(cache=True, inline="always")
@@ -128,12 +137,14 @@ def search_piece(pa, pb, d0, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame, from
         width = b - a
         if Gb <= 0.0:
             # unique root when G' < 0 on all of [a, b]: G'(a) + M⁺(b-a) < 0
-            M = slope_cap(da, db, d1a, d1b, width, vx, g, A, w, R, S, Dx, frame)
+            M = slope_cap(offset(a, d0, vx, da, frame), offset(b, d0, vx, db, frame), d1a, d1b,
+                          width, vx, g, A, w, R, S, Dx, frame)
             if G1a + max(M, 0.0) * width < 0.0 or width <= tol_t:
                 return refine_root(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame,
                                    tol_t)
         else:
-            lb = gap_lower_bound(width, Ga, G1a, Gb, da, db, d1a, d1b, vx, g, A, w, R, S, Dx,
+            lb = gap_lower_bound(width, Ga, G1a, Gb, offset(a, d0, vx, da, frame),
+                                 offset(b, d0, vx, db, frame), d1a, d1b, vx, g, A, w, R, S, Dx,
                                  frame)
             # below tol_t a dip is at most M tol_t²/8 deep: far below rounding of y
             if lb > 0.0 or width <= tol_t:
@@ -179,7 +190,7 @@ def flight_windows(y, vy, g, top, bottom):
     return w0a, w0b, w1a, w1b
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, tol_t, h_max,
                  stack):
     """The paper floor's search over [wa, wb], one arc at a time: (τ, cell offset j of the
