@@ -1,14 +1,14 @@
 """Where a particle touches the conveyor's floor: the collision rule (Eqs. 5-6 relative to the
 moving floor) and, under the ``slide`` and ``coulomb`` contact models, sustained contact.
 
-Frame and symbols as in :mod:`bbb.conveyor`: floor coordinates, gravity (−gx, −gy), floor
+Frame and symbols as in :mod:`bbb.dynamics.bounds_conveyor`: floor coordinates, gravity (−gx, −gy), floor
 displacement (Ax, Ay)(−sin ωt).  In the floor's frame a particle in contact feels the
 effective gravity −(Gx, Gy) with Gx = gx + Ax ω² sin ωs, Gy = gy + Ay ω² sin ωs (mm/s²).  On
 its arc, at angle θ from the top (normal n = (sin θ, cos θ), tangent (cos θ, −sin θ)):
 
     R θ̈ = Gy sin θ − Gx cos θ − μ N sgn(v),     N = Gx sin θ + Gy cos θ − v²/R
 
-(flat floor: d̈ = −Gx − μ Gy sgn(v), N = Gy).  :func:`bbb.contact.slide` integrates it with
+(flat floor: d̈ = −Gx − μ Gy sgn(v), N = Gy).  :func:`bbb.dynamics.slide.slide` integrates it with
 its certified event location, given ``side`` = (gx, Ax).  At rest, friction holds the particle
 while |F_t| ≤ μN with F_t = Gy sin θ − Gx cos θ.  In a cusp (within CUSP_REACH of it, where the
 floor lets go only when both arcs do) it slides up a wall only where that wall presses, N > 0,
@@ -35,8 +35,8 @@ from .slide import BUDGET, CUSP, END, LIFT, normal_force, slide, tangential_forc
 # a contact step's verdicts for bbb.dynamics.evolve's loop (contact_c, bbb.dynamics.contact_level)
 NEXT = 0  # the state changed: loop again
 DONE = 1  # t_max reached while sliding
-HELD = 2  # held at rest until lift-off: the stuck branch (bbb.conveyor) takes over
-STALLED = 3  # bbb.contact.slide's step budget ran out: the particle stops (bbb.simulate raises)
+HELD = 2  # held at rest until lift-off: the stuck branch (bbb.dynamics.evolve) takes over
+STALLED = 3  # bbb.dynamics.slide's step budget ran out: the particle stops (bbb.simulate raises)
 TWO_PI = 2.0 * math.pi
 
 
@@ -137,7 +137,7 @@ def slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat):
     time s, the wall it then slides on: 0 its own arc, ±1 the neighbour on that side).
 
     On one arc: until |F_t| > μN (which includes N turning ≤ 0: the caller compares with the
-    floor's letting go).  In a cusp (within CUSP_REACH, bbb.conveyor_search.cusp_side: where
+    floor's letting go).  In a cusp (within CUSP_REACH, bbb.dynamics.bounds_conveyor.cusp_side: where
     the floor lets go only when both arcs do) it slides up the wall whose pull beats friction
     while that wall presses (wall_slip); the two cannot hold at once (up both walls the pull
     would have to point into both, N < 0 on each)."""
@@ -181,13 +181,13 @@ def enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, mu, flat, v_stick):
 def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, gx, gy, Ax, Ay, w, R, S, alpha,
               beta, mu, flat, t_max, sample_times, pos, rec_from, rec, n_rec, tol_t, v_stick):
     """One step of sustained contact on the conveyor (module doc) for a particle held at rest
-    (``stuck``; the floor lets go of it after t_n s, bbb.conveyor.liftoff_wait_c: in a cusp
+    (``stuck``; the floor lets go of it after t_n s, bbb.dynamics.liftoff.liftoff_wait_c: in a cusp
     when both arcs do) or sliding (angle q, tangential speed vt relative to the floor): a
     slip, a stretch of sliding to its event, or what that event leads to.  Returns (verdict,
     cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, collisions,
     sticking episodes, lift-offs, time slid in s, the stretch's longest run of steps without
     progress) with the verdict NEXT, DONE, HELD (lift-off first: not moved) or STALLED (the
-    step budget of bbb.contact.slide ran out); for the rest of the time the call moved the
+    step budget of bbb.dynamics.slide ran out); for the rest of the time the call moved the
     clock the particle was held."""
     ns = sample_times.shape[0]
     t_now = tp * T + (s - s0)
@@ -244,7 +244,7 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, gx, gy, Ax, Ay, w
     t_c = tp * T + (s - s0)
     xl = cell * S + d - Ax * math.sin(w * s)
     if ev == LIFT:
-        # leave with the normal speed v_stick, as in bbb.kernel.evolve
+        # leave with the normal speed v_stick, as on the paper's floor (contact_level)
         vx += v_stick * nx
         vy += v_stick * ny
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T,

@@ -78,7 +78,7 @@ def fill_carried(pos, isamp, sample_times, t_end, base, s, t_now, w, frame):
 @njit(cache=True, inline="always")
 def fly(cell, d, vx, vy, s, tau, j, g, w, R, S, frame):
     # Eqs. (1)-(4): the flight's end, τ later over the arc j cells on (conveyor: the nearest
-    # arc of the offset relative to the floor, bbb.dynamics.liftoff's module doc)
+    # arc of the offset relative to the floor, bbb.dynamics.bounds_conveyor's module doc)
     if frame is None:
         d = d + vx * tau - j * S
         cell += j

@@ -19,7 +19,7 @@ Floor = namedtuple("Floor", "g A w R S alpha beta")
 #: one run: t_max (s), recording from rec_from (s), root tolerance tol_t (s), sticking speed
 #: v_stick (mm/s), longest search step h_max_periods (floor periods)
 Run = namedtuple("Run", "t_max rec_from tol_t v_stick h_max_periods")
-#: a conveyor (bbb.dynamics.liftoff's module doc): gravity (−gx, −gy) (mm/s²) and floor
+#: a conveyor (bbb.dynamics.bounds_conveyor's module doc): gravity (−gx, −gy) (mm/s²) and floor
 #: amplitudes (Ax, Ay) (mm) along and normal to the floor's plane
 Frame = namedtuple("Frame", "gx gy Ax Ay")
 

@@ -186,7 +186,7 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
     ``side`` is None on the paper's floor (the branches it decides are pruned at compile
     time); on a conveyor (gx, Ax): the along-plane gravity (mm/s²) and floor amplitude (mm),
     with g, A then the normal ones (gy, Ay); q, v are relative to the moving floor and the
-    positions written are the lab's, cell·S + d + X_f (bbb.conveyor).
+    positions written are the lab's, cell·S + d + X_f (bbb.dynamics.bounds_conveyor).
 
     ``start_dir`` (±1) is the direction of a start from rest where the caller knows it (a slip
     up a cusp's wall, or where the pull is ~0 at the slip: μN ≈ 0); 0: the pull's sign then.
@@ -266,7 +266,7 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
         lift = nb <= 0.0
         cusp = (not flat) and abs(qb + lost) >= q_c
         if side is not None:
-            # on a conveyor a particle may leave a cusp from rest (bbb.conveyor_contact): θ then
+            # on a conveyor a particle may leave a cusp from rest (bbb.dynamics.contact_conveyor): θ then
             # stays at ±θ_c to rounding for a while, which is no arrival at the cusp
             cusp = cusp and qb * vb > 0.0
         stop = mu > 0.0 and sgn * vb <= 0.0
@@ -283,7 +283,7 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
             up = q + v * hs / R + reach < q_c
             down = -q - v * hs / R + reach < q_c
             if side is not None:
-                # a particle leaving a cusp from rest (bbb.conveyor_contact) starts with
+                # a particle leaving a cusp from rest (bbb.dynamics.contact_conveyor) starts with
                 # v = v̇ = 0: the quadratic bound then admits steps of only ~v/a_max and
                 # it crawls out in steps of tol_t; the cubic one grows them geometrically
                 up = up or clear_of_cusp(q, v, dva, hs, J, R, q_c)
