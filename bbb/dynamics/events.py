@@ -56,20 +56,32 @@ def wrap_period(s, tp, T):
 
 
 @njit(cache=True, inline="always")
+def row_due(rec, n_rec, rec_from, t, t_max, event_only):
+    # whether a row at time t is recorded; contact events (``event_only``) only in a 7-column
+    # record.  The hot path asks first, so that a row's ingredients are computed only when due
+    return (t >= rec_from and n_rec < rec.shape[0] and t < t_max
+            and (rec.shape[1] > 6 or not event_only))
+
+
+@njit(cache=True, inline="always")
+def write_row(rec, n_rec, t, x, y, vx, vy, phase, code):
+    # one recorded row (the event code in a 7-column record); returns the rows now written
+    if rec.shape[1] > 6:
+        rec[n_rec, 6] = code
+    rec[n_rec, 0] = t
+    rec[n_rec, 1] = x
+    rec[n_rec, 2] = y
+    rec[n_rec, 3] = vx
+    rec[n_rec, 4] = vy
+    rec[n_rec, 5] = phase
+    return n_rec + 1
+
+
+@njit(cache=True, inline="always")
 def put_row(rec, n_rec, rec_from, t, t_max, x, y, vx, vy, phase, code, event_only):
-    # one recorded row; contact events (``event_only``) only in a 7-column record
-    if t >= rec_from and n_rec < rec.shape[0] and t < t_max:
-        if rec.shape[1] > 6:
-            rec[n_rec, 6] = code
-        elif event_only:
-            return n_rec
-        rec[n_rec, 0] = t
-        rec[n_rec, 1] = x
-        rec[n_rec, 2] = y
-        rec[n_rec, 3] = vx
-        rec[n_rec, 4] = vy
-        rec[n_rec, 5] = phase
-        return n_rec + 1
+    # one recorded row if it is due (row_due)
+    if row_due(rec, n_rec, rec_from, t, t_max, event_only):
+        return write_row(rec, n_rec, t, x, y, vx, vy, phase, code)
     return n_rec
 
 

@@ -30,9 +30,10 @@ from .events import (
     EVENT_WINDOW,
     STOP_STEPS,
     count_event,
-    put_row,
+    row_due,
     wrap_period,
     write_counters,
+    write_row,
 )
 from .liftoff import liftoff_wait_c, rest_wait
 from .motion import fill_carried, fill_flight, floor_velocity, fly, lab_x, on_arc_velocity, surface_y
@@ -176,10 +177,9 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
             n_lift -= 1
             continue
         retry = False
-        if lifting:
+        if lifting and row_due(rec, n_rec, rec_from, t_now, t_max, True):
             # a 7-column record also keeps lift-offs (event 1): the state the flight starts from
-            n_rec = put_row(rec, n_rec, rec_from, t_now, t_max, x0, y, vx, vy, s / T, EV_LIFTOFF,
-                            True)
+            n_rec = write_row(rec, n_rec, t_now, x0, y, vx, vy, s / T, EV_LIFTOFF)
         isamp = fill_flight(pos, isamp, sample_times, t_now + tau, x0, vx, t_now, frame)
         # free flight, Eqs. (1)-(4)
         cell, d, vx, vy = fly(cell, d, vx, vy, s, tau, j, g, w, R, S, frame)
@@ -217,8 +217,10 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
                 nx, ny = arc_normal(d, R)
                 vx, vy = on_arc_velocity(vt, nx, ny, vfx, vfy, frame)
                 code = EV_CONTACT
-        n_rec = put_row(rec, n_rec, rec_from, tp * T + (s - s0), t_max, lab_x(cell, d, s, S, w,
-                        frame), y, vx, vy, s / T, code, False)
+        t_c = tp * T + (s - s0)
+        if row_due(rec, n_rec, rec_from, t_c, t_max, False):
+            n_rec = write_row(rec, n_rec, t_c, lab_x(cell, d, s, S, w, frame), y, vx, vy, s / T,
+                              code)
         from_surface = True
         lifting = False
     fill_carried(pos, isamp, sample_times, math.inf, cell * S + d, s, tp * T + (s - s0), w, frame)
