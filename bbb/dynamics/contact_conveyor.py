@@ -178,8 +178,8 @@ def enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, mu, flat, v_stick):
 
 
 @njit(cache=True)
-def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, gx, gy, Ax, Ay, w, R, S, alpha,
-              beta, mu, flat, t_max, sample_times, pos, rec_from, rec, n_rec, tol_t, v_stick):
+def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, mu, flat,
+              sample_times, pos, rec, n_rec):
     """One step of sustained contact on the conveyor (module doc) for a particle held at rest
     (``stuck``; the floor lets go of it after t_n s, bbb.dynamics.liftoff.liftoff_wait_c: in a cusp
     when both arcs do) or sliding (angle q, tangential speed vt relative to the floor): a
@@ -188,7 +188,10 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, gx, gy, Ax, Ay, w
     sticking episodes, lift-offs, time slid in s, the stretch's longest run of steps without
     progress) with the verdict NEXT, DONE, HELD (lift-off first: not moved) or STALLED (the
     step budget of bbb.dynamics.slide ran out); for the rest of the time the call moved the
-    clock the particle was held."""
+    clock the particle was held.  ``fl``, ``run``, ``frame``: bbb.dynamics.options' records."""
+    gx, gy, Ax, Ay = frame
+    w, R, S, alpha, beta = fl.w, fl.R, fl.S, fl.alpha, fl.beta
+    t_max, rec_from, tol_t, v_stick = run.t_max, run.rec_from, run.tol_t, run.v_stick
     ns = sample_times.shape[0]
     t_now = tp * T + (s - s0)
     start_dir = 0.0

@@ -49,14 +49,16 @@ def enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat):
 
 
 @njit(cache=True)
-def contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt, kicked, g, A,
-                  w, R, S, alpha, beta, mu, flat, t_max, sample_times, pos, rec_from, rec, n_rec,
-                  tol_t, v_stick):
+def contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt, kicked, fl,
+                  run, mu, flat, sample_times, pos, rec, n_rec):
     """One contact step on the paper's floor for a particle held at rest (``stuck``) or
     sliding (angle q, tangential speed vt): a slide to its event and what that leads to.
     Returns (verdict, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec,
     collisions, sticking episodes, lift-offs, time slid in s, the stretch's peak step debt)
-    as bbb.dynamics.contact_conveyor.contact_c; HELD: held at rest, left to the lift-off."""
+    as bbb.dynamics.contact_conveyor.contact_c; HELD: held at rest, left to the lift-off.
+    ``fl``, ``run``: bbb.dynamics.options' records."""
+    g, A, w, R, S = fl.g, fl.A, fl.w, fl.R, fl.S
+    t_max, rec_from, tol_t, v_stick = run.t_max, run.rec_from, run.tol_t, run.v_stick
     if stuck and not holds_at_rest(d, R, S, mu, flat) and g_eff(s, g, A, w) > 0.0:
         # at rest where the contact model cannot hold it (an initial state, or held
         # by N ≤ 0): slide; with g_eff ≤ 0 the floor lets go first (lift-off)
@@ -94,9 +96,8 @@ def contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt
         return NEXT, cell, d, y, vx, vy, s, tp, isamp, stuck, False, q, vt, False, n_rec, \
             0, 0, 1, el, worst
     if ev == CUSP:
-        return cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, g, A, w, R, S,
-                          alpha, beta, mu, flat, t_max, rec_from, rec, n_rec, v_stick, isamp, tp,
-                          el, worst)
+        return cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, flat,
+                          rec, n_rec, isamp, tp, el, worst)
     # STOP (Coulomb): v = 0; static friction holds it or it slides back
     held = holds_at_rest(d, R, S, mu, flat)
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, 0.0, vf, s / T, EV_STOP,
@@ -106,9 +107,11 @@ def contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt
 
 
 @njit(cache=True, inline="always")
-def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, g, A, w, R, S, alpha, beta, mu,
-               flat, t_max, rec_from, rec, n_rec, v_stick, isamp, tp, el, worst):
+def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, flat, rec, n_rec,
+               isamp, tp, el, worst):
     # a slide reached a cusp: the neighbouring arc's wall, Eqs. (5)-(6) with its normal
+    g, A, w, R, S, alpha, beta = fl
+    t_max, rec_from, v_stick = run.t_max, run.rec_from, run.v_stick
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy, s / T, EV_CUSP,
                     True)
     side = 1 if d > 0.0 else -1

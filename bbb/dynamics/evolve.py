@@ -48,16 +48,13 @@ def contact_step(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt,
     # one step of sustained contact on the floor ``frame`` selects
     if frame is None:
         return contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt,
-                             kicked, fl.g, fl.A, fl.w, fl.R, fl.S, fl.alpha, fl.beta, mu, flat,
-                             run.t_max, sample_times, pos, run.rec_from, rec, n_rec, run.tol_t,
-                             run.v_stick)
-    gx, gy, Ax, Ay = frame
+                             kicked, fl, run, mu, flat, sample_times, pos, rec, n_rec)
     # held at rest until the lift-off the stuck branch would take (in a cusp: both arcs let
     # go), unless static friction lets go first
-    t_n = liftoff_wait_c(s, d, gx, gy, Ax, Ay, fl.w, fl.R, fl.S, retry) if stuck else 0.0
-    return contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, gx, gy, Ax, Ay, fl.w, fl.R,
-                     fl.S, fl.alpha, fl.beta, mu, flat, run.t_max, sample_times, pos,
-                     run.rec_from, rec, n_rec, run.tol_t, run.v_stick)
+    t_n = liftoff_wait_c(s, d, frame.gx, frame.gy, frame.Ax, frame.Ay, fl.w, fl.R, fl.S,
+                         retry) if stuck else 0.0
+    return contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, mu, flat,
+                     sample_times, pos, rec, n_rec)
 
 
 @njit(cache=True, inline="always")
