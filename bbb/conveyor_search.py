@@ -1,314 +1,36 @@
-"""The certified collision search of the conveyor (a floor tilted by φ, thrown at ψ): the
-first time τ (s) at which a flight meets the moving arcs, never missing one.
-
-Used by :mod:`bbb.conveyor`'s map; the derivation (floor-relative offset, gap, why the chord
-bounds stay valid across the concave kinks at cusps) is in that module's docstring and in
-docs/physics.md, "Transport".  Same scheme as :mod:`bbb.search` for the paper's floor.
-"""
+"""Former home of the conveyor's collision search, now :mod:`bbb.dynamics.search` (one driver
+for both floors) and :mod:`bbb.dynamics.bounds_conveyor` (this floor's certificates): a thin
+re-export kept for one release (docs/design.md lists the old paths).  ``next_collision_c``
+keeps its old signature and returns τ."""
 
 from __future__ import annotations
 
-import math
-
 from numba import njit
 
-from .search import NO_COLLISION
-from .surface import arc_curvature, arc_depth, arc_slope
+from .dynamics.bounds_conveyor import (
+    CUSP_REACH,
+    cusp_side,
+    gap_c,
+    lower_bound_c,
+    nearest,
+    offset_range,
+    round_half_away,
+    start_step_arc,
+    start_step_c,
+    times_or_zero,
+    upper_curvature,
+)
+from .dynamics.options import Frame
+from .dynamics.search import next_collision as _next_collision
 
-#: a carried particle within CUSP_REACH·S of a cusp rests in it: both arcs hold it, and it
-#: lifts off only when both let go (docs/physics.md, "Transport"); 1e-9 S is far above the
-#: ~|u|·tol_t ≲ 1e-9 mm to which a collision's place is known and far below any scale of
-#: the motion
-CUSP_REACH = 1e-9
-
-
-@njit(cache=True, inline="always")
-def round_half_away(u):
-    # nearest integer, ties away from 0: odd in u bit for bit, so a mirrored run (x → −x)
-    # takes mirrored decisions everywhere
-    return math.floor(u + 0.5) if u >= 0.0 else -math.floor(0.5 - u)
-
-
-@njit(cache=True, inline="always")
-def nearest(d, S):
-    # offset from the nearest arc centre
-    return d - round_half_away(d / S) * S
-
-
-@njit(cache=True, inline="always")
-def gap_c(tau, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S):
-    # G, dG/dτ, the unwrapped floor-relative offset d and d' at flight time τ (module doc)
-    ph = w * (s + tau)
-    sp = math.sin(ph)
-    cp = math.cos(ph)
-    d = d0 + vx * tau - 0.5 * gx * tau * tau + Ax * (sp - sin_s)
-    d1 = vx - gx * tau + Ax * w * cp
-    dn = nearest(d, S)
-    G = y + vy * tau - 0.5 * gy * tau * tau + Ay * sp + arc_depth(dn, R)
-    G1 = vy - gy * tau + Ay * w * cp
-    if d1 != 0.0:
-        G1 += arc_slope(dn, R) * d1
-    return G, G1, d, d1
-
-
-@njit(cache=True, inline="always")
-def offset_range(da, db, h, Dx, S):
-    # |nearest offset| over [a, b]: (max, min, cusp inside?) from d ∈ chord ± Dx h²/8
-    e = Dx * h * h * 0.125
-    lo = min(da, db) - e
-    hi = max(da, db) + e
-    # a cusp lies in [lo, hi] iff the nearest centres differ; a centre iff an integer lies in
-    # [lo/S, hi/S] (both tests odd under lo, hi → −hi, −lo)
-    cusp = round_half_away(lo / S) != round_half_away(hi / S)
-    centre = math.ceil(lo / S) <= math.floor(hi / S)
-    nl = abs(nearest(lo, S))
-    nh = abs(nearest(hi, S))
-    amax = 0.5 * S if cusp else max(nl, nh)
-    amin = 0.0 if centre else min(nl, nh)
-    return min(amax, 0.5 * S), amin, cusp
-
-
-@njit(cache=True, inline="always")
-def times_or_zero(a, b):
-    # a·b with 0·inf = 0: a bound term that vanishes with its factor
-    return 0.0 if a == 0.0 or b == 0.0 else a * b
-
-
-@njit(cache=True)
-def upper_curvature(amax, D1, Dx, gy, Ay, w, R):
-    """Upper bound (mm/s²) of G'' = −gy − Ay ω² sin + c''(d) d'² + c'(d) d'' where |d| ≤ amax,
-    |d'| ≤ D1, |d''| ≤ Dx."""
-    m = -gy + abs(Ay) * w * w
-    m += times_or_zero(arc_curvature(amax, R), D1 * D1)
-    m += times_or_zero(arc_slope(amax, R), Dx)
-    return m
-
-
-@njit(cache=True)
-def lower_bound_c(h, Ga, G1a, Gb, da, db, d1a, d1b, Dx, gy, Ay, w, R, S):
-    """Rigorous lower bound of G on [a, a+h] (cusps may lie inside)."""
-    amax, amin, cusp = offset_range(da, db, h, Dx, S)
-    D1 = max(abs(d1a), abs(d1b)) + 0.5 * Dx * h
-    # chord minus curvature: needs only G'' ≤ M, which the concave kinks at cusps respect
-    M = upper_curvature(amax, D1, Dx, gy, Ay, w, R)
-    lb = min(Ga, Gb) - max(M, 0.0) * h * h * 0.125
-    if not cusp and math.isfinite(G1a):
-        # Taylor from a with G'' ≥ −gy − |Ay|ω² − c'(amax) Dx (c'' d'² ≥ 0): concave quadratic
-        m = -gy - abs(Ay) * w * w - times_or_zero(arc_slope(amax, R), Dx)
-        q = Ga + G1a * h + 0.5 * m * h * h
-        if q == q:
-            lb = max(lb, min(Ga, q))
-    # depth at least its minimum over the range of d; the rest (Eq. 2 minus the floor) has
-    # curvature ≤ −gy + |Ay| ω².  Carries the vertical cusps of R = S/2.
-    ca = arc_depth(nearest(da, S), R)
-    cb = arc_depth(nearest(db, S), R)
-    mf = max(-gy + abs(Ay) * w * w, 0.0)
-    lb = max(lb, min(Ga - ca, Gb - cb) - mf * h * h * 0.125 + arc_depth(amin, R))
-    return lb
-
-
-@njit(cache=True)
-def refine_root_c(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S, tol_t):
-    """Newton safeguarded by bisection on a bracket with G(a) > 0 ≥ G(b)."""
-    t = b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else 0.5 * (a + b)
-    if not (a < t < b):
-        t = 0.5 * (a + b)
-    for _ in range(200):
-        G, G1, _d, _d1 = gap_c(t, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S)
-        if G > 0.0:
-            a = t
-            Ga = G
-        else:
-            b = t
-            Gb = G
-        tn = t
-        if G1 != 0.0 and math.isfinite(G1):
-            tn = t - G / G1
-            if a <= tn <= b and abs(tn - t) <= tol_t:
-                return tn
-        if b - a <= tol_t:
-            break
-        if not (G1 != 0.0 and a < tn < b):
-            tn = 0.5 * (a + b)
-        t = tn
-    t = b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else b
-    return min(max(t, a), b)
-
-
-@njit(cache=True, inline="always")
-def cusp_side(d, R, S):
-    """±1 when the offset d (mm, |d| ≤ S/2) lies within CUSP_REACH·S of the cusp on that
-    side (a carried particle there rests in the cusp, held by both arcs), else 0."""
-    if math.isinf(R) or 0.5 * S - abs(d) > CUSP_REACH * S:
-        return 0
-    return 1 if d > 0.0 else -1
-
-
-@njit(cache=True)
-def start_step_c(h_max, G1, d0, d10, s, gx, gy, Ax, Ay, w, R, S, Dx, lifting):
-    """A step σ > 0 on which G > 0 for a flight starting on the surface (G(0) = 0); 0 if none."""
-    dn = nearest(d0, S)
-    # a lift-off within reach of a cusp, or any flight from exactly on it (a bounce there
-    # after a contact model's cusp event): the one-arc path below would have r = 0, i.e. a
-    # collision at τ = 0 with whichever arc the rounding names, even one the particle leaves
-    side = cusp_side(dn, R, S) if lifting or abs(dn) >= 0.5 * S else 0
-    if side == 0:
-        # both bounds below need G'' bounded below: stop before the nearest cusp's concave kink
-        return start_step_arc(h_max, G1, dn, max(0.5 * S - abs(dn), 0.0), 0.5 * S, d10, s, gx,
-                              gy, Ax, Ay, w, R, Dx, lifting)
-    # a lift-off from a cusp (bbb.conveyor.liftoff_wait_c: both arcs have let go; a bounce
-    # there takes the path above, whose tiny steps resolve a flight across the cusp): both
-    # arcs are the floor, G = min(G_own, G_other), each the gap to a whole circle
-    # (smooth, convex depth), while d stays within r of the cusp: both circles defined (half
-    # the way to |e| = R, where the slope is infinite) and the nearest arc one of the two
-    e2 = dn - side * S
-    r = min(0.5 * (R - abs(e2)), 0.5 * S)
-    G1b = G1
-    if d10 != 0.0:
-        G1b = G1 - arc_slope(dn, R) * d10 + arc_slope(e2, R) * d10
-        if not math.isfinite(G1b):
-            return 0.0
-    a = start_step_arc(h_max, G1, dn, r, abs(dn) + r, d10, s, gx, gy, Ax, Ay, w, R, Dx, lifting)
-    b = start_step_arc(h_max, G1b, e2, r, abs(e2) + r, d10, s, gx, gy, Ax, Ay, w, R, Dx, lifting)
-    return min(a, b)
-
-
-@njit(cache=True)
-def start_step_arc(h_max, G1, e0, r, cap, d10, s, gx, gy, Ax, Ay, w, R, Dx, lifting):
-    """start_step_c on one circle: the flight starts at offset e0 (mm) from its centre, G(0) = 0,
-    G'(0) = G1, and the bounds hold while |d − d0| ≤ r (mm); ``cap`` bounds |e| there."""
-    sigma = 0.0
-    # (|d − d0| ≤ |d'0| σ + Dx σ²/2 ≤ r)
-    if not math.isinf(R) and r < math.inf:
-        sq = abs(d10) + math.sqrt(d10 * d10 + 2.0 * Dx * r)
-        h_max = min(h_max, 2.0 * r / sq if sq > 0.0 else h_max)
-    if h_max <= 0.0:
-        return 0.0
-    if G1 > 0.0:
-        # G ≥ G1 τ + m τ²/2 with m a lower bound of G'' on [0, σ] (|d − d0| ≤ |d'0|σ + Dxσ²/2)
-        sigma = h_max
-        for _ in range(60):
-            amax = min(abs(e0) + abs(d10) * sigma + 0.5 * Dx * sigma * sigma, cap)
-            m = -gy - abs(Ay) * w * w - times_or_zero(arc_slope(amax, R), Dx)
-            if not math.isfinite(m):
-                sigma *= 0.5
-                continue
-            if G1 + 0.5 * m * sigma > 0.0:
-                break
-            sigma = min(0.5 * sigma, -G1 / m)
-        else:
-            sigma = 0.0
-    cs = arc_slope(e0, R)
-    if G1 >= 0.0 and math.isfinite(cs):
-        # c is convex: G ≥ H = (the flight's height) − (floor) + c(d0) + c'(d0)(d(τ) − d0), a
-        # flight over a flat floor of gravity gy + c' gx and amplitude Ay + c' Ax: Taylor to
-        # 4th order (the lift-off from rest, G1 = G'' = 0 at the window's edge)
-        ae = Ay + cs * Ax
-        G2 = -(gy + cs * gx) - ae * w * w * math.sin(w * s)
-        if lifting:
-            # as in bbb.kernel.start_step: drop rounding below the window's edge
-            G2 = max(G2, 0.0)
-        if G2 >= 0.0:
-            G3 = -ae * w * w * w * math.cos(w * s)
-            K = abs(ae) * w * w * w * w
-            tr = h_max
-            for _ in range(80):
-                if 0.5 * G2 + G3 * tr / 6.0 - K * tr * tr / 24.0 > 0.0:
-                    sigma = max(sigma, tr)
-                    break
-                tr *= 0.5
-    return min(sigma, h_max)
+__all__ = ["CUSP_REACH", "cusp_side", "gap_c", "lower_bound_c", "nearest", "next_collision_c",
+           "offset_range", "round_half_away", "start_step_arc", "start_step_c", "times_or_zero",
+           "upper_curvature"]
 
 
 @njit(cache=True)
 def next_collision_c(y, vy, vx, d0, s, from_surface, lifting, gx, gy, Ax, Ay, w, R, S,
                      tau_limit, tol_t, h_max, stack):
-    """Time τ (s) of the first collision of the flight, NO_COLLISION if none before
-    ``tau_limit``; the window logic of bbb.kernel.next_collision with gy and |Ay|."""
-    cmax = arc_depth(0.5 * S, R)
-    top = abs(Ay)
-    bottom = -abs(Ay) - cmax
-    yb = bottom - 1e-9 * (1.0 + abs(bottom))
-    tau_b = (vy + math.sqrt(vy * vy + 2.0 * gy * max(y - yb, 0.0))) / gy
-    w0a = 0.0
-    w0b = tau_b
-    w1a = 0.0
-    w1b = -1.0
-    if y > top:
-        w0a = (vy + math.sqrt(vy * vy + 2.0 * gy * (y - top))) / gy
-    else:
-        disc = vy * vy - 2.0 * gy * (top - y)
-        if vy > 0.0 and disc > 0.0:
-            sq = math.sqrt(disc)
-            w0b = 2.0 * (top - y) / (vy + sq)
-            w1a = (vy + sq) / gy
-            w1b = tau_b
-    Dx = abs(gx) + abs(Ax) * w * w
-    sin_s = math.sin(w * s)
-    for win in range(2):
-        wa = w0a if win == 0 else w1a
-        wb = min(w0b if win == 0 else w1b, tau_limit)
-        if wb < wa or (wb == wa and not (wa == 0.0 and from_surface)):
-            continue
-        tau = search_c(wa, wb, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S, Dx,
-                       from_surface and wa == 0.0, lifting, tol_t, h_max, stack)
-        if tau != NO_COLLISION:
-            return tau
-    return NO_COLLISION
-
-
-@njit(cache=True)
-def search_c(pa, pb, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S, Dx, from_surface,
-             lifting, tol_t, h_max, stack):
-    """First root of G in [pa, pb]; NO_COLLISION if none (bbb.kernel.search_piece's scheme)."""
-    a = pa
-    Ga, G1a, da, d1a = gap_c(a, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S)
-    if from_surface:
-        if pb <= pa:
-            return a if G1a < 0.0 else NO_COLLISION
-        sigma = start_step_c(min(h_max, pb - pa), G1a, da, d1a, s, gx, gy, Ax, Ay, w, R, S,
-                             Dx, lifting)
-        if sigma <= 0.0:
-            return a
-        a = a + sigma
-        if a >= pb:
-            return NO_COLLISION
-        Ga, G1a, da, d1a = gap_c(a, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S)
-        if Ga <= 0.0:
-            return a
-    elif Ga <= 0.0:
-        return a
-    n = 0
-    h = h_max
-    b = min(a + h, pb)
-    while True:
-        Gb, G1b, db, d1b = gap_c(b, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay, w, R, S)
-        width = b - a
-        if Gb <= 0.0:
-            amax, _amin, _cusp = offset_range(da, db, width, Dx, S)
-            D1 = max(abs(d1a), abs(d1b)) + 0.5 * Dx * width
-            M = upper_curvature(amax, D1, Dx, gy, Ay, w, R)
-            if G1a + max(M, 0.0) * width < 0.0 or width <= tol_t:
-                return refine_root_c(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, gx, gy, Ax, Ay,
-                                     w, R, S, tol_t)
-        else:
-            lb = lower_bound_c(width, Ga, G1a, Gb, da, db, d1a, d1b, Dx, gy, Ay, w, R, S)
-            if lb > 0.0 or width <= tol_t:
-                a = b
-                Ga = Gb
-                G1a = G1b
-                da = db
-                d1a = d1b
-                if n > 0:
-                    n -= 1
-                    b = stack[n]
-                else:
-                    if a >= pb:
-                        return NO_COLLISION
-                    h = min(2.0 * width, h_max)
-                    b = min(a + h, pb)
-                continue
-        if n < stack.shape[0]:
-            stack[n] = b
-            n += 1
-        b = 0.5 * (a + b)
+    """bbb.dynamics.search.next_collision on the conveyor: τ only."""
+    return _next_collision(y, vy, vx, d0, s, from_surface, lifting, 0.0, 0.0, w, R, S,
+                           Frame(gx, gy, Ax, Ay), tau_limit, tol_t, h_max, stack)[0]

@@ -79,7 +79,7 @@ def initial_state(
     cell = np.zeros(n, dtype=np.int64)
     vx = np.zeros(n)
     if p.transport:
-        # a thrown floor (bbb.conveyor): d is the offset relative to the floor, which moves
+        # a thrown floor (bbb.dynamics, the conveyor): d is the offset relative to the floor, which moves
         # (Ax, Ay)(−sin 2πft); 'rest' and 'launched' start with its along-plane velocity
         _gx, _gy, ax, ay = p.floor_frame()
         surface = -ay * np.sin(p.omega * s) - depth(d, p.R)

@@ -32,8 +32,8 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import NDArray
 
+from .dynamics.liftoff import liftoff_wait
 from .ensemble import InitialState, initial_state
-from .kernel import liftoff_wait
 from .numerics import Numerics
 from .params import Params
 from .simulate import simulate

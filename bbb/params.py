@@ -46,7 +46,7 @@ class Params:
              default 90, the paper's vertical vibration): the floor moves by
              A·(cos ψ, sin ψ)·(−sin 2πft)
     contact -- sustained-contact model: "stick" (default), "slide" or "coulomb" (also on a
-             tilted or thrown floor: bbb.conveyor_contact); only "stick" with vertical cusp
+             tilted or thrown floor: bbb.dynamics.contact_conveyor); only "stick" with vertical cusp
              walls, R < S/2 · (1 + 1e-9) (sliding there never ends: Zeno)
     mu    -- Coulomb friction coefficient (≥ 0; only with contact = "coulomb", else 0)
 
@@ -151,7 +151,8 @@ class Params:
 
     def floor_frame(self) -> tuple[float, float, float, float]:
         """(gx, gy, Ax, Ay): gravity's components (mm/s², pointing to −x, −y) and the floor's
-        amplitudes (mm) along and normal to its plane, as bbb.conveyor computes them."""
+        amplitudes (mm) along and normal to its plane, as bbb.dynamics.options.conveyor_frame
+        computes them."""
         dev = math.radians(self.throw - 90.0)
         return (self.g * math.sin(math.radians(self.tilt)),
                 self.g * math.cos(math.radians(self.tilt)),

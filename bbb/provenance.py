@@ -6,13 +6,13 @@ collision search, another initial-condition draw, a changed default tolerance) i
 instead of silently mixing chunks of two kernels.
 
 What is hashed (:data:`KERNEL_SOURCES`): every module of ``bbb`` that ``bbb.simulate`` runs
-or reads — the collision map and its search (kernel.py, search.py), the contact phase
-(contact.py), the map's conveyor variant and its search (conveyor.py, conveyor_search.py), the
-floor (surface.py), the initial conditions (ensemble.py), the parameters and their presets
-(params.py), the numerical tolerances and their defaults (numerics.py), the driver
-(simulate.py) and what it records (record.py).
+or reads — the map of both floors, its collision search and its contact phase (every module
+of bbb/dynamics/, by its path), the floor (surface.py), the initial conditions (ensemble.py),
+the parameters and their presets (params.py), the numerical tolerances and their defaults
+(numerics.py), the driver (simulate.py) and what it records (record.py).
 Not hashed: ``bbb/__init__.py`` (it holds the version string; a version bump alone changes
-no trajectory) and the analysis modules (stats, locking, approx, extrema), which never touch
+no trajectory), the old paths kept as re-exports (kernel.py, conveyor.py, search.py, ...:
+simulate never imports them) and the analysis modules (stats, locking, approx, extrema), which never touch
 a stored number.  A test checks that the list is exactly the bbb modules ``bbb.simulate``
 imports, so a new kernel module cannot be left out.
 
@@ -30,9 +30,12 @@ from importlib import metadata, resources
 __all__ = ["KERNEL_SOURCES", "kernel_hash", "kernel_identity"]
 
 #: the bbb modules (file names) that determine a simulated trajectory
-KERNEL_SOURCES = ("contact.py", "conveyor.py", "conveyor_contact.py", "conveyor_search.py", "ensemble.py",
-                  "kernel.py", "numerics.py", "params.py", "record.py", "search.py", "simulate.py",
-                  "surface.py")
+KERNEL_SOURCES = ("dynamics/__init__.py", "dynamics/bounds_conveyor.py", "dynamics/bounds_level.py",
+                  "dynamics/collide.py", "dynamics/contact_conveyor.py",
+                  "dynamics/contact_level.py", "dynamics/events.py", "dynamics/evolve.py",
+                  "dynamics/liftoff.py", "dynamics/motion.py", "dynamics/options.py",
+                  "dynamics/search.py", "dynamics/slide.py",
+                  "ensemble.py", "numerics.py", "params.py", "record.py", "simulate.py", "surface.py")
 
 
 @functools.cache  # the sources as this process first saw them: close to what it has loaded

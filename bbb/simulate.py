@@ -6,10 +6,11 @@ import math
 
 import numpy as np
 
-from .contact import PAYBACK, STRETCH_BUDGET
-from .conveyor import evolve_ensemble_c
+from .dynamics.events import EVENT_BUDGET, EVENT_WINDOW, STOP_EVENTS, STOP_OK
+from .dynamics.evolve import evolve_ensemble
+from .dynamics.options import Floor, Run, frame_of
+from .dynamics.slide import PAYBACK, STRETCH_BUDGET
 from .ensemble import InitialState, initial_state
-from .kernel import EVENT_BUDGET, EVENT_WINDOW, STOP_EVENTS, STOP_OK, evolve_ensemble
 from .numerics import Numerics
 from .params import Params
 from .record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES, EVENT_FIELDS, SimRun
@@ -44,18 +45,18 @@ def simulate(
                          collisions and lift-offs together.
     initial           -- a family name (see ``bbb.ensemble``) or an explicit InitialState.
     seed              -- int or SeedSequence; the same seed gives bit-identical output.
-    A floor with ``tilt`` or ``throw`` (bbb.Params) runs bbb.conveyor's kernel; positions and
+    A floor with ``tilt`` or ``throw`` (bbb.Params) runs the conveyor's kernel (bbb.dynamics); positions and
     recorded x are then along the floor's plane in the lab (x = cell·S + d + X_f(t)).
     ``_force_conveyor`` runs that kernel on the paper's floor too (tests compare the two);
-    ``_guards`` (an array (n_particles, 4)) receives the guards' status rows (bbb.kernel:
+    ``_guards`` (an array (n_particles, 4)) receives the guards' status rows (bbb.dynamics.events:
     why each particle stopped, its peak step debt, its most events in one window, when) —
     benchmarks/guards.py measures the budgets' margins with it.
     Memory is O(n_particles × (n_samples + record_collisions)), never O(collisions).
 
     No input loops without end: a particle whose contact stretch takes more than
-    ``bbb.contact.STRETCH_BUDGET`` steps beyond ``PAYBACK`` per nominal step of the time it
+    ``bbb.dynamics.slide.STRETCH_BUDGET`` steps beyond ``PAYBACK`` per nominal step of the time it
     covers, or that has more than
-    ``bbb.kernel.EVENT_BUDGET`` events within ``EVENT_WINDOW`` floor periods, stops the run
+    ``bbb.dynamics.events.EVENT_BUDGET`` events within ``EVENT_WINDOW`` floor periods, stops the run
     with a RuntimeError naming the parameters, the seed and the particle.
     """
     if not isinstance(params, Params):
@@ -105,19 +106,14 @@ def simulate(
         raise ValueError(f"_guards must be a float64 array of shape ({n_particles}, 4)")
     status[:] = 0.0
     p = params
-    if p.transport or _force_conveyor:
-        # tilted or thrown floor: its own compiled kernel; the paper's floor keeps bbb.kernel
-        evolve_ensemble_c(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
-                          p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, p.tilt, p.throw,
-                          float(t_max), times, pos, float(record_from), rec, numerics.tol_t,
-                          numerics.v_stick, numerics.max_step, counters,
-                          None if p.contact == "stick" else p.mu, held, status)
-    else:
-        evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
-                        p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta, float(t_max), times,
-                        pos, float(record_from), rec, numerics.tol_t, numerics.v_stick,
-                        numerics.max_step, counters, None if p.contact == "stick" else p.mu,
-                        held, status)
+    # a tilted or thrown floor runs the conveyor's compiled kernel (frame), the paper's floor
+    # its own (frame None: numba prunes the conveyor's branches)
+    frame = frame_of(p.g, p.A, p.tilt, p.throw) if p.transport or _force_conveyor else None
+    evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
+                    Floor(*(float(v) for v in (p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta))),
+                    Run(float(t_max), float(record_from), numerics.tol_t, numerics.v_stick,
+                        numerics.max_step), frame, None if p.contact == "stick" else p.mu,
+                    times, (pos, rec, counters, held, status))
     _raise_on_guard(status, params, numerics, seed, initial)
     contact_time = {name: held[:, i].copy() for i, name in enumerate(CONTACT_TIME_NAMES)}
     return SimRun(
@@ -137,7 +133,7 @@ def simulate(
 
 def _raise_on_guard(status: np.ndarray, p: Params, numerics: Numerics,
                     seed: np.random.SeedSequence, initial: str) -> None:
-    """The kernel's guards (bbb.contact.slide's step budget, bbb.kernel's event budget) stop a
+    """The kernel's guards (bbb.dynamics.slide's step budget, bbb.dynamics.events' event budget) stop a
     particle with a flag the jitted code cannot put into words: here it becomes one error."""
     stopped = np.nonzero(status[:, 0] != STOP_OK)[0]
     if not stopped.size:

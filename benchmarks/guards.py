@@ -34,9 +34,9 @@ import numba  # noqa: E402
 import numpy as np  # noqa: E402
 
 from bbb import Params, simulate  # noqa: E402
-from bbb.contact import PAYBACK, STRETCH_BUDGET  # noqa: E402
+from bbb.dynamics.events import EVENT_BUDGET, EVENT_WINDOW  # noqa: E402
+from bbb.dynamics.slide import PAYBACK, STRETCH_BUDGET  # noqa: E402
 from bbb.ensemble import initial_state  # noqa: E402
-from bbb.kernel import EVENT_BUDGET, EVENT_WINDOW  # noqa: E402
 from benchmarks.kernel import cpu_name  # noqa: E402
 
 PAPER_F = (46.0, 48.0, 50.0, 51.0, 52.0, 53.0, 54.0, 56.0, 58.0, 60.0, 65.0, 70.0, 80.0, 90.0, 99.0)

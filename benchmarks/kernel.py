@@ -12,8 +12,9 @@ REF (``git archive REF bbb``) into a temporary directory; ``--reference DIR`` us
 holding a ``bbb`` package.  At f = 60 and 80, fresh processes of the reference and of this
 checkout alternate (``--repeats`` rounds, own numba caches, the same ensembles, which must give
 the same collision counts), and the rate is per CPU second of the process (not wall time),
-which a loaded machine disturbs far less; median and best of each.  Then this checkout's
-conveyor kernel (tilted and thrown floors) and its contact models (slide, coulomb).
+which a loaded machine disturbs far less; median and best of each.  Then the conveyor kernel
+(tilted and thrown floors) and the contact models (slide, coulomb), also side by side
+(median of the repeats).
 """
 
 from __future__ import annotations
@@ -143,23 +144,42 @@ def compare(reference: str, label: str, n: int, t_max: float, repeats: int) -> N
                 print(f"{f:7.1f} {family:>9} {0:5g} {90:5g} {counts['this']:11d} {r:10.3e} "
                       f"{t:10.3e} {t / r:8.3f} {br:10.3e} {bt:10.3e} {bt / br:8.3f}")
         print()
-        print(f"conveyor (this checkout only; launched; best of {repeats})")
-        print(f"{'f (Hz)':>7} {'tilt':>5} {'throw':>5} {'collisions':>11} {'coll/s':>10}")
+        print(f"conveyor (launched; ref and this alternating, {repeats} each; median)")
+        print(f"{'f (Hz)':>7} {'tilt':>5} {'throw':>5} {'collisions':>11} {'ref c/s':>10} "
+              f"{'this c/s':>10} {'this/ref':>8}")
         for f in (60.0, 80.0):
             for tilt, throw in ((0.0, 60.0), (5.0, 90.0), (5.0, 60.0)):
-                runs = [rate_in(here, caches["this"], f, "launched", n, t_max, tilt, throw)
-                        for _ in range(repeats)]
-                print(f"{f:7.1f} {tilt:5g} {throw:5g} {runs[0][0]:11d} "
-                      f"{max(c / cpu for c, cpu in runs):10.3e}")
+                c, r, t = alternate(trees, caches, repeats, f, "launched", n, t_max, tilt, throw)
+                print(f"{f:7.1f} {tilt:5g} {throw:5g} {c:11d} {r:10.3e} {t:10.3e} {t / r:8.3f}")
         print()
         n, t_max = min(n, 100), min(t_max, 5.0)
-        print(f"contact models (this checkout only; from rest; {n} particles x {t_max:g} s; one run)")
-        print(f"{'f (Hz)':>7} {'contact':>13} {'collisions':>11} {'CPU (s)':>9} {'coll/s':>10}")
+        print(f"contact models (from rest; {n} particles x {t_max:g} s; ref and this alternating, "
+              f"{repeats} each; median)")
+        print(f"{'f (Hz)':>7} {'contact':>13} {'collisions':>11} {'ref c/s':>10} {'this c/s':>10} "
+              f"{'this/ref':>8}")
         for f in (54.0, 60.0, 80.0):
             for model in (("stick", 0.0), ("slide", 0.0), ("coulomb", 0.05), ("coulomb", 0.3)):
-                c, cpu = rate_in(here, caches["this"], f, "rest", n, t_max, contact=model)
+                c, r, t = alternate(trees, caches, repeats, f, "rest", n, t_max, contact=model)
                 name = model[0] if model[0] != "coulomb" else f"coulomb {model[1]:g}"
-                print(f"{f:7.1f} {name:>13} {c:11d} {cpu:9.2f} {c / cpu:10.3e}")
+                print(f"{f:7.1f} {name:>13} {c:11d} {r:10.3e} {t:10.3e} {t / r:8.3f}")
+
+
+def alternate(trees: dict[str, str], caches: dict[str, str], repeats: int, f: float, family: str,
+              n: int, t_max: float, tilt: float = 0.0, throw: float = 90.0,
+              contact: tuple[str, float] | None = None) -> tuple[int, float, float]:
+    """(collisions, median ref rate, median this rate) of ``repeats`` alternating fresh
+    processes of the reference and of this checkout; the collision counts must agree."""
+    rates: dict[str, list[float]] = {"ref": [], "this": []}
+    counts = {}
+    for _ in range(repeats):
+        for who in ("ref", "this"):
+            c, cpu = rate_in(trees[who], caches[who], f, family, n, t_max, tilt, throw, contact)
+            counts[who] = c
+            rates[who].append(c / cpu)
+    if counts["ref"] != counts["this"]:
+        raise SystemExit(f"f = {f}, {family}, tilt {tilt}, throw {throw}, {contact}: the "
+                         f"collisions differ ({counts['ref']} vs {counts['this']})")
+    return counts["this"], float(np.median(rates["ref"])), float(np.median(rates["this"]))
 
 
 def baseline_tree(ref: str, tmp: str) -> tuple[str, str]:

@@ -44,11 +44,38 @@ for contact, mu in (("stick", 0.0), ("slide", 0.0), ("coulomb", 0.05), ("coulomb
 """
 
 
-def hashes(tree: str, cache: str, n: int, t_max: float) -> list[str]:
+def hashes(tree: str, cache: str, n: int, t_max: float, snippet: str = SNIPPET) -> list[str]:
     env = dict(os.environ, PYTHONPATH=tree, NUMBA_CACHE_DIR=cache, PYTHONDONTWRITEBYTECODE="1")
-    res = subprocess.run([sys.executable, "-c", SNIPPET, str(n), str(t_max)], env=env, check=True,
+    res = subprocess.run([sys.executable, "-c", snippet, str(n), str(t_max)], env=env, check=True,
                          capture_output=True, text=True, cwd=tree)
     return res.stdout.splitlines()
+
+
+def side_by_side(what: str, snippet: str, baseline: str, n: int, t_max: float,
+                 columns: str | None = None) -> None:
+    """Hash ``snippet``'s ensembles in the bbb of revision ``baseline`` and in this checkout
+    (fresh processes, own numba caches) and print the rows that differ."""
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=here, check=True,
+                          capture_output=True, text=True).stdout.strip()
+    with tempfile.TemporaryDirectory() as tmp, tempfile.TemporaryDirectory() as c1, \
+            tempfile.TemporaryDirectory() as c2:
+        ref_tree, ref_label = baseline_tree(baseline, tmp)
+        ref = hashes(ref_tree, c1, n, t_max, snippet)
+        this = hashes(here, c2, n, t_max, snippet)
+    print(f"# bbb {what}, bits side by side  {datetime.datetime.now().isoformat(timespec='seconds')}")
+    print(f"# CPU: {cpu_name()}  python {platform.python_version()}  numba {numba.__version__}  "
+          f"numpy {np.__version__}")
+    print(f"# ref = {ref_label}, this = HEAD ({head}); {n} particles x {t_max:g} s "
+          f"per row, positions at 201 times, 500 events per particle")
+    if columns:
+        print(f"# columns: {columns}")
+    differ = [(a, b) for a, b in zip(ref, this, strict=True) if a != b]
+    for a, b in differ:
+        print(f"DIFFERS  ref: {a}\n         this: {b}")
+    total = sum(int(line.split()[-1]) for line in this)
+    print(f"{len(this)} ensembles, {total} collisions: {len(differ)} differ"
+          + ("  -> bit-identical" if not differ and len(ref) == len(this) else ""))
 
 
 def main() -> None:
@@ -57,25 +84,7 @@ def main() -> None:
     ap.add_argument("--particles", type=int, default=16)
     ap.add_argument("--t-max", type=float, default=10.0)
     args = ap.parse_args()
-    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    head = subprocess.run(["git", "rev-parse", "--short", "HEAD"], cwd=here, check=True,
-                          capture_output=True, text=True).stdout.strip()
-    with tempfile.TemporaryDirectory() as tmp, tempfile.TemporaryDirectory() as c1, \
-            tempfile.TemporaryDirectory() as c2:
-        ref_tree, ref_label = baseline_tree(args.baseline, tmp)
-        ref = hashes(ref_tree, c1, args.particles, args.t_max)
-        this = hashes(here, c2, args.particles, args.t_max)
-    print(f"# bbb paper's floor, bits side by side  {datetime.datetime.now().isoformat(timespec='seconds')}")
-    print(f"# CPU: {cpu_name()}  python {platform.python_version()}  numba {numba.__version__}  "
-          f"numpy {np.__version__}")
-    print(f"# ref = {ref_label}, this = HEAD ({head}); {args.particles} particles x {args.t_max:g} s "
-          f"per row, positions at 201 times, 500 events per particle")
-    differ = [(a, b) for a, b in zip(ref, this, strict=True) if a != b]
-    for a, b in differ:
-        print(f"DIFFERS  ref: {a}\n         this: {b}")
-    total = sum(int(line.split()[-1]) for line in this)
-    print(f"{len(this)} ensembles, {total} collisions: {len(differ)} differ"
-          + ("  -> bit-identical" if not differ and len(ref) == len(this) else ""))
+    side_by_side("paper's floor", SNIPPET, args.baseline, args.particles, args.t_max)
 
 
 if __name__ == "__main__":

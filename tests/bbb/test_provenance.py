@@ -27,10 +27,13 @@ def _copy_of_bbb(tmp_path: Path) -> Path:
 
 
 def test_the_hashed_sources_are_exactly_the_modules_bbb_simulate_runs():
-    # a new kernel module (a contact model, say) imported by simulate must join KERNEL_SOURCES
-    loaded = _python("import bbb.simulate\nprint(' '.join(sorted(m for m in sys.modules "
+    # a new kernel module (a contact model, say) imported by simulate must join KERNEL_SOURCES;
+    # a subpackage's modules by their paths (bbb.dynamics.evolve: dynamics/evolve.py)
+    loaded = _python("import bbb.simulate\nprint(' '.join(sorted(m + ('/__init__' if hasattr("
+                     "sys.modules[m], '__path__') else '') for m in sys.modules "
                      "if m.startswith('bbb.'))))").split()
-    assert sorted(f"{m.removeprefix('bbb.')}.py" for m in loaded) == sorted(KERNEL_SOURCES)
+    assert sorted(f"{m.removeprefix('bbb.').replace('.', '/')}.py" for m in loaded) \
+        == sorted(KERNEL_SOURCES)
 
 
 def test_the_hash_is_that_of_the_imported_package():

@@ -1,0 +1,140 @@
+"""When a particle held at rest lifts off, one rule per floor: the paper's floor lets go
+where it accelerates downward faster than g (sin ωs < −1/Γ); the conveyor's where the normal
+load n·(a_floor + (gx, gy)) turns negative, in a cusp only when both arcs' loads do."""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from ..surface import arc_normal
+from .bounds_conveyor import cusp_side
+
+
+@njit(cache=True)
+def liftoff_wait(s, A, w, g, retry):
+    """Time (s) until a particle stuck to the floor lifts off: the floor must accelerate
+    downward faster than g, sin(w s) < -1/Γ.  inf when Γ ≤ 1 (it never lifts off)."""
+    gam = A * w * w / g
+    if gam <= 1.0:
+        return math.inf
+    thc = math.asin(1.0 / gam)
+    th = w * s
+    th_l = math.pi + thc
+    if not retry and math.sin(th) < -1.0 / gam:
+        return 0.0
+    if th < th_l:
+        return (th_l - th) / w
+    return (th_l + 2.0 * math.pi - th) / w
+
+
+@njit(cache=True, inline="always")
+def normal_load(nx, ny, gx, gy, Ax, Ay, w):
+    # the normal force per unit mass that carries a particle with the floor, n·(a_floor +
+    # (gx, gy)) = k sin ωs + gn (mm/s²): returns (k, gn)
+    return (nx * Ax + ny * Ay) * w * w, nx * gx + ny * gy
+
+
+@njit(cache=True)
+def letgo_delay(th, k, gn, w):
+    """Time (s) from the phase th (rad) until k sin θ + gn next turns negative (a downward
+    crossing, 0 if at th); inf if it never is negative, −1 if it is at all but isolated θ."""
+    if k == 0.0:
+        return -1.0 if gn < 0.0 else math.inf
+    c = -gn / abs(k)
+    if c <= -1.0:
+        return math.inf
+    if c >= 1.0:
+        return -1.0
+    if k < 0.0:
+        th += math.pi
+    th = th % (2.0 * math.pi)
+    th_l = math.pi - math.asin(c)
+    if th <= th_l:
+        return (th_l - th) / w
+    return (th_l + 2.0 * math.pi - th) / w
+
+
+@njit(cache=True)
+def liftoff_wait_c(s, d, gx, gy, Ax, Ay, w, R, S, retry):
+    """Time (s) until a particle carried by the floor at offset d lifts off: the normal
+    contact force per unit mass, n·(a_floor + (gx, gy)) = An ω² sin ωs + gn, turns negative
+    (An, gn: the floor amplitude and gravity along the arc's normal n).  inf if never.
+    In a cusp (bbb.dynamics.bounds_conveyor.cusp_side) both arcs must let go."""
+    side = cusp_side(d, R, S)
+    if side != 0:
+        return liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry)
+    nx, ny = arc_normal(d, R)
+    k, gn = normal_load(nx, ny, gx, gy, Ax, Ay, w)
+    T = 2.0 * math.pi / w
+    if k == 0.0:
+        if gn < 0.0:
+            return T if retry else 0.0
+        return math.inf
+    c = -gn / abs(k)
+    if c <= -1.0:
+        return math.inf
+    sn = math.sin(w * s) if k > 0.0 else -math.sin(w * s)
+    if not retry and sn < c:
+        return 0.0
+    if c >= 1.0:
+        return T * 0.25  # lifting everywhere but at one phase: after a failed try, move on
+    th = w * s if k > 0.0 else w * s + math.pi
+    if th >= 2.0 * math.pi:
+        th -= 2.0 * math.pi
+    th_l = math.pi - math.asin(c)
+    if th < th_l:
+        return (th_l - th) / w
+    return (th_l + 2.0 * math.pi - th) / w
+
+
+@njit(cache=True)
+def liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry):
+    """liftoff_wait_c in a cusp: the first time both arcs' normal loads are negative (the
+    particle's free motion relative to the floor then leaves both), inf if never.  A vertical
+    cusp (R = S/2: horizontal normals) lets go only of a load with no sideways part."""
+    T = 2.0 * math.pi / w
+    n1x, n1y = arc_normal(d, R)
+    n2x, n2y = arc_normal(d - side * S, R)
+    k1, g1 = normal_load(n1x, n1y, gx, gy, Ax, Ay, w)
+    k2, g2 = normal_load(n2x, n2y, gx, gy, Ax, Ay, w)
+    if n1y == 0.0 or n2y == 0.0:
+        if Ax != 0.0 or gx != 0.0:
+            return math.inf  # pressed on one wall at all but isolated phases: held for good
+        k1, g1 = Ay * w * w, gy
+        k2, g2 = k1, g1
+    th = w * s
+    if not retry and k1 * math.sin(th) + g1 < 0.0 and k2 * math.sin(th) + g2 < 0.0:
+        return 0.0
+    e1 = letgo_delay(th, k1, g1, w)
+    e2 = letgo_delay(th, k2, g2, w)
+    if e1 == math.inf or e2 == math.inf:
+        return math.inf
+    if e1 < 0.0 and e2 < 0.0:
+        return T * 0.25  # both let go at all but isolated phases, a try failed: move on
+    best = math.inf
+    for i in range(2):
+        e, kb, gb, eb = (e1, k2, g2, e2) if i == 0 else (e2, k1, g1, e1)
+        if e < 0.0:
+            continue  # never turns negative: it is; the other's turn is the candidate
+        if e == 0.0 and retry:
+            e = T
+        ok = eb < 0.0
+        if not ok:
+            # the other arc's load at this turn: negative, or turning at the same phase
+            thc = th + w * e
+            fb = kb * math.sin(thc) + gb
+            tol = 64.0 * 2.220446049250313e-16 * (abs(kb) + abs(gb))
+            ok = fb < -tol or (fb <= tol and kb * math.cos(thc) < 0.0)
+        if ok:
+            best = min(best, e)
+    return best
+
+
+@njit(cache=True, inline="always")
+def rest_wait(s, d, g, A, w, R, S, retry, frame):
+    # time (s) until the floor ``frame`` selects lets go of a particle held at offset d
+    if frame is None:
+        return liftoff_wait(s, A, w, g, retry)
+    return liftoff_wait_c(s, d, frame.gx, frame.gy, frame.Ax, frame.Ay, w, R, S, retry)

@@ -1,0 +1,98 @@
+"""Where a particle is between events, on either floor: the lab position of a state, the
+floor's velocity, a flight's end (Eqs. 1-4) and the position samples written along the way.
+
+``frame`` is None on the paper's floor (numba prunes the conveyor branches at compile
+time) or the conveyor's :class:`bbb.dynamics.options.Frame`, whose offsets d are relative
+to the moving floor (lab x = cell·S + d + X_f, X_f = −Ax sin ωs).
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from ..surface import arc_depth, floor_v, floor_y
+from .bounds_conveyor import round_half_away
+
+
+@njit(cache=True, inline="always")
+def lab_x(cell, d, s, S, w, frame):
+    # x (mm) of the state (cell, d) at floor time s
+    if frame is None:
+        return cell * S + d
+    return cell * S + d - frame.Ax * math.sin(w * s)
+
+
+@njit(cache=True, inline="always")
+def surface_y(s, d, A, w, R, frame):
+    # Sec. 2: the surface's height under offset d, y_f − c(d)
+    if frame is None:
+        return floor_y(s, A, w) - arc_depth(d, R)
+    return -frame.Ay * math.sin(w * s) - arc_depth(d, R)
+
+
+@njit(cache=True, inline="always")
+def floor_velocity(s, A, w, frame):
+    # the floor's velocity (mm/s): what a particle held at rest moves with
+    if frame is None:
+        return 0.0, floor_v(s, A, w)
+    return -frame.Ax * w * math.cos(w * s), -frame.Ay * w * math.cos(w * s)
+
+
+@njit(cache=True, inline="always")
+def on_arc_velocity(vt, nx, ny, vfx, vfy, frame):
+    # sliding with tangential speed vt relative to the floor on the arc of normal (nx, ny)
+    if frame is None:
+        return vt * ny, vfy - vt * nx
+    return vfx + vt * ny, vfy - vt * nx
+
+
+@njit(cache=True, inline="always")
+def fill_flight(pos, isamp, sample_times, t_end, x0, vx, t_now, frame):
+    # x at the sample times before t_end of a flight from x0 at t_now (Eq. 1)
+    ns = sample_times.shape[0]
+    while isamp < ns and sample_times[isamp] < t_end:
+        dt = sample_times[isamp] - t_now
+        if frame is None:
+            pos[isamp] = x0 + vx * dt
+        else:
+            pos[isamp] = x0 + vx * dt - 0.5 * frame.gx * dt * dt
+        isamp += 1
+    return isamp
+
+
+@njit(cache=True, inline="always")
+def fill_carried(pos, isamp, sample_times, t_end, base, s, t_now, w, frame):
+    # x at the sample times before t_end of a particle held at rest at base = cell·S + d
+    ns = sample_times.shape[0]
+    while isamp < ns and sample_times[isamp] < t_end:
+        if frame is None:
+            pos[isamp] = base
+        else:
+            pos[isamp] = base - frame.Ax * math.sin(w * (s + (sample_times[isamp] - t_now)))
+        isamp += 1
+    return isamp
+
+
+@njit(cache=True, inline="always")
+def fly(cell, d, vx, vy, s, tau, j, g, w, R, S, frame):
+    # Eqs. (1)-(4): the flight's end, τ later over the arc j cells on (conveyor: the nearest
+    # arc of the offset relative to the floor, bbb.dynamics.bounds_conveyor's module doc)
+    if frame is None:
+        d = d + vx * tau - j * S
+        cell += j
+        if math.isinf(R):
+            k = math.floor(d / S + 0.5)
+            d -= k * S
+            cell += int(k)
+        else:
+            d = min(max(d, -0.5 * S), 0.5 * S)
+        return cell, d, vx, vy - g * tau
+    d = d + vx * tau - 0.5 * frame.gx * tau * tau + frame.Ax * (math.sin(w * (s + tau))
+                                                                - math.sin(w * s))
+    k = round_half_away(d / S)
+    d -= k * S
+    cell += int(k)
+    d = min(max(d, -0.5 * S), 0.5 * S)
+    return cell, d, vx - frame.gx * tau, vy - frame.gy * tau

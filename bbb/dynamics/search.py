@@ -1,0 +1,265 @@
+"""The certified collision search, one driver for both floors (Eqs. 2-4): the first time τ
+(s) at which a particle in flight meets the floor, never missing one.
+
+The gap G(τ) = y_particle − y_surface along a flight is only declared positive on an
+interval when a rigorous lower bound is positive there; a root is refined by Newton
+safeguarded by bisection to ``tol_t``.  The gap and its certificates are each floor's own
+(:mod:`bbb.dynamics.bounds_level`, :mod:`bbb.dynamics.bounds_conveyor`); ``frame`` (None:
+the paper's floor) selects them at compile time.  The paper's floor splits a flight at the
+cusps it crosses (one arc per piece); the conveyor's bounds hold across them.
+"""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+from ..surface import arc_depth
+from .bounds_conveyor import gap_c, lower_bound_c, offset_range, start_step_c, upper_curvature
+from .bounds_level import curvature_bound, gap, lower_bound, start_step
+
+NO_COLLISION = -1.0
+STACK_DEPTH = 96
+
+
+@njit(cache=True, inline="always")
+def gap_at(t, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame):
+    # Eq. (2): G, G' and the offset d, d' (relative to the arc d0 refers to) at flight time t
+    if frame is None:
+        G, G1 = gap(t, y, vy, s, d0, vx, g, A, w, R, 0.5 * S)
+        return G, G1, 0.0, vx
+    return gap_c(t, y, vy, s, d0, vx, sin_s, frame.gx, frame.gy, frame.Ax, frame.Ay, w, R, S)
+
+
+@njit(cache=True, inline="always")
+def offset(t, d0, vx, d, frame):
+    # the offset at flight time t for a bound: the paper floor's d0 + vx t afresh (a value not
+    # carried through the search loop), the conveyor's d as gap_c returned it
+    if frame is None:
+        return d0 + vx * t
+    return d
+
+
+@njit(cache=True, inline="always")
+def newton_ok(G1, frame):
+    # a Newton step from slope G1 is taken (the conveyor's G' is infinite at a vertical wall)
+    if frame is None:
+        return G1 != 0.0
+    return G1 != 0.0 and math.isfinite(G1)
+
+
+@njit(cache=True, inline="always")
+def slope_cap(da, db, d1a, d1b, h, vx, g, A, w, R, S, Dx, frame):
+    # an upper bound of G'' on [a, a+h]: G' < 0 throughout if G'(a) + max(M, 0) h < 0
+    if frame is None:
+        return curvature_bound(da, db, vx, g, A, w, R)
+    amax, _amin, _cusp = offset_range(da, db, h, Dx, S)
+    D1 = max(abs(d1a), abs(d1b)) + 0.5 * Dx * h
+    return upper_curvature(amax, D1, Dx, frame.gy, frame.Ay, w, R)
+
+
+@njit(cache=True, inline="always")
+def gap_lower_bound(h, Ga, G1a, Gb, da, db, d1a, d1b, vx, g, A, w, R, S, Dx, frame):
+    # a rigorous lower bound of G on [a, a+h], the floor's own certificate
+    if frame is None:
+        return lower_bound(h, Ga, G1a, Gb, da, db, vx, g, A, w, R)
+    return lower_bound_c(h, Ga, G1a, Gb, da, db, d1a, d1b, Dx, frame.gy, frame.Ay, w, R, S)
+
+
+@njit(cache=True, inline="always")
+def first_step(h_max, G1, d0, d10, vx, s, g, A, w, R, S, Dx, frame, lifting):
+    # a step σ > 0 with G > 0 on (0, σ] for a flight from the surface, 0 if none certified
+    if frame is None:
+        return start_step(h_max, G1, vx, s, g, A, w, lifting)
+    return start_step_c(h_max, G1, d0, d10, s, frame.gx, frame.gy, frame.Ax, frame.Ay, w, R, S,
+                        Dx, lifting)
+
+
+@njit(cache=True)
+def refine_root(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame, tol_t):
+    """Newton safeguarded by bisection on a bracket with G(a) > 0 ≥ G(b)."""
+    t = b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else 0.5 * (a + b)
+    if not (a < t < b):
+        t = 0.5 * (a + b)
+    for _ in range(200):
+        G, G1, _d, _d1 = gap_at(t, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame)
+        if G > 0.0:
+            a = t
+            Ga = G
+        else:
+            b = t
+            Gb = G
+        tn = t
+        if newton_ok(G1, frame):
+            tn = t - G / G1
+            # a converged Newton step is accurate to O(step²): stop only on those
+            if a <= tn <= b and abs(tn - t) <= tol_t:
+                return tn
+        if b - a <= tol_t:
+            break
+        if not (G1 != 0.0 and a < tn < b):
+            tn = 0.5 * (a + b)
+        t = tn
+    # bracket below tol_t without a Newton step inside it: secant, O(width²) accurate
+    t = b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else b
+    return min(max(t, a), b)
+
+
+@njit(cache=True)
+def search_piece(pa, pb, d0, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame, from_surface,
+                 lifting, tol_t, h_max, stack):
+    """First root of G in [pa, pb] (offset d0 at τ = 0); NO_COLLISION if none."""
+    a = pa
+    Ga, G1a, da, d1a = gap_at(a, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame)
+    if from_surface:
+        if pb <= pa:
+            # zero-length piece (a cusp at τ = 0): only an approach into this arc counts
+            return a if G1a < 0.0 else NO_COLLISION
+        sigma = first_step(min(h_max, pb - pa), G1a, da, d1a, vx, s, g, A, w, R, S, Dx, frame,
+                           lifting)
+        if sigma <= 0.0:
+            return a
+        a = a + sigma
+        if a >= pb:
+            return NO_COLLISION
+        Ga, G1a, da, d1a = gap_at(a, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame)
+        if Ga <= 0.0:
+            # separation below rounding: the particle is back on the surface at a > 0
+            return a
+    elif Ga <= 0.0:
+        return a
+    n = 0
+    h = h_max
+    b = min(a + h, pb)
+    while True:
+        Gb, G1b, db, d1b = gap_at(b, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame)
+        width = b - a
+        if Gb <= 0.0:
+            # unique root when G' < 0 on all of [a, b]: G'(a) + M⁺(b-a) < 0
+            M = slope_cap(offset(a, d0, vx, da, frame), offset(b, d0, vx, db, frame), d1a, d1b,
+                          width, vx, g, A, w, R, S, Dx, frame)
+            if G1a + max(M, 0.0) * width < 0.0 or width <= tol_t:
+                return refine_root(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame,
+                                   tol_t)
+        else:
+            lb = gap_lower_bound(width, Ga, G1a, Gb, offset(a, d0, vx, da, frame),
+                                 offset(b, d0, vx, db, frame), d1a, d1b, vx, g, A, w, R, S, Dx,
+                                 frame)
+            # below tol_t a dip is at most M tol_t²/8 deep: far below rounding of y
+            if lb > 0.0 or width <= tol_t:
+                a = b
+                Ga = Gb
+                G1a = G1b
+                da = db
+                d1a = d1b
+                if n > 0:
+                    n -= 1
+                    b = stack[n]
+                else:
+                    if a >= pb:
+                        return NO_COLLISION
+                    h = min(2.0 * width, h_max)
+                    b = min(a + h, pb)
+                continue
+        if n < stack.shape[0]:
+            stack[n] = b
+            n += 1
+        b = 0.5 * (a + b)
+
+
+@njit(cache=True, inline="always")
+def flight_windows(y, vy, g, top, bottom):
+    # the flight's times below the surface's top, (w0a, w0b) and (w1a, w1b) (empty: w1b < 0):
+    # above the top no collision is possible, below the bottom one must already have happened
+    yb = bottom - 1e-9 * (1.0 + abs(bottom))
+    tau_b = (vy + math.sqrt(vy * vy + 2.0 * g * max(y - yb, 0.0))) / g
+    w0a = 0.0
+    w0b = tau_b
+    w1a = 0.0
+    w1b = -1.0
+    if y > top:
+        w0a = (vy + math.sqrt(vy * vy + 2.0 * g * (y - top))) / g
+    else:
+        disc = vy * vy - 2.0 * g * (top - y)
+        if vy > 0.0 and disc > 0.0:
+            sq = math.sqrt(disc)
+            w0b = 2.0 * (top - y) / (vy + sq)
+            w1a = (vy + sq) / g
+            w1b = tau_b
+    return w0a, w0b, w1a, w1b
+
+
+@njit(cache=True, inline="always")
+def search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, tol_t, h_max,
+                 stack):
+    """The paper floor's search over [wa, wb], one arc at a time: (τ, cell offset j of the
+    arc hit), NO_COLLISION if none."""
+    if math.isinf(R):
+        tau = search_piece(wa, wb, d, y, vy, s, 0.0, 0.0, g, A, w, R, S, 0.0, None,
+                           from_surface and wa == 0.0, lifting, tol_t, h_max, stack)
+        return tau, 0
+    xr = d + vx * wa
+    if vx > 0.0:
+        j = math.floor(xr / S + 0.5)
+    elif vx < 0.0:
+        j = math.ceil(xr / S - 0.5)
+    else:
+        # a vertical flight stays over its own arc (|d| ≤ S/2): at a cusp, d = ±S/2 keeps
+        # the arc it is on, so mirrored states hit mirrored arcs (floor(d/S + ½) would not)
+        j = 0
+    pa = wa
+    while True:
+        if vx > 0.0:
+            tc = ((j + 0.5) * S - d) / vx
+        elif vx < 0.0:
+            tc = ((j - 0.5) * S - d) / vx
+        else:
+            tc = math.inf
+        pb = min(tc, wb)
+        start = from_surface and pa == 0.0
+        if pb > pa or (start and pb == pa):
+            tau = search_piece(pa, max(pb, pa), d - j * S, y, vy, s, vx, 0.0, g, A, w, R, S, 0.0,
+                               None, start, lifting, tol_t, h_max, stack)
+            if tau != NO_COLLISION:
+                return tau, int(j)
+        if tc >= wb:
+            break
+        pa = max(pa, tc)
+        j += 1 if vx > 0.0 else -1
+    return NO_COLLISION, 0
+
+
+@njit(cache=True)
+def next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, frame, tau_limit,
+                   tol_t, h_max, stack):
+    """Time τ (s) of the first collision after the current state, and the cell offset j
+    (relative to the current cell) of the arc hit (the conveyor's: 0, its flight's end takes
+    the nearest arc).  τ = NO_COLLISION if none before ``tau_limit``."""
+    cmax = arc_depth(0.5 * S, R)
+    if frame is None:
+        gn = g
+        top = A
+        Dx = 0.0
+        sin_s = 0.0
+    else:
+        gn = frame.gy
+        top = abs(frame.Ay)
+        Dx = abs(frame.gx) + abs(frame.Ax) * w * w
+        sin_s = math.sin(w * s)
+    w0a, w0b, w1a, w1b = flight_windows(y, vy, gn, top, -top - cmax)
+    for win in range(2):
+        wa = w0a if win == 0 else w1a
+        wb = min(w0b if win == 0 else w1b, tau_limit)
+        if wb < wa or (wb == wa and not (wa == 0.0 and from_surface)):
+            continue
+        if frame is None:
+            tau, j = search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S,
+                                  tol_t, h_max, stack)
+        else:
+            tau = search_piece(wa, wb, d, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame,
+                               from_surface and wa == 0.0, lifting, tol_t, h_max, stack)
+            j = 0
+        if tau != NO_COLLISION:
+            return tau, j
+    return NO_COLLISION, 0
