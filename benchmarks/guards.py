@@ -9,10 +9,10 @@ This runs the inputs the project uses — the paper's floor under every contact 
 contact scenes, 46-99 Hz, from rest and launched), the transport scenes (tilt, throw, stick
 and Coulomb 0.3; the sliding scene at its own length where its debts peak), the conveyor
 contact rows of the soak, the extremes table — and random
-inputs of the hypothesis domain (tests/bbb/test_conveyor_contact.py, every contact model on
+inputs of the hypothesis domain (tests/bbb/dynamics/test_contact_conveyor.py, every contact model on
 tilted and thrown floors), and prints the largest step debt and events per window each met.
 Writes the maxima to benchmarks/results/guards-<date>.json (--json), which
-tests/bbb/test_guards.py reads: each budget must exceed its measured maximum by MARGIN.
+tests/bbb/dynamics/test_guards.py reads: each budget must exceed its measured maximum by MARGIN.
 Commit the printed table under benchmarks/results/ with the date and machine.
 """
 
@@ -115,7 +115,7 @@ def main() -> None:
     for kw in SOAK_ROWS:
         p = Params.preset("klages2004", **kw)
         row("soak", f"{kw}", p, n, t_max, 1, "launched")
-    from tests.bbb.test_extremes import CASES, start  # the table's own initial states
+    from tests.bbb.dynamics.test_extremes import CASES, start  # the table's own initial states
     for case in CASES:
         guards = np.zeros((case.n, 4))
         t0 = time.process_time()

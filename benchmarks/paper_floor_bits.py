@@ -6,7 +6,7 @@ Runs the same seeded ensembles — stick, slide, Coulomb 0.05 and 0.3 at 48-99 H
 and launched — in a fresh process of this checkout and one of the bbb of git revision REF
 (``git archive``, own numba caches), hashes each one's positions, events (lift-offs and contact
 events included), counters and contact times, and prints the rows that differ.  Commit the
-output under benchmarks/results/.  (tests/bbb/test_paper_floor_bits.py holds ten such hashes.)
+output under benchmarks/results/.  (tests/bbb/dynamics/test_paper_floor_bits.py holds ten such hashes.)
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 """Soak: the invariant budget of issue 6 — ≥ 10⁹ collisions across the extreme-parameter table
-of tests/bbb/test_extremes.py, with zero particles below the surface and zero non-finite values.
+of tests/bbb/dynamics/test_extremes.py, with zero particles below the surface and zero non-finite values.
 
     .venv/bin/python benchmarks/soak.py [--target 1e9] [--workers 2] [--sample 1000] [--check 4]
     .venv/bin/python benchmarks/soak.py --mix transport [--case KEY=VAL[,KEY=VAL...]] ...
@@ -64,7 +64,7 @@ import numpy as np  # noqa: E402
 from bbb import Params  # noqa: E402
 from bbb.surface import cell_of  # noqa: E402
 from benchmarks.kernel import cpu_name  # noqa: E402
-from tests.bbb.test_extremes import BASE, CASES, Case, impacts, invariant_violations, rows_of, run_case  # noqa: E402
+from tests.bbb.dynamics.test_extremes import BASE, CASES, Case, impacts, invariant_violations, rows_of, run_case  # noqa: E402
 
 T_SOAK = 30.0  # s, the shortest soak run of a case
 TASK_COLLISIONS = 2e7  # ~10-15 s of kernel time per task

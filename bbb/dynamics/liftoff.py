@@ -12,6 +12,15 @@ from ..surface import arc_normal
 from .bounds_conveyor import cusp_side
 
 
+@njit(cache=True, inline="always")
+def phase_wait(th, th_l, w):
+    # time (s) from the phase th to the next phase th_l (rad, both in [0, 2π)); a whole
+    # period if th is th_l: the let-go there was just tried
+    if th < th_l:
+        return (th_l - th) / w
+    return (th_l + 2.0 * math.pi - th) / w
+
+
 @njit(cache=True)
 def liftoff_wait(s, A, w, g, retry):
     """Time (s) until a particle stuck to the floor lifts off: the floor must accelerate
@@ -24,9 +33,7 @@ def liftoff_wait(s, A, w, g, retry):
     th_l = math.pi + thc
     if not retry and math.sin(th) < -1.0 / gam:
         return 0.0
-    if th < th_l:
-        return (th_l - th) / w
-    return (th_l + 2.0 * math.pi - th) / w
+    return phase_wait(th, th_l, w)
 
 
 @njit(cache=True, inline="always")
@@ -51,9 +58,9 @@ def letgo_delay(th, k, gn, w):
         th += math.pi
     th = th % (2.0 * math.pi)
     th_l = math.pi - math.asin(c)
-    if th <= th_l:
-        return (th_l - th) / w
-    return (th_l + 2.0 * math.pi - th) / w
+    if th == th_l:
+        return 0.0
+    return phase_wait(th, th_l, w)
 
 
 @njit(cache=True)
@@ -84,9 +91,7 @@ def liftoff_wait_c(s, d, gx, gy, Ax, Ay, w, R, S, retry):
     if th >= 2.0 * math.pi:
         th -= 2.0 * math.pi
     th_l = math.pi - math.asin(c)
-    if th < th_l:
-        return (th_l - th) / w
-    return (th_l + 2.0 * math.pi - th) / w
+    return phase_wait(th, th_l, w)
 
 
 @njit(cache=True)

@@ -9,7 +9,7 @@ from bbb import Params, simulate
 from bbb.ensemble import InitialState
 
 ALPHA = 0.7
-# the flat-floor period-1 window of tests/bbb/test_kernel.py (Holmes 1982), in Γ_y = A_y ω²/g
+# the flat-floor period-1 window of tests/bbb/dynamics/test_evolve_level.py (Holmes 1982), in Γ_y = A_y ω²/g
 GAMMA1 = math.pi * (1 - ALPHA) / (1 + ALPHA)
 GAMMA2 = math.hypot(GAMMA1, 2 * (1 + ALPHA**2) / (1 + ALPHA) ** 2)
 

@@ -23,8 +23,10 @@ import numpy as np
 import pytest
 
 from bbb import Params, SimRun, simulate
+from bbb.dynamics.evolve import evolve_ensemble
+from bbb.dynamics.options import Floor as KernelFloor
+from bbb.dynamics.options import Run
 from bbb.ensemble import InitialState, initial_state
-from bbb.kernel import evolve_ensemble
 from bbb.numerics import Numerics
 from bbb.record import COLLISION_FIELDS, COUNTER_NAMES
 from bbb.surface import cell_of, depth, surface_normal
@@ -506,7 +508,7 @@ def held_where_it_rests_and_never_slides(p: Params, st: InitialState, run: SimRu
 FLAT = math.inf
 CASES: list[Case] = [
     # no slide/coulomb at R = S/2: Params refuses them there (vertical cusp walls make sliding
-    # a Zeno ping-pong; tests/bbb/test_contact.py, test_sliding_contact_is_refused_...)
+    # a Zeno ping-pong; tests/bbb/dynamics/test_contact_level.py, test_sliding_contact_is_refused_...)
     # 50 Hz: at 54 Hz no particle was ever held in a cusp (the claim passed on nothing)
     Case("slide at 50 Hz from rest: held only at tops and cusps", params(f=50.0, contact="slide"),
          "rest", held_only_where_the_model_can_hold, t_max=2.0,
@@ -889,9 +891,10 @@ def test_clock_started_a_million_periods_later_gives_the_same_first_collision():
     def run(s):
         rec = np.full((n, 3, len(COLLISION_FIELDS)), np.nan)
         counters = np.zeros((n, len(COUNTER_NAMES)), np.int64)
-        evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, s, st.stuck, st.from_surface, p.g, p.A,
-                        p.omega, p.R, p.S, p.alpha, p.beta, 1.0, np.zeros(0), np.zeros((n, 0)), 0.0,
-                        rec, 1e-12, 1e-3, 0.25, counters, None, np.zeros((n, 2)), np.zeros((n, 4)))
+        floor = KernelFloor(p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta)
+        evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, s, st.stuck, st.from_surface, floor,
+                        Run(1.0, 0.0, 1e-12, 1e-3, 0.25), None, None, np.zeros(0),
+                        (np.zeros((n, 0)), rec, counters, np.zeros((n, 2)), np.zeros((n, 4))))
         return rec
 
     a, b = run(st.s), run(st.s + 1_000_000 * T)

@@ -5,7 +5,7 @@ to touch only the conveyor must leave every trajectory of the paper's scenes, an
 table of Fig. 2, unchanged.  The hashes depend on the compiler and libm as well as on the
 kernel, so the test runs only where numba, numpy and the machine match the stored ones.
 
-    PYTHONPATH=. .venv/bin/python tests/bbb/test_paper_floor_bits.py   # rewrite the hashes
+    PYTHONPATH=. .venv/bin/python tests/bbb/dynamics/test_paper_floor_bits.py   # rewrite the hashes
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import pytest
 
 from bbb import Params, simulate
 
-STORE = Path(__file__).parent / "data" / "paper_floor_bits.json"
+STORE = Path(__file__).parents[1] / "data" / "paper_floor_bits.json"
 #: (name, Params.preset("klages2004", **changes), family, particles, t_max in s)
 RUNS = (
     ("stick 60 Hz launched", dict(f=60.0), "launched", 8, 2.0),

@@ -13,14 +13,14 @@ import numpy as np
 import pytest
 
 from bbb import Numerics, Params, simulate
-from bbb.contact import BUDGET, PAYBACK, STRETCH_BUDGET, slide
+from bbb.dynamics.events import EVENT_BUDGET, STOP_STEPS
+from bbb.dynamics.slide import BUDGET, PAYBACK, STRETCH_BUDGET, slide
 from bbb.ensemble import InitialState
-from bbb.kernel import EVENT_BUDGET, STOP_STEPS
 from bbb.simulate import _raise_on_guard
 
 #: the measured worst cases (benchmarks/guards.py --json), and how far above them a budget
 #: must lie: two orders of magnitude, so that no input of the project comes near a guard
-MEASURED = Path(__file__).resolve().parents[2] / "benchmarks" / "results" / "guards-2026-11-25.json"
+MEASURED = Path(__file__).resolve().parents[3] / "benchmarks" / "results" / "guards-2026-11-25.json"
 MARGIN = 100.0
 
 
@@ -60,7 +60,7 @@ def test_a_particle_leaving_the_vertical_cusp_upwards_is_not_stopped():
 
 
 def test_a_contact_stretch_that_makes_no_progress_ends_with_the_budget_event():
-    """bbb.contact.slide from a state on which no step can be certified (here a non-finite
+    """bbb.dynamics.slide.slide from a state on which no step can be certified (here a non-finite
     speed, which only a fault upstream could hand it) would step at tol_t for ever: the step
     debt passes STRETCH_BUDGET and the stretch ends with BUDGET, having covered only
     ~STRETCH_BUDGET × tol_t of its 1 s."""
