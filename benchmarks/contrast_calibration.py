@@ -1,4 +1,4 @@
-"""Calibration of the contrast rule (``bbb.gk_contrast.carrier``) on jump sequences with a
+"""Calibration of the contrast rule (``bbb.analysis.gk_contrast.carrier``) on jump sequences with a
 known split of the log contrast into random walk and memory.
 
     .venv/bin/python benchmarks/contrast_calibration.py [--replicates 100] [--particles 1024]
@@ -6,8 +6,8 @@ known split of the log contrast into random walk and memory.
 
 Prints a table; with ``--write`` also writes it to benchmarks/results/contrast-calibration-
 <date>.txt and the rule's numbers (θ, the CI level, the measured rates) to
-bbb/gk_contrast_rule.json (``bbb.gk_contrast.calibrated_rule``), which the mechanisms table and
-claims read.
+bbb/analysis/gk_contrast_rule.json (``bbb.analysis.gk_contrast.calibrated_rule``), which the mechanisms
+table and claims read.
 
 Synthetic "frequencies": each particle's jumps are a stationary AR(1) sequence,
 C(k) = σ_i² ρ^k, so D_0 = ⟨σ²⟩/(2T) and D_∞ = D_0 m with the memory factor m = (1+ρ)/(1−ρ).
@@ -46,8 +46,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from bbb.gk_contrast import RULE_FILE, SPLITS, carrier, contrast  # noqa: E402
-from bbb.greenkubo import expansion  # noqa: E402
+from bbb.analysis.gk_contrast import RULE_FILE, SPLITS, carrier, contrast  # noqa: E402
+from bbb.analysis.greenkubo import expansion  # noqa: E402
 from benchmarks.kernel import cpu_name  # noqa: E402
 
 ROOT = Path(__file__).resolve().parents[1]

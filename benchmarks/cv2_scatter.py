@@ -1,5 +1,5 @@
 """How much does the spread estimate CV² = 2 EB(T) − EB(T/2) scatter at a given ensemble size?
-Disjoint subsets of one large run, each with its bootstrap CI (bbb.stats.ergodic_verdict).
+Disjoint subsets of one large run, each with its bootstrap CI (bbb.analysis.stats.ergodic_verdict).
 
     bbb run benchmarks/cv2_scatter.toml --store runs/cv2_scatter.zarr
     python benchmarks/cv2_scatter.py runs/cv2_scatter.zarr [--sizes 256,640,1024,3072]
@@ -22,7 +22,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
-from bbb import stats  # noqa: E402
+from bbb.analysis import stats  # noqa: E402
 from pipeline.store import StudyStore  # noqa: E402
 
 

@@ -1,13 +1,13 @@
 """Calibration of the ergodicity rule on synthetic populations with a known D spread.
 
     .venv/bin/python benchmarks/ergodicity_calibration.py [--seeds 100] [--sizes 64x3,1024x3]
-        [--json bbb/stats/ergodicity_calibration.json]
+        [--json bbb/analysis/stats/ergodicity_calibration.json]
 
 Prints a table; commit the output as benchmarks/results/ergodicity-calibration-<date>.txt
 (docs/statistics.md explains it); with --json also the worst error rates per rule and size
-(``bbb.stats.RULE_ERROR_RATES`` reads them from bbb/stats/ergodicity_calibration.json) and
+(``bbb.analysis.stats.RULE_ERROR_RATES`` reads them from bbb/analysis/stats/ergodicity_calibration.json) and
 the coverage of the CV² interval per population.  For every population (law x per-particle D spread) and
-ensemble size, ``bbb.stats.ergodic_verdict`` runs on ``--seeds`` independent samples with
+ensemble size, ``bbb.analysis.stats.ergodic_verdict`` runs on ``--seeds`` independent samples with
 the real scenes' sampling: t_max = 50 s, sample_dt = 0.5 s, discard 10 %, fit lags 5-25 %
 and EB lag 5 % of the analysed T = 45 s; three families (rest/dropped/launched) of N
 particles each (ergodicity scene: N = 1024; draft: 64) or one family of 4096 (Fig. 2).
@@ -34,8 +34,8 @@ import time
 
 import numpy as np
 
-from bbb.stats import RULES, ergodic_verdict
-from bbb.stats import synthetic as syn
+from bbb.analysis.stats import RULES, ergodic_verdict
+from bbb.analysis.stats import synthetic as syn
 
 T_MAX, DT = 50.0, 0.5
 N_SAMPLES = round(T_MAX / DT) + 1

@@ -28,9 +28,9 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from bbb import Params, simulate  # noqa: E402
-from bbb.greenkubo import cell_jumps, collision_jumps, expansion, period_jumps  # noqa: E402
-from bbb.lyapunov import lyapunov  # noqa: E402
-from bbb.stats import bootstrap_D  # noqa: E402
+from bbb.analysis.greenkubo import cell_jumps, collision_jumps, expansion, period_jumps  # noqa: E402
+from bbb.analysis.lyapunov import lyapunov  # noqa: E402
+from bbb.analysis.stats import bootstrap_D  # noqa: E402
 from benchmarks.kernel import cpu_name  # noqa: E402
 from pipeline.mechanisms import distinct_values  # noqa: E402
 

@@ -1,12 +1,12 @@
 """Coverage of D's 95 % CI when only a few particles move: the bootstrap alone vs the rare-mover
-rule (bbb/stats/rare.py).  Prints the calibration table of docs/statistics.md.
+rule (bbb/analysis/stats/rare.py).  Prints the calibration table of docs/statistics.md.
 
     python benchmarks/rare_movers.py [--reps 200] [--reps-4096 100] [--json PATH]
 
 With --json the calibration is also written as JSON (the coverage by the sample's n_eff that
-`bbb reduce` puts in its D_cover column reads bbb/stats/rare_movers_calibration.json, made so).
+`bbb reduce` puts in its D_cover column reads bbb/analysis/stats/rare_movers_calibration.json, made so).
 
-Populations (bbb.stats.synthetic.rare_movers): N particles, each a mover with probability
+Populations (bbb.analysis.stats.synthetic.rare_movers): N particles, each a mover with probability
 p = m / N (m: expected movers), light tails (Brownian, D_i ~ Gamma CV 0.5) or heavy tails
 (3 mm jumps, D_i lognormal σ = 1.5); the rest creep (D = 1e-6 mm²/s).  The scenes' sampling:
 t_max = 50 s, sample_dt = 0.5 s, 10 % discarded, fit lags 5-25 % of T.  True D = p + (1 − p)
@@ -28,10 +28,10 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
-from bbb.stats import per_particle_D  # noqa: E402
-from bbb.stats.bootstrap import _bootstrap_mean  # noqa: E402
-from bbb.stats.rare import RARE_N_EFF, RARE_SHARE, effective_movers, rare_mover_interval  # noqa: E402
-from bbb.stats.synthetic import rare_movers  # noqa: E402
+from bbb.analysis.stats import per_particle_D  # noqa: E402
+from bbb.analysis.stats.bootstrap import bootstrap_mean_unchecked  # noqa: E402
+from bbb.analysis.stats.rare import RARE_N_EFF, RARE_SHARE, effective_movers, rare_mover_interval  # noqa: E402
+from bbb.analysis.stats.synthetic import rare_movers  # noqa: E402
 
 N_SAMPLES, DT, CREEP = 101, 0.5, 1e-6
 TIMES = np.arange(N_SAMPLES) * DT
@@ -47,7 +47,7 @@ def one(rng: np.random.Generator, n: int, m: float, tails: str) -> tuple:
     x = rare_movers(rng, n, N_SAMPLES, DT, p, tails, creep=CREEP)
     k = int(np.count_nonzero(np.ptp(x, axis=1) > 0.5))  # movers travel ~10 mm, creepers ~0.01 mm
     d_i = per_particle_D(x, TIMES)
-    b = _bootstrap_mean(d_i, N_BOOT, CI, rng, "percentile")
+    b = bootstrap_mean_unchecked(d_i, N_BOOT, CI, rng, "percentile")
     g = rare_mover_interval(d_i, CI)
     return (p + (1 - p) * CREEP, k, effective_movers(d_i), b.lo, b.hi, g[0], g[1], n)
 

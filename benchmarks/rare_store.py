@@ -22,9 +22,9 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
-from bbb import stats  # noqa: E402
-from bbb.stats.bootstrap import with_rare_movers  # noqa: E402
-from bbb.stats.rare import effective_movers, is_rare  # noqa: E402
+from bbb.analysis import stats  # noqa: E402
+from bbb.analysis.stats.bootstrap import with_rare_movers  # noqa: E402
+from bbb.analysis.stats.rare import effective_movers, is_rare  # noqa: E402
 from pipeline.adaptive import OPEN, STOP_LEGEND, advance  # noqa: E402
 from pipeline.identity import reduce_seed  # noqa: E402
 from pipeline.store import StudyStore  # noqa: E402

@@ -64,7 +64,15 @@ import numpy as np  # noqa: E402
 from bbb import Params  # noqa: E402
 from bbb.surface import cell_of  # noqa: E402
 from benchmarks.kernel import cpu_name  # noqa: E402
-from tests.bbb.dynamics.test_extremes import BASE, CASES, Case, impacts, invariant_violations, rows_of, run_case  # noqa: E402
+from tests.bbb.dynamics.test_extremes import (  # noqa: E402
+    BASE,
+    CASES,
+    Case,
+    impacts,
+    invariant_violations,
+    rows_of,
+    run_case,
+)
 
 T_SOAK = 30.0  # s, the shortest soak run of a case
 TASK_COLLISIONS = 2e7  # ~10-15 s of kernel time per task

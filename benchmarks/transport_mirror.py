@@ -52,9 +52,10 @@ sys.path.append(str(Path(__file__).resolve().parent))
 
 from transport_rules import machine  # noqa: E402
 
-from bbb import simulate, stats  # noqa: E402
+from bbb import simulate  # noqa: E402
+from bbb.analysis import stats  # noqa: E402
+from bbb.analysis.transport import per_particle_drift  # noqa: E402
 from bbb.ensemble import InitialState, initial_state, mirror_pairs  # noqa: E402
-from bbb.transport import per_particle_drift  # noqa: E402
 from pipeline.scenes import load_scene  # noqa: E402
 from pipeline.studies.transport.claims import (  # noqa: E402
     CONVEYORS,

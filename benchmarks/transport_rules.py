@@ -1,10 +1,10 @@
-"""Calibration of bbb.transport's two checks on synthetic ensembles with known answers.
+"""Calibration of bbb.analysis.transport's two checks on synthetic ensembles with known answers.
 
     .venv/bin/python benchmarks/transport_rules.py [--seeds 1000] [--write]
 
 Prints the tables (commit them as benchmarks/results/transport-rules-<date>.txt); with
-``--write`` also writes the chosen numbers and their error rates to bbb/transport_rules.json,
-which bbb.transport reads.  Sampling as the transport scenes: t_max = 50 s every 0.5 s,
+``--write`` also writes the chosen numbers and their error rates to bbb/analysis/transport_rules.json,
+which bbb.analysis.transport reads.  Sampling as the transport scenes: t_max = 50 s every 0.5 s,
 discard 10 %, fit lags 5-25 % of the analysed T = 45 s, 1000 bootstrap resamples, ensembles
 of 128 and 256 particles (the sliding and the hopping scenes).
 
@@ -39,8 +39,8 @@ from pathlib import Path
 
 import numpy as np
 
-from bbb.stats import synthetic as syn
-from bbb.transport import drift_change, drift_velocity, msd_slope_ratio, per_particle_drift
+from bbb.analysis.stats import synthetic as syn
+from bbb.analysis.transport import drift_change, drift_velocity, msd_slope_ratio, per_particle_drift
 
 T_MAX, DT = 50.0, 0.5
 TIMES = np.arange(round(T_MAX / DT) + 1) * DT
@@ -50,7 +50,7 @@ N_RESAMPLES = 1000
 K_GRID = (0.0, 0.5, 1.0, 1.5, 2.0, 2.5, 3.0, 4.0)
 TAU_GRID = (0.0, 0.05, 0.1, 0.15, 0.2, 0.3, 0.5)
 MAX_FALSE = 0.01
-OUT = Path(__file__).resolve().parents[1] / "bbb" / "transport_rules.json"
+OUT = Path(__file__).resolve().parents[1] / "bbb" / "analysis" / "transport_rules.json"
 
 
 def _drifting(law: str, D: float, v: float, cv: float = 0.0, **opt):
@@ -195,7 +195,7 @@ def main(argv=None) -> int:
     ap.add_argument("--write", action="store_true", help=f"write {OUT.name}")
     args = ap.parse_args(argv)
     t0 = time.time()
-    print(f"# bbb.transport rule calibration, {machine()}; {args.seeds} ensembles per cell")
+    print(f"# bbb.analysis.transport rule calibration, {machine()}; {args.seeds} ensembles per cell")
 
     st = steady_runs(args.seeds)
     st_rates = {key: {k: flagged(c, k) for k in K_GRID} for key, c in st.items()}

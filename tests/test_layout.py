@@ -1,6 +1,7 @@
 """The house rules of the layout (docs/design.md, issues 11 and 24), read off the source files:
 modules stay under 400 lines unless they say why, ``bbb/`` never imports ``pipeline/``, the
-engine (``pipeline/*.py``) never imports a study, no import cycle of any length among the
+kernel (the modules ``bbb.provenance`` hashes) never imports the analyses (``bbb/analysis/``),
+the engine (``pipeline/*.py``) never imports a study, no import cycle of any length among the
 modules of ``bbb/`` and ``pipeline/`` (lazy imports count), no ``_private`` name imported from
 another module, and ``pipeline.api`` never imports ``pipeline.cli``.  Each rule's checker is
 also run on a synthetic tree that breaks it (the ``*_is_caught`` tests)."""
@@ -23,21 +24,6 @@ ENTRY_POINTS = {
 #: them or states their reason when merging, then removes them here:
 #: test_the_pending_list_names_only_files_still_pending fails until then)
 PENDING: set[str] = set()
-#: private names imported across modules of bbb/stats (its modules share input checks and fit
-#: helpers): bbb/ is being refactored on another branch (issue 24, item 1; no edits to bbb/ on
-#: this one), which makes them public or moves them; the lead empties this set when merging
-#: (test_the_private_pending_list_names_only_imports_still_there fails until then)
-PRIVATE_PENDING: set[tuple[str, str]] = {
-    ("bbb.stats", "_per_particle_fit"), ("bbb.stats", "_regime"),
-    ("bbb.stats.bootstrap", "_per_particle_fit"), ("bbb.stats.bootstrap", "_regime"),
-    ("bbb.stats.bootstrap", "_as_positions"), ("bbb.stats.bootstrap", "_as_times"),
-    ("bbb.stats.ergodicity", "_bootstrap_mean"), ("bbb.stats.ergodicity", "_per_particle_fit"),
-    ("bbb.stats.ergodicity", "_regime"), ("bbb.stats.ergodicity", "_as_positions"),
-    ("bbb.stats.ergodicity", "_as_times"), ("bbb.stats.ergodicity", "_spacing"),
-    ("bbb.stats.ergodicity", "_tamsd"), ("bbb.stats.fit", "_as_positions"),
-    ("bbb.stats.fit", "_as_times"), ("bbb.stats.fit", "_spacing"), ("bbb.stats.fit", "_tamsd"),
-    ("bbb.stats.msd", "_as_lags"), ("bbb.stats.msd", "_as_positions"),
-}
 
 
 def modules(*packages: str, root: Path = ROOT) -> list[Path]:
@@ -99,6 +85,21 @@ def test_bbb_imports_nothing_from_pipeline():
     bad = {rel(p): sorted(m for m in imported_modules(p) if m.split(".")[0] == "pipeline")
            for p in modules("bbb")}
     assert {k: v for k, v in bad.items() if v} == {}
+
+
+def analysis_imports_of(sources: tuple[str, ...], root: Path = ROOT) -> dict[str, list[str]]:
+    """{bbb/<source>: the bbb.analysis modules it imports} for each of ``sources`` (file names
+    under bbb/, as :data:`bbb.provenance.KERNEL_SOURCES`), those importing none left out."""
+    found = {f"bbb/{s}": sorted(m for m in imported_modules(root / "bbb" / s, root)
+                                if m == "bbb.analysis" or m.startswith("bbb.analysis."))
+             for s in sources}
+    return {k: v for k, v in found.items() if v}
+
+
+def test_the_kernel_never_imports_the_analyses():
+    from bbb.provenance import KERNEL_SOURCES
+
+    assert analysis_imports_of(KERNEL_SOURCES) == {}
 
 
 def test_no_engine_module_imports_a_study_except_the_entry_points():
@@ -190,13 +191,8 @@ def test_no_import_cycle_of_any_length_among_bbb_and_pipeline_modules():
 
 
 def test_no_private_name_is_imported_from_another_module():
-    found = private_imports("bbb", "pipeline") - PRIVATE_PENDING
+    found = private_imports("bbb", "pipeline")
     assert found == set(), f"_private names imported across modules: {sorted(found)}"
-
-
-def test_the_private_pending_list_names_only_imports_still_there():
-    done = PRIVATE_PENDING - private_imports("bbb", "pipeline")
-    assert done == set(), f"no longer imported, remove from PRIVATE_PENDING: {sorted(done)}"
 
 
 def test_the_api_never_imports_the_cli():
@@ -235,6 +231,17 @@ def test_a_private_import_across_modules_is_caught(tmp_path):
         "pkg/d.py": "import pkg._hidden\n",
     })
     assert private_imports("pkg", root=root) == {("pkg.c", "_x"), ("pkg.d", "_hidden")}
+
+
+def test_a_kernel_module_importing_an_analysis_is_caught(tmp_path):
+    root = _tree(tmp_path, {
+        "bbb/__init__.py": "", "bbb/analysis/__init__.py": "", "bbb/analysis/stats.py": "",
+        "bbb/dynamics/__init__.py": "",
+        "bbb/dynamics/a.py": "def f():\n    from ..analysis import stats\n",
+        "bbb/simulate.py": "from .dynamics import a\n",
+    })
+    assert analysis_imports_of(("dynamics/a.py", "simulate.py"), root) == {
+        "bbb/dynamics/a.py": ["bbb.analysis", "bbb.analysis.stats"]}
 
 
 def test_the_api_importing_the_cli_is_caught(tmp_path):

@@ -226,9 +226,9 @@ def test_the_ergodicity_rule_line_quotes_the_cv2_ci_coverage_from_its_calibratio
     import json
     from pathlib import Path
 
-    import bbb.stats
+    import bbb.analysis.stats
 
-    cal = json.loads((Path(bbb.stats.__file__).parent / "ergodicity_calibration.json")
+    cal = json.loads((Path(bbb.analysis.stats.__file__).parent / "ergodicity_calibration.json")
                      .read_text())["cv2_ci_coverage"]
     values = [c for pops in cal.values() for c in pops.values()]
     store, t = tiny_store(tmp_path_factory)
