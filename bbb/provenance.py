@@ -11,10 +11,11 @@ of bbb/dynamics/, by its path), the floor (surface.py), the initial conditions (
 the parameters and their presets (params.py), the numerical tolerances and their defaults
 (numerics.py), the driver (simulate.py) and what it records (record.py).
 Not hashed: ``bbb/__init__.py`` (it holds the version string; a version bump alone changes
-no trajectory), the old paths kept as re-exports (kernel.py, conveyor.py, search.py, ...:
-simulate never imports them) and the analysis modules (stats, locking, approx, extrema), which never touch
-a stored number.  A test checks that the list is exactly the bbb modules ``bbb.simulate``
-imports, so a new kernel module cannot be left out.
+no trajectory), the old paths kept as re-exports (kernel.py, conveyor.py, search.py, stats/,
+transport.py, ...: simulate never imports them) and the analyses (every module of bbb/analysis/:
+stats, transport, locking, extrema, ...), which never touch a stored trajectory.  A test
+checks that the list is exactly the bbb modules ``bbb.simulate`` imports, so a new kernel
+module cannot be left out.
 
 The hash is sha256 over, for each file in sorted order, its name, a NUL, its bytes and a NUL:
 any edit, comments included, makes a new kernel (a comment-only edit is a false alarm, not
