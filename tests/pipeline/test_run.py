@@ -72,9 +72,9 @@ def test_adding_frequencies_and_families_leaves_old_results_unchanged(reference,
 
 
 def test_bbb_run_with_an_edited_kernel_refuses_to_resume_the_store(reference, tiny_workflow, tmp_path):
-    """A copy of bbb whose kernel.py was edited runs `bbb run` on a partial store of this
-    kernel: exit 2, one line naming both kernel hashes, and the store is left as it was (the
-    chunk not done stays not done: no chunk of the other kernel is mixed in)."""
+    """A copy of bbb whose numerics.py (a hashed kernel source) was edited runs `bbb run` on a
+    partial store of this kernel: exit 2, one line naming both kernel hashes, and the store is
+    left as it was (the chunk not done stays not done: no chunk of the other kernel is mixed in)."""
     import shutil
     import subprocess
     import sys
@@ -94,7 +94,7 @@ def test_bbb_run_with_an_edited_kernel_refuses_to_resume_the_store(reference, ti
     for pkg in (bbb, pipeline):
         src = Path(pkg.__file__).parent
         shutil.copytree(src, code / src.name, ignore=shutil.ignore_patterns("__pycache__"))
-    kernel = code / "bbb" / "kernel.py"
+    kernel = code / "bbb" / "numerics.py"
     kernel.write_text(kernel.read_text() + "\n# an edit: another kernel\n")
     new = subprocess.run([sys.executable, "-c", "from bbb.provenance import kernel_hash; "
                           "print(kernel_hash())"], cwd=code, capture_output=True, text=True,
