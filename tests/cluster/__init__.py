@@ -1,0 +1,1 @@
+"""Tests against a real one-machine SLURM cluster (conftest.py, slurm.sh)."""
