@@ -32,7 +32,7 @@ from bbb.greenkubo import cell_jumps, collision_jumps, expansion, period_jumps  
 from bbb.lyapunov import lyapunov  # noqa: E402
 from bbb.stats import bootstrap_D  # noqa: E402
 from benchmarks.kernel import cpu_name  # noqa: E402
-from pipeline.mechanisms import distinct_values  # noqa: E402
+from pipeline.tables.mechanisms import distinct_values  # noqa: E402
 
 SEED = 1
 DISCARD = 0.1

@@ -9,9 +9,9 @@
     ds.positions.sel(frequency=60.0, family="rest")      # x (mm) of every particle against time (s)
     tables = reduced("runs/smoke.zarr")      # {"diffusion": D(f), "counters": ...} as `bbb reduce`
 
-A thin layer over :mod:`pipeline.run`, :mod:`pipeline.reduce` and :mod:`pipeline.store`: the
-same tasks, seeds, store and tables as the command line, so a store made here is the one
-``bbb run`` makes, bit for bit, and resumes the same way.
+A thin layer over :mod:`pipeline.execute.run`, :mod:`pipeline.tables.reduce` and
+:mod:`pipeline.store.study_store`: the same tasks, seeds, store and tables as the command
+line, so a store made here is the one ``bbb run`` makes, bit for bit, and resumes the same way.
 """
 
 from __future__ import annotations
@@ -27,8 +27,8 @@ if TYPE_CHECKING:
     import xarray as xr
     from distributed import Client
 
-    from .run import RunReport
-    from .study import Study
+    from .execute.run import RunReport
+    from .workflow.study import Study
 
 __all__ = ["open_study", "reduced", "run_study", "load_study", "TABLE_UNITS"]
 
@@ -45,10 +45,10 @@ TABLE_UNITS = {
 
 def load_study(workflow: str | os.PathLike | Study) -> Study:
     """A Study from a workflow file path, a scene name (``"smoke"``, ``"figure2"``: the
-    workflows shipped with the package, see ``pipeline.scenes.scene_names()``), TOML
+    workflows shipped with the package, see ``pipeline.workflow.scenes.scene_names()``), TOML
     text, or a Study (returned as is).  Bad input raises WorkflowError naming file, line, key."""
-    from .scenes import scene_label, scene_names, scene_path
-    from .workflow import Study, load_workflow, parse_workflow
+    from .workflow.load import Study, load_workflow, parse_workflow
+    from .workflow.scenes import scene_label, scene_names, scene_path
 
     if isinstance(workflow, Study):
         return workflow
@@ -76,8 +76,8 @@ def run_study(workflow: str | os.PathLike | Study, store: str | os.PathLike | No
 
     Raises RunFailed naming the chunk if a task fails (finished chunks stay done).
     """
-    from .run import run_study as _run
-    from .store_layout import default_store_path
+    from .execute.run import run_study as _run
+    from .store.layout import default_store_path
 
     study = load_study(workflow)
     if client is not None and workers is not None:
@@ -124,7 +124,7 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     import numpy as np
     import xarray as xr
 
-    from .store import StudyStore, normalize_path
+    from .store.study_store import StudyStore, normalize_path
 
     st = StudyStore.open(path)  # checks that it is a complete bbb store
     ds = xr.open_zarr(normalize_path(path), consolidated=None)
@@ -147,15 +147,15 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
 def reduced(path: str | os.PathLike) -> dict[str, pd.DataFrame]:
     """The tables of ``bbb reduce`` computed in memory (nothing written): ``"diffusion"``
     (one row per frequency, stores with positions) and ``"counters"`` (per frequency and
-    family); columns and units in :mod:`pipeline.reduce`.  Equal to the Parquet files
+    family); columns and units in :mod:`pipeline.tables.reduce`.  Equal to the Parquet files
     ``bbb reduce`` writes."""
-    from .store import StudyStore
+    from .store.study_store import StudyStore
 
     return _reduced(StudyStore.open(path))
 
 
 def _reduced(st: Any) -> dict[str, pd.DataFrame]:
-    from .reduce import counters_table, diffusion_table
+    from .tables.reduce import counters_table, diffusion_table
 
     done = st.done()
     tables = {"counters": counters_table(st, done)}

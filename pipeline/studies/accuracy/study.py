@@ -3,8 +3,8 @@ reference run, through the real pipeline.
 
 The workflow (``workflows/accuracy.toml``) is the *reference*: its frequencies, families and
 accuracy (preset ``reference``, possibly with overrides).  Each *variant* is the same scene
-with another accuracy table, run into its own store by :func:`pipeline.run.run_study` and
-reduced by :func:`pipeline.reduce.diffusion_table`:
+with another accuracy table, run into its own store by :func:`pipeline.execute.run.run_study` and
+reduced by :func:`pipeline.tables.reduce.diffusion_table`:
 
 * ``preset`` variants: ``draft``, ``standard``, ``paper`` exactly as a workflow gets them;
 * ``knob`` variants: the reference accuracy with ``n_particles = KNOB_N`` particles and
@@ -39,9 +39,9 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ...accuracy import ACCURACY_PRESETS
-from ...study import Study
-from ...workflow import parse_workflow
+from ...workflow.accuracy import ACCURACY_PRESETS
+from ...workflow.load import parse_workflow
+from ...workflow.study import Study
 from .figures import accuracy_figure, plot_accuracy  # importable from here too
 from .scaling import SCALING_COLUMNS, per_particle_D, scaling_table
 
@@ -124,7 +124,7 @@ def _acc_table(study: Study) -> dict:
 
 def variant_study(ref_text: str, variant: Variant, source: str = "<accuracy>") -> Study:
     """The reference workflow with its [accuracy] table replaced by the variant's."""
-    from ...scenes import toml_dump as _toml_dump  # the workflow-shaped TOML writer
+    from ...workflow.scenes import toml_dump as _toml_dump  # the workflow-shaped TOML writer
 
     doc = tomllib.loads(ref_text)
     doc["accuracy"] = dict(variant.accuracy)
@@ -150,9 +150,9 @@ def run_accuracy_study(
 
     Returns {"rows", "summary", "scaling"} (columns: ROW_/SUMMARY_/SCALING_COLUMNS).
     """
-    from ...reduce import counters_table, diffusion_table
-    from ...run import connect, run_study
-    from ...store import StudyStore
+    from ...execute.run import connect, run_study
+    from ...store.study_store import StudyStore
+    from ...tables.reduce import counters_table, diffusion_table
 
     text = Path(workflow).read_text(encoding="utf-8")
     ref = parse_workflow(text, source=str(workflow))

@@ -7,11 +7,11 @@ folder -- and returns the :class:`matplotlib.figure.Figure` (labelled ``name``);
 Figures are made without pyplot, so importing this module selects no backend and leaves a
 notebook's inline plotting alone; a returned Figure shows itself in Jupyter.
 
-Tables used (all made by ``pipeline.reduce`` or ``pipeline.collisions``):
+Tables used (all made by ``pipeline.tables.reduce`` or ``pipeline.tables.collisions``):
 
 ``diffusion``   the main D(f) table (``diffusion.parquet`` of the Fig. 2 scene)
 ``ergodicity``  optional: the ``diffusion`` table of a scene with several families
-``locking``     optional: :func:`pipeline.collisions.locking_table` of a collisions scene
+``locking``     optional: :func:`pipeline.tables.collisions.locking_table` of a collisions scene
 
 Units on every axis: f in Hz, D in mm²/s, y in mm, v in mm/s.  Sizes are for a journal
 column (3.4 in wide) or the full page width (7 in); the style is
@@ -36,8 +36,8 @@ from matplotlib.ticker import MultipleLocator
 from bbb.approx import spiral
 from bbb.locking import creep_speed, flight_time_max, flight_times
 
-from ...collisions import as_store, states
-from ...store import StudyStore
+from ...store.study_store import StudyStore
+from ...tables.collisions import as_store, states
 
 # the house style, shared by every study's figures (pipeline.studies.figure_style); the old
 # private names stay, for the figures of other studies that import them from here

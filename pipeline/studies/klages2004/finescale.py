@@ -2,7 +2,7 @@
 paper's outlook)?  Counts of significant extrema per Hz as the frequency resolution doubles,
 from one refined window (scene ``finescale``), and the figure.
 
-**Resolution levels.**  Refinement (pipeline/adaptive.py) halves gaps on the mHz grid, so a
+**Resolution levels.**  Refinement (pipeline/execute/adaptive.py) halves gaps on the mHz grid, so a
 window refined from a grid of step h0 down to h0 / 2^k holds a subset of the h0 / 2^k grid
 anchored at the window's start.  The D(f) a resolution h would have seen is the sub-sample of
 the refined table on the h grid (:func:`subsample`): the base grid at h0, every refined point
@@ -36,7 +36,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 
 from bbb.extrema import Extremum, find_extrema
-from pipeline.identity import f_key, f_keys
+from pipeline.workflow.identity import f_key, f_keys
 
 __all__ = ["LEVELS", "LevelCount", "Located", "subsample", "extrema_per_hz",
            "located_extrema", "new_extrema", "table_arrays", "figure_finescale",

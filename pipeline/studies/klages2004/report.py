@@ -1,9 +1,9 @@
 """``figures/REPORT.md``: the paper's claims beside what the stores and tables measure.
 
 Every number in the report is computed from the reduce tables (D(f) with bootstrap CIs,
-stationarity and ergodicity columns), the locking tables (:mod:`pipeline.collisions`, with
+stationarity and ergodicity columns), the locking tables (:mod:`pipeline.tables.collisions`, with
 bootstrap CIs of k) and the stores' attributes; nothing measured is typed in.  The claims are
-data (:data:`pipeline.studies.klages2004.claims.CLAIMS`), judged by :mod:`pipeline.claims` with the
+data (:data:`pipeline.studies.klages2004.claims.CLAIMS`), judged by :mod:`pipeline.claims.record` with the
 CI of each measured number against the tolerance the claim declares (rule in that module,
 restated in the report).  Significant extrema: :func:`bbb.extrema.find_extrema`
 (Bonferroni-corrected, differences below 1 % of the curve's largest D ignored).
@@ -25,9 +25,10 @@ from bbb.locking import CREEP_MARGIN, FLIGHT_TOL, MAX_QUANTILE, TMAX_QUANTILE
 from bbb.stationarity import TOLERANCE as STATIONARITY_TOL
 from bbb.stats.ergodicity import cv2_ci_coverage
 
-from ...claim_measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
-from ...claims import Row, markdown_table, md_cell
-from ...collisions import as_store
+from ...claims.markdown import markdown_table, md_cell
+from ...claims.measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
+from ...claims.record import Row
+from ...tables.collisions import as_store
 from .claims import CLAIMS, evaluate, period1_limit  # evaluate: importable from here as before
 from .committed import CLAIMS_HEADING, claim_rows
 from .measures import DEPTH_FRACTION, curve_extrema, curves, spiral_closeness

@@ -5,7 +5,7 @@ Rules, fixed before the data:
 extremum carrier  (M1–M5) The paper's extremum of D at f0 (Klages et al. 2004: maxima at 54,
                60 and 80 Hz, minima at 58 and 62 Hz) against each grid neighbour f_nb:
                ln D_∞(f0)/D_∞(f_nb) = random walk (ln of the D_0 ratio) + memory (ln of the
-               D_∞/D_0 ratio), with paired bootstrap CIs (pipeline.mechanisms,
+               D_∞/D_0 ratio), with paired bootstrap CIs (pipeline.tables.mechanisms,
                bbb.gk_contrast).  Each side gets ``bbb.gk_contrast.carrier`` (memory share of
                the contrast ≥ θ: "memory", ≤ 1 − θ: "random walk", within: "both", CI across an
                edge: "undecided"; θ and the CI level read from the calibration,
@@ -31,8 +31,9 @@ import pandas as pd
 
 from bbb.gk_contrast import Contrast, calibrated_rule, carrier, combine_sides
 
-from ...claim_measures import row_at
-from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, markdown_table, measure
+from ...claims.markdown import markdown_table
+from ...claims.measures import row_at
+from ...claims.record import Band, Claim, Measured, Part, Quantity, evaluate, measure
 
 __all__ = ["CLAIMS", "EXTREMA", "SIDES", "STEPS", "neighbour_moves", "report_lines",
            "side_contrast"]

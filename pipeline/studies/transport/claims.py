@@ -1,4 +1,4 @@
-"""The transport claims as data (judged by :mod:`pipeline.claims` from each scene's diffusion
+"""The transport claims as data (judged by :mod:`pipeline.claims.record` from each scene's diffusion
 table with its v, D_drift columns; :mod:`bbb.transport`).
 
 Rules, fixed before the data (calibrated on synthetic curves in
@@ -61,7 +61,8 @@ from bbb.extrema import find_extrema
 from bbb.liftoff import liftoff_frequency
 from bbb.transport import SYMMETRY
 
-from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, markdown_table, measure
+from ...claims.markdown import markdown_table
+from ...claims.record import Band, Claim, Measured, Part, Quantity, evaluate, measure
 
 __all__ = ["SCENES", "HOPPING", "CONVEYORS", "LABELS", "SLIDING", "SLIDING_LABELS",
            "SLIDING_GEOMETRY", "sliding_liftoff", "CLAIMS", "significant_signs", "reversals",

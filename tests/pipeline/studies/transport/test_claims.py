@@ -6,8 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pipeline.claims import evaluate
-from pipeline.scenes import load_scene
+from pipeline.claims.record import evaluate
 from pipeline.studies.transport.claims import (
     CLAIMS,
     CONVEYORS,
@@ -19,6 +18,7 @@ from pipeline.studies.transport.claims import (
     significant_signs,
     sliding_liftoff,
 )
+from pipeline.workflow.scenes import load_scene
 
 F = np.arange(50.0, 100.1, 2.0)  # the scenes' 26 frequencies
 SE = 0.5  # mm/s: standard error of each v
