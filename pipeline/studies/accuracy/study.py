@@ -48,7 +48,7 @@ from .scaling import SCALING_COLUMNS, per_particle_D, scaling_table
 __all__ = [
     "Variant", "default_variants", "variant_study", "run_accuracy_study", "compare",
     "summarize", "scaling_table", "per_particle_D", "pareto_front", "plot_accuracy", "accuracy_figure",
-    "ROW_COLUMNS", "SUMMARY_COLUMNS", "SCALING_COLUMNS", "KNOB_N", "KNOB_T",
+    "ROW_COLUMNS", "SUMMARY_COLUMNS", "SCALING_COLUMNS", "COLUMN_UNITS", "KNOB_N", "KNOB_T",
 ]
 
 #: ensemble size and duration of the single-knob variants (the paired comparison)
@@ -79,6 +79,18 @@ SUMMARY_COLUMNS = (
     "systematic",     # some row differs from its comparison by more than 3 sigma (z_stat/z_pair)
     "pareto",         # on the Pareto front of (cpu_s, err_rms)
 )
+
+
+#: units of this study's own columns (the others, f, D, t_max, ..., and the conventions:
+#: pipeline.tables.units); ``value`` is the knob's (or, in the scaling table, the axis's) own
+#: unit, which another column names: not one quantity, so ""
+COLUMN_UNITS = {
+    "variant": "", "kind": "", "knob": "", "value": "", "hw_rel": "1", "hw_ref": "mm^2/s",
+    "err_rel": "1", "z_ref": "1", "z_stat": "1", "z_pair": "1", "cpu_s": "s", "wall_s": "s",
+    "collisions": "1", "collisions_per_cpu_s": "1/s", "err_rms": "1", "err_max": "1",
+    "rel_err_max": "1", "hw_rel_max": "1", "err_rms_all": "1", "systematic": "", "pareto": "",
+    "axis": "", "sd_rel": "1", "bias_rel": "1", "exponent": "1",
+}
 
 
 @dataclass(frozen=True)
@@ -152,7 +164,8 @@ def run_accuracy_study(
     """
     from ...execute.run import connect, run_study
     from ...store.study_store import StudyStore
-    from ...tables.reduce import counters_table, diffusion_table
+    from ...tables.counters import counters_table
+    from ...tables.diffusion import diffusion_table
 
     text = Path(workflow).read_text(encoding="utf-8")
     ref = parse_workflow(text, source=str(workflow))

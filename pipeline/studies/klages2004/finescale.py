@@ -40,7 +40,7 @@ from pipeline.workflow.identity import f_key, f_keys
 
 __all__ = ["LEVELS", "LevelCount", "Located", "subsample", "extrema_per_hz",
            "located_extrema", "new_extrema", "table_arrays", "figure_finescale",
-           "finescale_summary", "write_table"]
+           "finescale_summary", "write_table", "EXTREMA_UNITS"]
 
 #: resolutions (Hz) at which the extrema are counted: the base grid and three halvings
 LEVELS = (0.4, 0.2, 0.1, 0.05)
@@ -198,6 +198,10 @@ def finescale_summary(table: pd.DataFrame) -> tuple[list[LevelCount], list[Locat
     """The counts per level and the located extrema of a finescale diffusion table."""
     f, D, lo, hi = table_arrays(table)
     return extrema_per_hz(f, D, lo, hi, origin=float(f.min())), located_extrema(f, D, lo, hi)
+
+
+#: units of the columns of finescale_extrema.csv (conventions: pipeline.tables.units)
+EXTREMA_UNITS = {"h": "Hz", "n_points": "1", "count": "1", "per_hz": "1/Hz"}
 
 
 def write_table(table: pd.DataFrame, out_dir: str | os.PathLike) -> Path:

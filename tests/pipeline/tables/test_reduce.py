@@ -190,7 +190,7 @@ def test_a_damaged_done_chunk_is_named_in_one_line(reference, tmp_path, capsys):
 
 
 def test_task_seconds_sum_the_done_chunks_only(tmp_path):
-    from pipeline.tables.reduce import counters_table
+    from pipeline.tables.counters import counters_table
 
     from ..store.test_study_store import FakeRun
 
@@ -230,7 +230,7 @@ def test_an_estimator_failure_is_not_put_in_the_value_columns():
     # the fit's numbers only in D_status, so no figure or claim reads them as a value
     from bbb.stats.bootstrap import _bootstrap_mean
     from bbb.stats.interval import d_interval
-    from pipeline.tables.reduce import _d_columns, _status_text
+    from pipeline.tables.diffusion import _d_columns, _status_text
 
     d = -7.4e-6 + 5e-6 * np.random.default_rng(0).standard_normal(128)
     r = d_interval(d, _bootstrap_mean(d, 400, 0.95, np.random.default_rng(1), "percentile"), 0.95)
