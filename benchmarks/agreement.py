@@ -118,7 +118,7 @@ def _d_resolved(args) -> float | None:
         return args.d_resolved
     if args.workflow:
         sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
-        from pipeline.workflow import parse_workflow
+        from pipeline.workflow.load import parse_workflow
 
         with open(args.workflow) as fh:
             return parse_workflow(fh.read(), args.workflow).accuracy.d_resolved

@@ -27,8 +27,8 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from bbb.analysis import stats  # noqa: E402
 from bbb.analysis.stats.rare import effective_movers  # noqa: E402
 from benchmarks.agreement import _facing_half as facing_half  # noqa: E402
-from pipeline.store import StudyStore  # noqa: E402
-from pipeline.waves import _ci, stop_seed  # noqa: E402
+from pipeline.execute.waves import _ci, stop_seed  # noqa: E402
+from pipeline.store.study_store import StudyStore  # noqa: E402
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -23,7 +23,7 @@ import numpy as np
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 
 from bbb.analysis import stats  # noqa: E402
-from pipeline.store import StudyStore  # noqa: E402
+from pipeline.store.study_store import StudyStore  # noqa: E402
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -32,7 +32,7 @@ from bbb.analysis.greenkubo import cell_jumps, collision_jumps, expansion, perio
 from bbb.analysis.lyapunov import lyapunov  # noqa: E402
 from bbb.analysis.stats import bootstrap_D  # noqa: E402
 from benchmarks.kernel import cpu_name  # noqa: E402
-from pipeline.mechanisms import distinct_values  # noqa: E402
+from pipeline.tables.mechanisms import distinct_values  # noqa: E402
 
 SEED = 1
 DISCARD = 0.1

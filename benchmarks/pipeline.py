@@ -39,10 +39,10 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from benchmarks.kernel import cpu_name  # noqa: E402
-from pipeline.accuracy import ACCURACY_PRESETS  # noqa: E402
-from pipeline.identity import f_key  # noqa: E402
-from pipeline.scenes import toml_dump as _toml_dump  # noqa: E402
-from pipeline.workflow import parse_workflow  # noqa: E402
+from pipeline.workflow.accuracy import ACCURACY_PRESETS  # noqa: E402
+from pipeline.workflow.identity import f_key  # noqa: E402
+from pipeline.workflow.load import parse_workflow  # noqa: E402
+from pipeline.workflow.scenes import toml_dump as _toml_dump  # noqa: E402
 
 FIG2 = ROOT / "workflows" / "figure2.toml"
 
@@ -88,7 +88,7 @@ class Cluster:
     """A LocalCluster of n single-threaded worker processes, as `bbb run` starts it."""
 
     def __init__(self, n: int):
-        from pipeline.run import connect
+        from pipeline.execute.run import connect
 
         self.client, self.cluster = connect(None, n, False)
         self.address = self.cluster.scheduler_address
@@ -108,7 +108,7 @@ def timed_run(study, n_workers: int, store: Path):
     """Run a study on a fresh cluster; returns (report, task stream, peak RSS per worker)."""
     from distributed import get_task_stream
 
-    from pipeline.run import run_study
+    from pipeline.execute.run import run_study
 
     cl = Cluster(n_workers)
     try:

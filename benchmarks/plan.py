@@ -24,9 +24,9 @@ ROOT = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT))
 
 from benchmarks.kernel import cpu_name  # noqa: E402
-from pipeline.pilot import benchmark_rate, pilot_rates  # noqa: E402
-from pipeline.plan import plan_table, predict  # noqa: E402
-from pipeline.workflow import load_workflow, parse_workflow  # noqa: E402
+from pipeline.execute.pilot import benchmark_rate, pilot_rates  # noqa: E402
+from pipeline.execute.plan import plan_table, predict  # noqa: E402
+from pipeline.workflow.load import load_workflow, parse_workflow  # noqa: E402
 
 KERNEL_TABLE = "benchmarks/results/kernel-2026-11-22.txt"
 # Fig. 2 at draft and standard, measured end to end on 2 workers (pipeline-2026-11-22.txt):

@@ -7,7 +7,7 @@ OUT.csv holds f, D, D_lo, D_hi (mm²/s), n_particles, n_eff and rare (whether th
 the CI), computed exactly as `bbb reduce`'s diffusion table computes D and its CI (same
 particles, seed, fit, level, method and resamples), so ``--no-rare`` reproduces the store's
 reduced D columns.  Printed: per frequency the stored stop (chunks used, reason) and the one
-the rule replays from the first chunks (:func:`pipeline.adaptive.advance`); "needs more" when
+the rule replays from the first chunks (:func:`pipeline.execute.adaptive.advance`); "needs more" when
 the replay asks for chunks the store does not hold.
 """
 
@@ -25,10 +25,10 @@ sys.path.insert(0, os.path.join(os.path.dirname(__file__), ".."))
 from bbb.analysis import stats  # noqa: E402
 from bbb.analysis.stats.bootstrap import with_rare_movers  # noqa: E402
 from bbb.analysis.stats.rare import effective_movers, is_rare  # noqa: E402
-from pipeline.adaptive import OPEN, STOP_LEGEND, advance  # noqa: E402
-from pipeline.identity import reduce_seed  # noqa: E402
-from pipeline.store import StudyStore  # noqa: E402
-from pipeline.waves import _prefix, rule_of, unit_ci  # noqa: E402
+from pipeline.execute.adaptive import OPEN, STOP_LEGEND, advance  # noqa: E402
+from pipeline.execute.waves import _prefix, rule_of, unit_ci  # noqa: E402
+from pipeline.store.study_store import StudyStore  # noqa: E402
+from pipeline.workflow.identity import reduce_seed  # noqa: E402
 
 
 def main(argv: list[str] | None = None) -> int:

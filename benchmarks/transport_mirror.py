@@ -56,7 +56,6 @@ from bbb import simulate  # noqa: E402
 from bbb.analysis import stats  # noqa: E402
 from bbb.analysis.transport import per_particle_drift  # noqa: E402
 from bbb.ensemble import InitialState, initial_state, mirror_pairs  # noqa: E402
-from pipeline.scenes import load_scene  # noqa: E402
 from pipeline.studies.transport.claims import (  # noqa: E402
     CONVEYORS,
     D_MIN,
@@ -65,6 +64,7 @@ from pipeline.studies.transport.claims import (  # noqa: E402
     V_MIN,
     significant_signs,
 )
+from pipeline.workflow.scenes import load_scene  # noqa: E402
 
 SCENES = CONVEYORS + tuple(s for s, _, _ in SLIDING)
 OUT = Path(__file__).resolve().parents[1] / "pipeline" / "studies" / "transport" / "mirror.json"

@@ -11,7 +11,7 @@ import time
 import numpy as np
 
 from bbb import Numerics, Params, simulate
-from bbb.stats import bootstrap_D
+from bbb.analysis.stats import bootstrap_D
 
 times = np.linspace(0, 60, 601)
 for f in (52.0, 54.0, 55.0, 56.0, 57.0, 58.0, 60.0):

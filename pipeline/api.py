@@ -8,10 +8,11 @@
     ds = open_study("runs/smoke.zarr")       # xarray.Dataset, chunks not done masked
     ds.positions.sel(frequency=60.0, family="rest")      # x (mm) of every particle against time (s)
     tables = reduced("runs/smoke.zarr")      # {"diffusion": D(f), "counters": ...} as `bbb reduce`
+    ds = open_study("runs/smoke.zarr", reduced=True)     # ... and every table on the Dataset
 
-A thin layer over :mod:`pipeline.run`, :mod:`pipeline.reduce` and :mod:`pipeline.store`: the
-same tasks, seeds, store and tables as the command line, so a store made here is the one
-``bbb run`` makes, bit for bit, and resumes the same way.
+A thin layer over :mod:`pipeline.execute.run`, :mod:`pipeline.tables.reduce` and
+:mod:`pipeline.store.study_store`: the same tasks, seeds, store and tables as the command
+line, so a store made here is the one ``bbb run`` makes, bit for bit, and resumes the same way.
 """
 
 from __future__ import annotations
@@ -20,35 +21,32 @@ import json
 import os
 from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     import pandas as pd
     import xarray as xr
     from distributed import Client
 
-    from .run import RunReport
-    from .study import Study
+    from .execute.run import RunReport
+    from .workflow.study import Study
 
-__all__ = ["open_study", "reduced", "run_study", "load_study", "TABLE_UNITS"]
+from .tables.units import UNITS
 
-#: units of the D(f) and counters table columns attached by ``open_study(reduced=True)``
-TABLE_UNITS = {
-    "Gamma": "1", "D": "mm^2/s", "D_lo": "mm^2/s", "D_hi": "mm^2/s", "D_last": "mm^2/s",
-    "t_max": "s", "fit_from": "s", "fit_to": "s", "eb_lag": "s", "EB": "1",
-    "EB_threshold": "1", "EB_decay": "1", "EB_decay_threshold": "1",
-    "collisions_per_s": "1/s", "sticks_per_s": "1/s", "liftoffs_per_s": "1/s",
-    "anomalies_per_s": "1/s", "task_seconds": "s", "D_status": "", "D_cover": "1",
-    "mover_share_hi": "1",
-}
+__all__ = ["open_study", "reduced", "run_study", "load_study", "attach_tables", "TABLE_UNITS"]
+
+#: the units of the tables' columns by exact name: now the one map of every table,
+#: :data:`pipeline.tables.units.UNITS` (families of columns and CI bounds:
+#: :func:`pipeline.tables.units.unit`); this name kept for one release
+TABLE_UNITS = UNITS
 
 
 def load_study(workflow: str | os.PathLike | Study) -> Study:
     """A Study from a workflow file path, a scene name (``"smoke"``, ``"figure2"``: the
-    workflows shipped with the package, see ``pipeline.scenes.scene_names()``), TOML
+    workflows shipped with the package, see ``pipeline.workflow.scenes.scene_names()``), TOML
     text, or a Study (returned as is).  Bad input raises WorkflowError naming file, line, key."""
-    from .scenes import scene_label, scene_names, scene_path
-    from .workflow import Study, load_workflow, parse_workflow
+    from .workflow.load import Study, load_workflow, parse_workflow
+    from .workflow.scenes import scene_label, scene_names, scene_path
 
     if isinstance(workflow, Study):
         return workflow
@@ -76,8 +74,8 @@ def run_study(workflow: str | os.PathLike | Study, store: str | os.PathLike | No
 
     Raises RunFailed naming the chunk if a task fails (finished chunks stay done).
     """
-    from .run import run_study as _run
-    from .store_layout import default_store_path
+    from .execute.run import run_study as _run
+    from .store.layout import default_store_path
 
     study = load_study(workflow)
     if client is not None and workers is not None:
@@ -115,8 +113,10 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
                chunks.  The per-particle mask is the coordinate ``particle_done``.  False:
                the raw arrays (a chunk not done may hold partial data or fill values).
     reduced -- True: also attach the tables of :func:`reduced` (computed now, with the
-               bootstrap): D(f) columns as variables along ``frequency`` (``D``, ``D_lo``,
-               ``D_hi``, ``ergodic``, ... with units) and the counters per (frequency, family).
+               bootstrap), every column a variable with its ``units``: D(f), mechanisms
+               along ``frequency`` (``D``, ``D_lo``, ``D_hi``, ``ergodic``, ``D_inf``, ...),
+               counters and contact along (``frequency``, ``family``)
+               (:func:`attach_tables` names them).
 
     Root attributes are netCDF-safe: nested ones (workflow, params, numerics, accuracy) are
     JSON strings (``json.loads(ds.attrs["workflow"])``), so ``ds.to_netcdf`` can write them.
@@ -124,7 +124,7 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     import numpy as np
     import xarray as xr
 
-    from .store import StudyStore, normalize_path
+    from .store.study_store import StudyStore, normalize_path
 
     st = StudyStore.open(path)  # checks that it is a complete bbb store
     ds = xr.open_zarr(normalize_path(path), consolidated=None)
@@ -140,43 +140,72 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
             if "particle" in var.dims:
                 ds[name] = var.where(ds["particle_done"]).assign_attrs(var.attrs)
     if reduced:
-        ds = _attach_tables(ds, _reduced(st))
+        from .tables.catalog import tables
+
+        ds = attach_tables(ds, tables(st))
     return ds
 
 
-def reduced(path: str | os.PathLike) -> dict[str, pd.DataFrame]:
-    """The tables of ``bbb reduce`` computed in memory (nothing written): ``"diffusion"``
-    (one row per frequency, stores with positions) and ``"counters"`` (per frequency and
-    family); columns and units in :mod:`pipeline.reduce`.  Equal to the Parquet files
-    ``bbb reduce`` writes."""
-    from .store import StudyStore
+def reduced(path: str | os.PathLike, names: list[str] | None = None
+            ) -> dict[str, pd.DataFrame]:
+    """The tables of ``bbb reduce`` computed in memory (nothing written): every table the
+    store has (:func:`pipeline.tables.catalog.tables`: ``"counters"``, ``"diffusion"``,
+    ``"contact"``, ``"mechanisms"`` as its observables give; ``names`` picks, e.g.
+    ``["locking"]``); columns in their modules, units in :mod:`pipeline.tables.units`.
+    Equal to the Parquet files ``bbb reduce`` writes."""
+    from .store.study_store import StudyStore
+    from .tables.catalog import tables
 
-    return _reduced(StudyStore.open(path))
-
-
-def _reduced(st: Any) -> dict[str, pd.DataFrame]:
-    from .reduce import counters_table, diffusion_table
-
-    done = st.done()
-    tables = {"counters": counters_table(st, done)}
-    if st.study.observables.positions:
-        tables["diffusion"] = diffusion_table(st, done)
-    return tables
+    return tables(StudyStore.open(path), names)
 
 
-def _attach_tables(ds: xr.Dataset, tables: dict[str, pd.DataFrame]) -> xr.Dataset:
+def attach_tables(ds: xr.Dataset, tables: dict[str, pd.DataFrame]) -> xr.Dataset:
+    """``ds`` with every column of ``tables`` as a variable: along ``frequency`` for a table
+    with a row per f, along (``frequency``, ``family``) for one with a row per (f, family).
+
+    A variable is named as its column; a column already attached by an earlier table (the
+    tables with a row per f come first) is left out where it holds the same values (Gamma,
+    t_max of the counters), else attached as ``<table>_<column>`` (e.g.
+    ``counters_n_particles``: per family, where the diffusion table's ``n_particles`` pools
+    them).  Each variable's attributes: ``units``
+    (:func:`pipeline.tables.units.column_unit`, as the Parquet metadata), ``source`` (``bbb
+    reduce: <table> table``) and ``column``.  The label columns ``family`` and ``initial``
+    are the Dataset's own coordinates."""
+    import xarray as xr
+
+    from .tables.catalog import index_of
+    from .tables.units import column_unit
+
     out = ds.copy()
-    if "diffusion" in tables:
-        d = tables["diffusion"].rename(columns={"f": "frequency"}).set_index("frequency")
-        for col in d.columns:
-            out[col] = ("frequency", d[col].reindex(ds["frequency"].values).to_numpy(),
-                        {"units": TABLE_UNITS.get(col, "1" if col.startswith("EB") else
-                                                  "mm^2/s" if col.startswith("D_") else ""),
-                         "source": "bbb reduce: diffusion table"})
-    c = tables["counters"].rename(columns={"f": "frequency"}).set_index(["frequency", "family"])
-    for col in [x for x in c.columns if x.endswith("_per_s") or x == "task_seconds"]:
-        grid = c[col].unstack("family").reindex(index=ds["frequency"].values,
-                                               columns=ds["family"].values)
-        out[col] = (("frequency", "family"), grid.to_numpy(),
-                    {"units": TABLE_UNITS.get(col, "1/s"), "source": "bbb reduce: counters table"})
+    # the tables with a row per f first: D(f)'s columns keep their plain names
+    for name, df in sorted(tables.items(), key=lambda item: len(index_of(item[0]))):
+        index = index_of(name)
+        dims = tuple({"f": "frequency"}.get(c, c) for c in index)
+        frame = df.rename(columns={"f": "frequency"}).set_index(list(dims))
+        for col in [c for c in frame.columns if c not in ("family", "initial")]:
+            series = frame[col]
+            if len(dims) == 1:
+                values = series.reindex(ds["frequency"].values).to_numpy()
+            else:
+                values = series.unstack("family").reindex(
+                    index=ds["frequency"].values, columns=ds["family"].values).to_numpy()
+            var = xr.Variable(dims, values, {"units": column_unit(col),
+                                             "source": f"bbb reduce: {name} table",
+                                             "column": col})
+            if col in out.variables:
+                if _same_values(out[col].variable, var):
+                    continue
+                col = f"{name}_{col}"
+            out[col] = var
     return out
+
+
+def _same_values(a, b) -> bool:
+    """Two variables hold the same values (broadcast against each other, NaN equal NaN)."""
+    import xarray as xr
+
+    try:
+        x, y = xr.broadcast(xr.DataArray(a), xr.DataArray(b))
+        return bool(x.equals(y))
+    except (ValueError, TypeError):
+        return False

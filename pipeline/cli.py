@@ -3,7 +3,7 @@
 
 ``bbb run WORKFLOW --frequencies 60,72`` runs only those frequencies of the workflow, into a
 store of their own (default ``runs/<name>-60Hz-72Hz.zarr``); chunk seeds are keyed by the
-frequency's value (pipeline/study.py), so its chunks are those of the whole sweep, bit for bit.
+frequency's value (pipeline/workflow/study.py), so its chunks are those of the whole sweep, bit for bit.
 ``bbb reduce STORE --workflow W`` reduces with W's analysis settings ([analysis] and
 ``accuracy.n_resamples``) without re-running; W must otherwise describe the stored data.
 
@@ -22,8 +22,8 @@ from dataclasses import replace
 from importlib import metadata
 from pathlib import Path
 
-from .identity import f_key
-from .store_layout import default_store_path  # importable from here as before
+from .store.layout import default_store_path  # importable from here as before
+from .workflow.identity import f_key
 
 __all__ = ["main", "default_store_path"]
 
@@ -88,7 +88,7 @@ def _build_parser() -> argparse.ArgumentParser:
     a.add_argument("--quick", action="store_true", help="draft and two knobs only")
 
     pl = sub.add_parser("plan", help="predict CPU and wall time of a workflow before it runs "
-                                     "(a cached pilot of a few particles; pipeline/pilot.py)")
+                                     "(a cached pilot of a few particles; pipeline/execute/pilot.py)")
     pl.add_argument("workflow", metavar="WORKFLOW", help="workflow TOML file")
     pl.add_argument("--workers", metavar="N", type=_positive_int,
                     help="worker processes to plan for (default: number of cores)")
@@ -158,8 +158,8 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _main(argv: list[str] | None) -> int:
-    from .store import StoreError
-    from .workflow import WorkflowError
+    from .store.study_store import StoreError
+    from .workflow.load import WorkflowError
 
     args = _build_parser().parse_args(argv)
     try:
@@ -179,8 +179,8 @@ def _main(argv: list[str] | None) -> int:
 
 
 def _cmd_run(args) -> int:
-    from .run import RunFailed, run_study
-    from .workflow import load_workflow
+    from .execute.run import RunFailed, run_study
+    from .workflow.load import load_workflow
 
     if args.scheduler and args.workers:
         raise UsageError("--workers sizes a LocalCluster; with --scheduler the cluster's own "
@@ -236,7 +236,7 @@ def _cluster(args, study, store: str):
 
     if not args.cluster:
         return nullcontext(args.scheduler)
-    from .cluster import check_slurm, slurm_cluster, work_left
+    from .execute.cluster import check_slurm, slurm_cluster, work_left
 
     check_slurm()  # a bad configuration is a usage error, found before anything runs
     if not work_left(study, store):  # nor is a job submitted for a refused or finished store
@@ -245,7 +245,7 @@ def _cluster(args, study, store: str):
 
 
 def _cmd_reduce(args) -> int:
-    from .reduce import reduce_store
+    from .tables.reduce import reduce_store
 
     if args.out is not None:
         try:
@@ -263,8 +263,8 @@ def _cmd_reduce(args) -> int:
 def _store_with_analysis_of(path: str, workflow: str):
     """The store at ``path`` carrying the reduce settings of ``workflow``; refused (one line)
     if the workflow would have simulated other data."""
-    from .store import StudyStore, fingerprint_difference
-    from .workflow import load_workflow
+    from .store.study_store import StudyStore, fingerprint_difference
+    from .workflow.load import load_workflow
 
     new = load_workflow(workflow)
     store = StudyStore.open(path)
@@ -297,9 +297,9 @@ def _cmd_accuracy(args) -> int:
 
 
 def _cmd_plan(args) -> int:
-    from .pilot import benchmark_rate, pilot_rates
-    from .plan import plan_table, predict
-    from .workflow import load_workflow
+    from .execute.pilot import benchmark_rate, pilot_rates
+    from .execute.plan import plan_table, predict
+    from .workflow.load import load_workflow
 
     study = load_workflow(args.workflow)
     rate = None
@@ -320,7 +320,7 @@ def _cmd_plan(args) -> int:
 
 
 def _cmd_status(args) -> int:
-    from .store import StudyStore
+    from .store.study_store import StudyStore
 
     store = StudyStore.open(args.store)
     print(_status_text(store))
@@ -328,7 +328,7 @@ def _cmd_status(args) -> int:
 
 
 def _cmd_verify(args) -> int:
-    from .verify import verify_store
+    from .store.verify import verify_store
 
     report = verify_store(args.store)
     for problem in report.problems:
@@ -350,7 +350,7 @@ def _status_text(store) -> str:
     width = max(len(n) for n in names)
     stops = store.stops()  # target_ci: chunks used and why each (f, family) stopped
     if stops is not None:
-        from .adaptive import STOP_LEGEND
+        from .store.layout import STOP_LEGEND
 
         width = max(width, 22)
         lines[0] += f"; target CI half-width {study.accuracy.target_ci:g} of D"

@@ -1,18 +1,37 @@
 """The house rules of the layout (docs/design.md, issues 11 and 24), read off the source files:
 modules stay under 400 lines unless they say why, ``bbb/`` never imports ``pipeline/``, the
 kernel (the modules ``bbb.provenance`` hashes) never imports the analyses (``bbb/analysis/``),
-the engine (``pipeline/*.py``) never imports a study, no import cycle of any length among the
-modules of ``bbb/`` and ``pipeline/`` (lazy imports count), no ``_private`` name imported from
-another module, and ``pipeline.api`` never imports ``pipeline.cli``.  Each rule's checker is
-also run on a synthetic tree that breaks it (the ``*_is_caught`` tests)."""
+the engine (``pipeline/`` outside ``studies/``) never imports a study, the engine's layers import
+one way (workflow <- store <- execute <- tables <- claims <- the entry points and studies: a
+layer imports only layers below it), no module imports a path kept only as a re-export of a
+moved module, no import cycle of any length among the modules of ``bbb/`` and ``pipeline/``
+(lazy imports count), no ``_private`` name imported from another module, ``pipeline.api``
+never imports ``pipeline.cli``, and every package folder is in the wheel.  Each rule's checker
+is also run on a synthetic tree that breaks it (the ``*_is_caught`` tests)."""
 
 from __future__ import annotations
 
 import ast
+import tomllib
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 MAX_LINES = 400
+#: the engine's layers, bottom first (docs/design.md): pipeline/<layer>/ may import only
+#: pipeline/<a layer at or below it>/; every other pipeline module (api, cli, make_figures,
+#: the re-exports below, studies/) is above them all
+LAYERS = ("workflow", "store", "execute", "tables", "claims")
+#: old module paths kept for one release as re-exports of the moved module (docs/design.md);
+#: no module imports names through them (a package re-export may still be the parent of
+#: the submodule imported: ``from pipeline.store import layout``)
+REEXPORTS = {
+    "pipeline.workflow": "pipeline.workflow.load", "pipeline.store": "pipeline.store.study_store",
+    "pipeline.claims": "pipeline.claims.record", "pipeline.reduce": "pipeline.tables.reduce",
+    "pipeline.run": "pipeline.execute.run", "pipeline.cluster": "pipeline.execute.cluster",
+    "pipeline.identity": "pipeline.workflow.identity",
+}
+#: the one file that imports the re-exports on purpose: it checks they still work
+REEXPORT_TEST = "tests/pipeline/test_reexports.py"
 #: engine modules allowed to import pipeline.studies: the entry points over engine and
 #: studies (docs/design.md), each with why
 ENTRY_POINTS = {
@@ -103,7 +122,7 @@ def test_the_kernel_never_imports_the_analyses():
 
 
 def test_no_engine_module_imports_a_study_except_the_entry_points():
-    engine = sorted((ROOT / "pipeline").glob("*.py"))
+    engine = [p for p in modules("pipeline") if not rel(p).startswith("pipeline/studies/")]
     bad = {rel(p): sorted(m for m in imported_modules(p) if m.startswith("pipeline.studies"))
            for p in engine if rel(p) not in ENTRY_POINTS}
     assert {k: v for k, v in bad.items() if v} == {}
@@ -186,6 +205,93 @@ def imports_cli(api: Path, root: Path = ROOT) -> list[str]:
                   if m == "pipeline.cli" or m.startswith("pipeline.cli."))
 
 
+def layer_of(module: str) -> int:
+    """Index of ``module``'s layer in LAYERS; len(LAYERS) for a pipeline module above them."""
+    parts = module.split(".")
+    if len(parts) > 1 and parts[1] in LAYERS:
+        return LAYERS.index(parts[1])
+    return len(LAYERS)
+
+
+def upward_imports(root: Path = ROOT) -> list[tuple[str, str]]:
+    """(module, imported module) of every import of a pipeline module from a higher layer
+    (lazy imports count)."""
+    graph = import_graph("pipeline", root=root)
+    return sorted((m, x) for m, targets in graph.items() for x in targets
+                  if layer_of(x) > layer_of(m))
+
+
+def reexport_imports(*packages: str, root: Path = ROOT, reexports=None,
+                     allowed: tuple[str, ...] = ()) -> list[tuple[str, str]]:
+    """(importing module, name) of every name imported through a re-export path: ``from
+    <re-export> import name`` where name is not a submodule, ``import <re-export>``, and
+    ``from <its package> import <re-export's leaf>``.  The re-exports themselves and
+    ``allowed`` files are not checked."""
+    reexports = REEXPORTS if reexports is None else reexports
+    out = set()
+    for p in modules(*packages, root=root):
+        me = module_name(p, root)
+        if me in reexports or rel(p, root) in allowed:
+            continue
+        package = list(p.relative_to(root).with_suffix("").parts)[:-1]
+        for node in ast.walk(ast.parse(p.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.Import):
+                out.update((me, a.name) for a in node.names if a.name in reexports)
+            elif isinstance(node, ast.ImportFrom):
+                if node.level:
+                    base = package[: len(package) - node.level + 1]
+                    mod = ".".join(base + ([node.module] if node.module else []))
+                else:
+                    mod = node.module or ""
+                folder = root.joinpath(*mod.split("."))
+                for a in node.names:
+                    if f"{mod}.{a.name}" in reexports:
+                        out.add((me, f"{mod}.{a.name}"))
+                    elif mod in reexports and not ((folder / f"{a.name}.py").is_file()
+                                                   or (folder / a.name / "__init__.py").is_file()):
+                        out.add((me, f"{mod}.{a.name}"))
+    return sorted(out)
+
+
+def package_folders(*packages: str, root: Path = ROOT) -> set[str]:
+    """Dotted names of every folder of ``packages`` holding an ``__init__.py``."""
+    return {module_name(p, root) for p in modules(*packages, root=root) if p.name == "__init__.py"}
+
+
+def test_the_engine_layers_import_only_layers_below_them():
+    assert upward_imports() == []
+
+
+def test_every_layer_folder_exists_and_nothing_of_the_engine_is_left_flat():
+    """The layers are folders; only the entry points, the package files and the re-exports
+    stay at the top of pipeline/."""
+    assert all((ROOT / "pipeline" / layer / "__init__.py").is_file() for layer in LAYERS)
+    top = {p.name for p in (ROOT / "pipeline").glob("*.py")}
+    allowed = {"__init__.py", "__main__.py", "api.py", "cli.py", "make_figures.py",
+               *(f"{m.split('.')[1]}.py" for m in REEXPORTS)}
+    assert top <= allowed, f"flat engine modules, put them in a layer: {sorted(top - allowed)}"
+
+
+def test_no_module_imports_a_name_through_a_re_export():
+    found = reexport_imports("pipeline", "tests", "benchmarks", "examples",
+                             allowed=(REEXPORT_TEST,))
+    assert found == [], f"import the moved module's new path (REEXPORTS): {found}"
+
+
+def test_each_re_export_re_exports_its_module():
+    for old, new in REEXPORTS.items():
+        path = ROOT.joinpath(*old.split("."))
+        path = path / "__init__.py" if path.is_dir() else path.with_suffix(".py")
+        assert new in imported_modules(path), f"{old} does not re-export {new}"
+
+
+def test_every_package_folder_ships_in_the_wheel():
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    listed = set(config["tool"]["setuptools"]["packages"])
+    missing = package_folders("bbb", "pipeline") - listed
+    assert missing == set(), f"add to [tool.setuptools] packages in pyproject.toml: {sorted(missing)}"
+
+
 def test_no_import_cycle_of_any_length_among_bbb_and_pipeline_modules():
     assert import_cycles(import_graph("bbb", "pipeline")) == []
 
@@ -249,3 +355,52 @@ def test_the_api_importing_the_cli_is_caught(tmp_path):
                             "pipeline/api.py": "def f():\n    from .cli import default_store_path\n"})
     assert imports_cli(root / "pipeline/api.py", root) == ["pipeline.cli",
                                                            "pipeline.cli.default_store_path"]
+
+
+def test_a_layer_importing_a_layer_above_it_is_caught(tmp_path):
+    root = _tree(tmp_path, {
+        "pipeline/__init__.py": "",
+        "pipeline/api.py": "from .tables.reduce import f\n",  # the top imports down: allowed
+        "pipeline/workflow/__init__.py": "", "pipeline/workflow/study.py": "",
+        "pipeline/store/__init__.py": "",
+        "pipeline/store/layout.py": "from ..workflow.study import Study\n"  # down: allowed
+                                    "def g():\n    from ..execute.adaptive import STOP\n",  # up
+        "pipeline/execute/__init__.py": "", "pipeline/execute/adaptive.py": "",
+        "pipeline/tables/__init__.py": "",
+        "pipeline/tables/reduce.py": "from pipeline import api\n",  # up, to the top
+        "pipeline/claims/__init__.py": "",
+    })
+    assert upward_imports(root) == [("pipeline.store.layout", "pipeline.execute.adaptive"),
+                                    ("pipeline.tables.reduce", "pipeline"),  # its __init__
+                                    ("pipeline.tables.reduce", "pipeline.api")]
+    (root / "pipeline/store/layout.py").write_text("from ..workflow.study import Study\n")
+    (root / "pipeline/tables/reduce.py").write_text("from ..execute import adaptive\n")
+    assert upward_imports(root) == []
+
+
+def test_an_import_through_a_re_export_is_caught(tmp_path):
+    root = _tree(tmp_path, {
+        "pipeline/__init__.py": "",
+        "pipeline/run.py": "from .execute.run import *\n",  # the re-export itself: not checked
+        "pipeline/execute/__init__.py": "", "pipeline/execute/run.py": "def run_study(): pass\n",
+        "pipeline/store/__init__.py": "from .study_store import *\n",
+        "pipeline/store/study_store.py": "", "pipeline/store/layout.py": "",
+        "pipeline/api.py": "from .run import run_study\n"
+                           "from .store import layout\n"  # a submodule: allowed
+                           "def f():\n    from pipeline.store import StudyStore\n",
+        "pipeline/cli.py": "from . import run\nimport pipeline.store\n",
+        "tests/test_x.py": "from pipeline.run import run_study\n",
+    })
+    reexports = {"pipeline.run": "pipeline.execute.run", "pipeline.store": "pipeline.store.study_store"}
+    assert reexport_imports("pipeline", "tests", root=root, reexports=reexports) == [
+        ("pipeline.api", "pipeline.run.run_study"), ("pipeline.api", "pipeline.store.StudyStore"),
+        ("pipeline.cli", "pipeline.run"), ("pipeline.cli", "pipeline.store"),
+        ("tests.test_x", "pipeline.run.run_study")]
+    assert reexport_imports("pipeline", "tests", root=root, reexports=reexports,
+                            allowed=("tests/test_x.py",))[-1][0] == "pipeline.cli"
+
+
+def test_a_package_folder_missing_from_the_wheel_is_caught(tmp_path):
+    root = _tree(tmp_path, {"pkg/__init__.py": "", "pkg/a.py": "", "pkg/sub/__init__.py": "",
+                            "pkg/sub/scenes/x.toml": ""})
+    assert package_folders("pkg", root=root) == {"pkg", "pkg.sub"}

@@ -1,3 +1,3 @@
 """The workflow scenes (``*.toml``).  A package only so that a wheel installs them as the
 package data ``pipeline.workflows`` (see ``[tool.setuptools.package-dir]`` in pyproject.toml);
-``pipeline.scenes.scene_path`` finds them through importlib.resources."""
+``pipeline.workflow.scenes.scene_path`` finds them through importlib.resources."""

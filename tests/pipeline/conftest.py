@@ -13,8 +13,8 @@ from pathlib import Path
 
 import pytest
 
-from pipeline.store import StudyStore
-from pipeline.workflow import parse_workflow
+from pipeline.store.study_store import StudyStore
+from pipeline.workflow.load import parse_workflow
 
 from .helpers import FAULT, QUIET, TINY
 
@@ -43,8 +43,8 @@ def reference(tiny_workflow, tmp_path_factory):
 
     Shared by every test that needs a finished store, so the suite runs it once.
     """
-    from pipeline.run import run_study
-    from pipeline.workflow import load_workflow
+    from pipeline.execute.run import run_study
+    from pipeline.workflow.load import load_workflow
 
     path = tmp_path_factory.mktemp("ref") / "tiny.zarr"
     report = run_study(load_workflow(tiny_workflow), path, workers=2, **QUIET)
@@ -63,8 +63,8 @@ def fault_workflow(tmp_path_factory) -> Path:
 def fault_reference(fault_workflow, tmp_path_factory) -> Path:
     """The FAULT workflow run undisturbed on a 2-worker LocalCluster: the store every
     disturbed run must equal bit for bit."""
-    from pipeline.run import run_study
-    from pipeline.workflow import load_workflow
+    from pipeline.execute.run import run_study
+    from pipeline.workflow.load import load_workflow
 
     path = tmp_path_factory.mktemp("fault_ref") / "fault.zarr"
     run_study(load_workflow(fault_workflow), path, workers=2, **QUIET)

@@ -47,10 +47,10 @@ record_from = 2.0
 
 def tiny_store(tmp_path_factory) -> tuple[str, dict[str, pd.DataFrame]]:
     """(store path, {"diffusion": D(f) table, "locking": locking table}), built once."""
-    from pipeline.collisions import locking_table
-    from pipeline.reduce import reduce_store
-    from pipeline.run import run_study
-    from pipeline.workflow import parse_workflow
+    from pipeline.execute.run import run_study
+    from pipeline.tables.collisions import locking_table
+    from pipeline.tables.reduce import reduce_store
+    from pipeline.workflow.load import parse_workflow
 
     base = Path(tmp_path_factory.getbasetemp()) / "tiny_figures"
     store = base / "tiny_figures.zarr"

@@ -12,8 +12,8 @@ import pytest
 
 from pipeline import open_study, reduced, run_study
 from pipeline.cli import main as cli
-from pipeline.run import FAIL_ENV, RunFailed
-from pipeline.store import StudyStore
+from pipeline.execute.run import FAIL_ENV, RunFailed
+from pipeline.store.study_store import StudyStore
 
 from .helpers import assert_same_store
 

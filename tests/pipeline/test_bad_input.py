@@ -3,7 +3,7 @@ below exits with status 2 and one line `bbb: error: ...` naming the file, line a
 argument) and what is allowed, with no traceback, and leaves an existing store byte for byte
 as it was (no lock left behind either).
 
-test_workflow.py checks what Study parsing says about each mistake; here the claim is the
+workflow/test_load.py checks what Study parsing says about each mistake; here the claim is the
 command line's: the exit status, the single line on stderr, and a store left untouched.
 Most cases run `pipeline.cli.main` in this process (fast); a few run the installed `bbb`
 script and `python -m pipeline` as subprocesses, where a traceback would show.

@@ -25,9 +25,9 @@ import zarr
 
 from bbb.provenance import kernel_hash
 from pipeline.cli import main
-from pipeline.run import RunFailed, run_study
-from pipeline.store import COUNTERS, KERNEL_ATTRS, StoreError, StudyStore, store_fingerprint
-from pipeline.workflow import load_workflow
+from pipeline.execute.run import RunFailed, run_study
+from pipeline.store.study_store import COUNTERS, KERNEL_ATTRS, StoreError, StudyStore, store_fingerprint
+from pipeline.workflow.load import load_workflow
 
 from .helpers import QUIET, assert_same_store
 
@@ -212,7 +212,7 @@ def test_two_runs_taking_over_one_stale_lock_do_not_both_get_it(tmp_path, monkey
     """The interleaving that let two runs in: run B reads a stale lock (dead pid, this host);
     before B removes it, run A removes it too and writes its own; B must now see A's lock and
     be refused, not remove A's lock believing it the stale one."""
-    from pipeline import lock as store_module
+    from pipeline.store import lock as store_module
 
     path = str(tmp_path / "s.zarr")
     lock = Path(f"{path}.lock")

@@ -27,13 +27,13 @@ SCALING_COLUMNS = (
 def per_particle_D(x: np.ndarray, times: np.ndarray, analysis) -> np.ndarray:
     """Each particle's own TAMSD slope D_i, mm²/s (``bbb reduce``'s D is their mean), with
     the workflow's discard and fractional fit lags."""
-    from bbb import stats
+    from bbb.analysis import stats
 
     T = analysis.duration(times[-1] - times[0])
-    # bbb.stats' own per-particle fit, so that these are exactly the estimator's D_i
-    reg = stats._regime(x.shape[1], times, analysis.fit_from * T, analysis.fit_to * T,
+    # bbb.analysis.stats' own per-particle fit, so that these are exactly the estimator's D_i
+    reg = stats.fit_regime(x.shape[1], times, analysis.fit_from * T, analysis.fit_to * T,
                         analysis.discard)
-    return stats._per_particle_fit(np.asarray(x, dtype=float), reg)[0]
+    return stats.per_particle_fit(np.asarray(x, dtype=float), reg)[0]
 
 
 def scaling_table(ref_store, n_values: Sequence[int] | None = None,
@@ -47,7 +47,7 @@ def scaling_table(ref_store, n_values: Sequence[int] | None = None,
     whole run (paired: same particles), averaged -- the finite-time bias of the fit at
     fractional lags -- with its standard error, and the half-width at that T.
     """
-    from bbb import stats
+    from bbb.analysis import stats
 
     study = ref_store.study
     g = ref_store.group()

@@ -3,8 +3,8 @@ reference run, through the real pipeline.
 
 The workflow (``workflows/accuracy.toml``) is the *reference*: its frequencies, families and
 accuracy (preset ``reference``, possibly with overrides).  Each *variant* is the same scene
-with another accuracy table, run into its own store by :func:`pipeline.run.run_study` and
-reduced by :func:`pipeline.reduce.diffusion_table`:
+with another accuracy table, run into its own store by :func:`pipeline.execute.run.run_study` and
+reduced by :func:`pipeline.tables.reduce.diffusion_table`:
 
 * ``preset`` variants: ``draft``, ``standard``, ``paper`` exactly as a workflow gets them;
 * ``knob`` variants: the reference accuracy with ``n_particles = KNOB_N`` particles and
@@ -39,16 +39,16 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from ...accuracy import ACCURACY_PRESETS
-from ...study import Study
-from ...workflow import parse_workflow
+from ...workflow.accuracy import ACCURACY_PRESETS
+from ...workflow.load import parse_workflow
+from ...workflow.study import Study
 from .figures import accuracy_figure, plot_accuracy  # importable from here too
 from .scaling import SCALING_COLUMNS, per_particle_D, scaling_table
 
 __all__ = [
     "Variant", "default_variants", "variant_study", "run_accuracy_study", "compare",
     "summarize", "scaling_table", "per_particle_D", "pareto_front", "plot_accuracy", "accuracy_figure",
-    "ROW_COLUMNS", "SUMMARY_COLUMNS", "SCALING_COLUMNS", "KNOB_N", "KNOB_T",
+    "ROW_COLUMNS", "SUMMARY_COLUMNS", "SCALING_COLUMNS", "COLUMN_UNITS", "KNOB_N", "KNOB_T",
 ]
 
 #: ensemble size and duration of the single-knob variants (the paired comparison)
@@ -79,6 +79,18 @@ SUMMARY_COLUMNS = (
     "systematic",     # some row differs from its comparison by more than 3 sigma (z_stat/z_pair)
     "pareto",         # on the Pareto front of (cpu_s, err_rms)
 )
+
+
+#: units of this study's own columns (the others, f, D, t_max, ..., and the conventions:
+#: pipeline.tables.units); ``value`` is the knob's (or, in the scaling table, the axis's) own
+#: unit, which another column names: not one quantity, so ""
+COLUMN_UNITS = {
+    "variant": "", "kind": "", "knob": "", "value": "", "hw_rel": "1", "hw_ref": "mm^2/s",
+    "err_rel": "1", "z_ref": "1", "z_stat": "1", "z_pair": "1", "cpu_s": "s", "wall_s": "s",
+    "collisions": "1", "collisions_per_cpu_s": "1/s", "err_rms": "1", "err_max": "1",
+    "rel_err_max": "1", "hw_rel_max": "1", "err_rms_all": "1", "systematic": "", "pareto": "",
+    "axis": "", "sd_rel": "1", "bias_rel": "1", "exponent": "1",
+}
 
 
 @dataclass(frozen=True)
@@ -124,7 +136,7 @@ def _acc_table(study: Study) -> dict:
 
 def variant_study(ref_text: str, variant: Variant, source: str = "<accuracy>") -> Study:
     """The reference workflow with its [accuracy] table replaced by the variant's."""
-    from ...scenes import toml_dump as _toml_dump  # the workflow-shaped TOML writer
+    from ...workflow.scenes import toml_dump as _toml_dump  # the workflow-shaped TOML writer
 
     doc = tomllib.loads(ref_text)
     doc["accuracy"] = dict(variant.accuracy)
@@ -150,9 +162,10 @@ def run_accuracy_study(
 
     Returns {"rows", "summary", "scaling"} (columns: ROW_/SUMMARY_/SCALING_COLUMNS).
     """
-    from ...reduce import counters_table, diffusion_table
-    from ...run import connect, run_study
-    from ...store import StudyStore
+    from ...execute.run import connect, run_study
+    from ...store.study_store import StudyStore
+    from ...tables.counters import counters_table
+    from ...tables.diffusion import diffusion_table
 
     text = Path(workflow).read_text(encoding="utf-8")
     ref = parse_workflow(text, source=str(workflow))

@@ -30,7 +30,7 @@ import pandas as pd
 
 from bbb.params import Params
 
-from ...claims import Row
+from ...claims.record import Row
 from ..klages2004.claims import CLAIMS as PAPER_CLAIMS
 from ..klages2004.claims import evaluate
 

@@ -13,9 +13,9 @@ import numpy as np
 import pandas as pd
 from matplotlib import rc_context
 
-from bbb.locking import CREEP_MARGIN, creep_speed
+from bbb.analysis.locking import CREEP_MARGIN, creep_speed
 
-from ...collisions import as_store, states
+from ...tables.collisions import as_store, states
 from ..figure_style import PAGE, STYLE, figure_files, new_figure, save_figure
 from .claims import LABELS, MODELS, ONSET_RANGE, PROJ_F
 
@@ -156,7 +156,7 @@ def draw(tables: dict[str, pd.DataFrame], stores: Mapping[str, str],
     stores; adds each projection scene's locking table to ``tables`` (as
     ``contact_proj_<model>_locking``) for :func:`~.claims.report_lines`, claim 3.  Returns
     the files written."""
-    from ...collisions import locking_table
+    from ...tables.collisions import locking_table
 
     proj = {}
     for m in MODELS:

@@ -1,4 +1,4 @@
-"""The claims of Klages, Barna & Mátyás (2004) as data: one :class:`~pipeline.claims.Claim`
+"""The claims of Klages, Barna & Mátyás (2004) as data: one :class:`~pipeline.claims.record.Claim`
 record each, with the tolerance it is judged by and why, and the explanations a report adds
 to a claim that fails.  The few measures only this paper needs (the loops of the spiral,
 ergodicity, the spiral approximation, Mátyás 2004) are :mod:`.measures`; each claim holds
@@ -16,11 +16,11 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pandas as pd
 
-from bbb.extrema import Extremum
+from bbb.analysis.extrema import Extremum
 
-from ... import claims as _claims
-from ...claim_measures import extremum, growth, onset_measure, table_value
-from ...claims import Band, Claim, Row
+from ...claims import record as _claims
+from ...claims.measures import extremum, growth, onset_measure, table_value
+from ...claims.record import Band, Claim, Row
 
 # the paper's own measures, held by the claims below; K_TOL, MAIN, families and
 # spiral_closeness stay importable from here

@@ -28,7 +28,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from ...claims import markdown_table
+from ...claims.markdown import markdown_table
 
 __all__ = ["TABLE_FILES", "FLOAT_FORMAT", "CLAIMS_HEADING", "write_csv", "read_tables",
            "study_key", "study_file", "read_study_tables", "write_study_tables", "figure2_params",
@@ -104,11 +104,11 @@ def figure2_params(stores: Mapping[str, str] | None = None, fast: bool = False
     """(f at Γ = 1 in Hz, the parameters as a dict) of the Fig. 2 scene: from its store when
     one is given, else from the scene file (the same parameters); (None, None) if A = 0."""
     if stores and stores.get("figure2"):
-        from ...collisions import as_store
+        from ...tables.collisions import as_store
 
         p = as_store(stores["figure2"]).study.params(60.0)
     else:
-        from ...scenes import load_scene
+        from ...workflow.scenes import load_scene
 
         p = load_scene("figure2", fast).params(60.0)
     if not p.A > 0:

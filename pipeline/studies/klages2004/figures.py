@@ -7,11 +7,11 @@ folder -- and returns the :class:`matplotlib.figure.Figure` (labelled ``name``);
 Figures are made without pyplot, so importing this module selects no backend and leaves a
 notebook's inline plotting alone; a returned Figure shows itself in Jupyter.
 
-Tables used (all made by ``pipeline.reduce`` or ``pipeline.collisions``):
+Tables used (all made by ``pipeline.tables.reduce`` or ``pipeline.tables.collisions``):
 
 ``diffusion``   the main D(f) table (``diffusion.parquet`` of the Fig. 2 scene)
 ``ergodicity``  optional: the ``diffusion`` table of a scene with several families
-``locking``     optional: :func:`pipeline.collisions.locking_table` of a collisions scene
+``locking``     optional: :func:`pipeline.tables.collisions.locking_table` of a collisions scene
 
 Units on every axis: f in Hz, D in mm²/s, y in mm, v in mm/s.  Sizes are for a journal
 column (3.4 in wide) or the full page width (7 in); the style is
@@ -33,11 +33,11 @@ from matplotlib import rc_context
 from matplotlib.figure import Figure
 from matplotlib.ticker import MultipleLocator
 
-from bbb.approx import spiral
-from bbb.locking import creep_speed, flight_time_max, flight_times
+from bbb.analysis.approx import spiral
+from bbb.analysis.locking import creep_speed, flight_time_max, flight_times
 
-from ...collisions import as_store, states
-from ...store import StudyStore
+from ...store.study_store import StudyStore
+from ...tables.collisions import as_store, states
 
 # the house style, shared by every study's figures (pipeline.studies.figure_style); the old
 # private names stay, for the figures of other studies that import them from here
@@ -245,7 +245,7 @@ def _draw_D(ax, main: pd.DataFrame, cols: tuple[str, str, str], ergo: pd.DataFra
                 elinewidth=0.5, capsize=0.8, capthick=0.4, lw=0, zorder=3,
                 label=(f"{main_family} (95 % CI)" if main_family else "95 % CI") if legend else None)
     ax.plot(f, D, color="k", lw=0.4, zorder=2)
-    if "stationary" in main:  # D depends on the run length (bbb.stationarity): hollow marker
+    if "stationary" in main:  # D depends on the run length (bbb.analysis.stationarity): hollow marker
         moves = main["stationary"].astype("boolean").eq(False).fillna(False).to_numpy(bool)
         if moves.any():
             ax.plot(f[moves], D[moves], "o", ms=ms + 0.4, mfc="w", mec="k", mew=0.5, zorder=5,
@@ -388,7 +388,7 @@ def figure3(store: str | os.PathLike | StudyStore | Sequence[str | os.PathLike |
     store that holds that frequency (within 1 mHz), coloured by family; the flat-floor spiral
     of Eqs. (8)-(9) on ``spiral_panels``: t_0 = 1/(2f), t_1 = t_0 + t_c with
     t_c ∈ [0, t_max(f)], t_max the 0.99 quantile of the free-flight times of the plotted
-    states (bbb.locking).  At most ``max_points`` points per panel and family are drawn
+    states (bbb.analysis.locking).  At most ``max_points`` points per panel and family are drawn
     (evenly thinned); t_max uses all.
     """
     stores = [as_store(s) for s in (store if isinstance(store, (list, tuple)) else [store])]

@@ -2,7 +2,7 @@
 paper's outlook)?  Counts of significant extrema per Hz as the frequency resolution doubles,
 from one refined window (scene ``finescale``), and the figure.
 
-**Resolution levels.**  Refinement (pipeline/adaptive.py) halves gaps on the mHz grid, so a
+**Resolution levels.**  Refinement (pipeline/execute/adaptive.py) halves gaps on the mHz grid, so a
 window refined from a grid of step h0 down to h0 / 2^k holds a subset of the h0 / 2^k grid
 anchored at the window's start.  The D(f) a resolution h would have seen is the sub-sample of
 the refined table on the h grid (:func:`subsample`): the base grid at h0, every refined point
@@ -11,7 +11,7 @@ finest levels are dense only there: a count at fine h is of the extrema that app
 structure seen at the coarser levels*, a lower bound on what a uniform fine grid would show.
 
 **Counts and their CI** (:func:`extrema_per_hz`).  At each level the significant extrema of
-``bbb.extrema.find_extrema`` (the same rule as REPORT.md's extrema: pairwise z-tests of the
+``bbb.analysis.extrema.find_extrema`` (the same rule as REPORT.md's extrema: pairwise z-tests of the
 95 % CIs, Bonferroni over the level's points) are counted and divided by the window's width
 (Hz).  The CI is a parametric bootstrap of the D curve within its CIs: each resample draws
 every D_i from a normal of standard deviation (hi_i - lo_i) / (2 z_0.975) around D_i, keeps
@@ -35,12 +35,12 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from bbb.extrema import Extremum, find_extrema
-from pipeline.identity import f_key, f_keys
+from bbb.analysis.extrema import Extremum, find_extrema
+from pipeline.workflow.identity import f_key, f_keys
 
 __all__ = ["LEVELS", "LevelCount", "Located", "subsample", "extrema_per_hz",
            "located_extrema", "new_extrema", "table_arrays", "figure_finescale",
-           "finescale_summary", "write_table"]
+           "finescale_summary", "write_table", "EXTREMA_UNITS"]
 
 #: resolutions (Hz) at which the extrema are counted: the base grid and three halvings
 LEVELS = (0.4, 0.2, 0.1, 0.05)
@@ -198,6 +198,10 @@ def finescale_summary(table: pd.DataFrame) -> tuple[list[LevelCount], list[Locat
     """The counts per level and the located extrema of a finescale diffusion table."""
     f, D, lo, hi = table_arrays(table)
     return extrema_per_hz(f, D, lo, hi, origin=float(f.min())), located_extrema(f, D, lo, hi)
+
+
+#: units of the columns of finescale_extrema.csv (conventions: pipeline.tables.units)
+EXTREMA_UNITS = {"h": "Hz", "n_points": "1", "count": "1", "per_hz": "1/Hz"}
 
 
 def write_table(table: pd.DataFrame, out_dir: str | os.PathLike) -> Path:

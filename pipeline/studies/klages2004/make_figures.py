@@ -1,7 +1,7 @@
 """``python -m pipeline.make_figures``: run the figure scenes, reduce, draw, write REPORT.md.
 
 The Klages, Barna & Mátyás (2004) study.  Scenes (``workflows/*.toml`` and this study's
-``scenes/*.toml``, found by :mod:`pipeline.scenes`):
+``scenes/*.toml``, found by :mod:`pipeline.workflow.scenes`):
 
 =====================  ======================================================================
 figure2                D(f), 124 frequencies, particles at rest           -> Fig. 2
@@ -17,7 +17,7 @@ finescale              D(f) in 58-64 Hz refined to 0.05 Hz                 -> ex
                                                                               vs resolution
 =====================  ======================================================================
 
-Each scene runs through :func:`pipeline.run.run_study` into ``<runs>/<name>.zarr``, which
+Each scene runs through :func:`pipeline.execute.run.run_study` into ``<runs>/<name>.zarr``, which
 resumes a partial store (so ``bbb run workflows/figure2.toml`` beforehand is reused); all
 scenes share one LocalCluster (unless ``--scheduler`` names one), started once.  The
 ``--fast`` switch (or ``FAST=1`` in the environment) runs every scene at draft accuracy into
@@ -45,7 +45,7 @@ from collections.abc import Callable, Iterator
 from datetime import UTC, datetime
 from pathlib import Path
 
-from ...scenes import ROOT, load_scene, scene_label
+from ...workflow.scenes import ROOT, load_scene, scene_label
 from .scene_list import EXTRA_STUDIES, SCENES  # importable from here as before
 
 __all__ = ["SCENES", "run_log_entry", "make_figures", "main"]
@@ -71,9 +71,9 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     """
     import pandas as pd
 
-    from ...collisions import locking_table
-    from ...reduce import reduce_store
-    from ...run import run_study
+    from ...execute.run import run_study
+    from ...tables.collisions import locking_table
+    from ...tables.reduce import reduce_store
     from . import figures as fg
     from .changes import changes_section
     from .committed import (
@@ -198,7 +198,7 @@ def _one_cluster(wanted: bool, workers: int | None, log: dict) -> Iterator[str |
     if not wanted:
         yield None
         return
-    from ...run import connect
+    from ...execute.run import connect
 
     t0 = time.perf_counter()
     client, cluster = connect(None, workers, False)

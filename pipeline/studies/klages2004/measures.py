@@ -13,13 +13,13 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
-from bbb.approx import spiral
-from bbb.extrema import Extremum, find_extrema
-from bbb.locking import creep_speed, flight_time_max, flight_times
+from bbb.analysis.approx import spiral
+from bbb.analysis.extrema import Extremum, find_extrema
+from bbb.analysis.locking import creep_speed, flight_time_max, flight_times
 
-from ...claim_measures import row_at
-from ...claims import Band, Claim, Measured, Part, Quantity, combine, judge, measure
-from ...collisions import as_store, states
+from ...claims.measures import row_at
+from ...claims.record import Band, Claim, Measured, Part, Quantity, combine, judge, measure
+from ...tables.collisions import as_store, states
 
 __all__ = ["MAIN", "K_TOL", "DEPTH_FRACTION", "families", "spiral_closeness", "curve_columns",
            "curves", "curves_and_meta", "curve_extrema", "loops", "nonergodic_near_55",

@@ -1,11 +1,11 @@
 """``figures/REPORT.md``: the paper's claims beside what the stores and tables measure.
 
 Every number in the report is computed from the reduce tables (D(f) with bootstrap CIs,
-stationarity and ergodicity columns), the locking tables (:mod:`pipeline.collisions`, with
+stationarity and ergodicity columns), the locking tables (:mod:`pipeline.tables.collisions`, with
 bootstrap CIs of k) and the stores' attributes; nothing measured is typed in.  The claims are
-data (:data:`pipeline.studies.klages2004.claims.CLAIMS`), judged by :mod:`pipeline.claims` with the
+data (:data:`pipeline.studies.klages2004.claims.CLAIMS`), judged by :mod:`pipeline.claims.record` with the
 CI of each measured number against the tolerance the claim declares (rule in that module,
-restated in the report).  Significant extrema: :func:`bbb.extrema.find_extrema`
+restated in the report).  Significant extrema: :func:`bbb.analysis.extrema.find_extrema`
 (Bonferroni-corrected, differences below 1 % of the curve's largest D ignored).
 """
 
@@ -20,14 +20,15 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from bbb.extrema import Extremum, critical_z
-from bbb.locking import CREEP_MARGIN, FLIGHT_TOL, MAX_QUANTILE, TMAX_QUANTILE
-from bbb.stationarity import TOLERANCE as STATIONARITY_TOL
-from bbb.stats.ergodicity import cv2_ci_coverage
+from bbb.analysis.extrema import Extremum, critical_z
+from bbb.analysis.locking import CREEP_MARGIN, FLIGHT_TOL, MAX_QUANTILE, TMAX_QUANTILE
+from bbb.analysis.stationarity import TOLERANCE as STATIONARITY_TOL
+from bbb.analysis.stats.ergodicity import cv2_ci_coverage
 
-from ...claim_measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
-from ...claims import Row, markdown_table, md_cell
-from ...collisions import as_store
+from ...claims.markdown import markdown_table, md_cell
+from ...claims.measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
+from ...claims.record import Row
+from ...tables.collisions import as_store
 from .claims import CLAIMS, evaluate, period1_limit  # evaluate: importable from here as before
 from .committed import CLAIMS_HEADING, claim_rows
 from .measures import DEPTH_FRACTION, curve_extrema, curves, spiral_closeness
@@ -82,7 +83,7 @@ def _bound_text(up: float) -> str:
 def _ergodicity_rule_line(ergo: pd.DataFrame) -> str:
     """The rule behind the ergodicity verdicts and what it can and cannot exclude."""
     r = ergo.iloc[0]
-    return (f"Rule `{r['rule']}` (`bbb.stats.ergodic_verdict`, calibrated on synthetic "
+    return (f"Rule `{r['rule']}` (`bbb.analysis.stats.ergodic_verdict`, calibrated on synthetic "
             "populations of known per-particle D spread before it was applied here: "
             "docs/statistics.md): ergodic iff the families' D agree within their CIs and the "
             "estimated squared spread CV²(D_i) = 2 EB(T) − EB(T/2) is at most "
@@ -175,7 +176,7 @@ CAPTIONS = {
         "outside the rest family's CI. Shading: darker where the reduce verdict (families' D "
         "agree, and EB at the Brownian level or falling like 1/T) is negative; lighter where it "
         "rests on the EB of the one family only. Hollow circles: D depends on the run length "
-        "(first vs second half of the run, `bbb.stationarity`). Inset: 50–67 Hz magnified."),
+        "(first vs second half of the run, `bbb.analysis.stationarity`). Inset: 50–67 Hz magnified."),
     "fig3_phase_space": (
         "Fig. 3 — Post-collision states (y, v_y⁺) at f = 54, 58, 60, 66, 72, 78 Hz; black: "
         "particles started at rest, blue: launched (Fig. 3 and locking scenes). Dotted: the "
@@ -240,7 +241,7 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
         by.setdefault(r.verdict, []).append(str(i))
     L += ["", "Summary: " + "; ".join(f"**{v}** {len(n)} (#{', #'.join(n)})" for v, n in by.items())
           + "."]
-    L += ["", "## Significant extrema of D(f), located by `bbb.extrema`", ""]
+    L += ["", "## Significant extrema of D(f), located by `bbb.analysis.extrema`", ""]
     for label, ext in extrema.items():
         tbl = curves(tables)[label][0]
         L.append(f"- **{label}**: " + ("; ".join(_fmt_ext(e) + f", z = {e.z:.1f}"
@@ -252,7 +253,7 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
         L += ["", "## Stationarity: does D depend on the run length?", "",
               "D of the first and the second half of the analysed run (same fit fractions), "
               "with a paired bootstrap CI over particles of the difference; flagged where that "
-              f"CI lies beyond ±{100 * STATIONARITY_TOL:g} % of D (`bbb.stationarity`; the rule "
+              f"CI lies beyond ±{100 * STATIONARITY_TOL:g} % of D (`bbb.analysis.stationarity`; the rule "
               "was calibrated on synthetic walks before it was applied here: its false-flag rate "
               "and its power on a diffusivity that doubles over the run are tabulated in that "
               "module and re-measured by tests/bbb/test_stationarity.py).", ""] + stat
@@ -295,7 +296,7 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
           "differences of consecutive collision times of one particle, kept only where the "
           f"parabola from the earlier collision lands within {FLIGHT_TOL:g} mm of the later one "
           "(intervals spent stuck to the floor are not flights).",
-          "- **Significant extremum** (`bbb.extrema`): a maximum is a point from which the curve, "
+          "- **Significant extremum** (`bbb.analysis.extrema`): a maximum is a point from which the curve, "
           "on both sides, reaches a significantly lower point before a higher one; 'a "
           "significantly above b' means (D_a − D_b)/√(s_a⁻² + s_b⁺²) > z_crit with s± read off "
           "the 95 % CIs and z_crit Bonferroni-corrected over all pairs of points"

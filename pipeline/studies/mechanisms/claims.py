@@ -5,11 +5,11 @@ Rules, fixed before the data:
 extremum carrier  (M1–M5) The paper's extremum of D at f0 (Klages et al. 2004: maxima at 54,
                60 and 80 Hz, minima at 58 and 62 Hz) against each grid neighbour f_nb:
                ln D_∞(f0)/D_∞(f_nb) = random walk (ln of the D_0 ratio) + memory (ln of the
-               D_∞/D_0 ratio), with paired bootstrap CIs (pipeline.mechanisms,
-               bbb.gk_contrast).  Each side gets ``bbb.gk_contrast.carrier`` (memory share of
+               D_∞/D_0 ratio), with paired bootstrap CIs (pipeline.tables.mechanisms,
+               bbb.analysis.gk_contrast).  Each side gets ``gk_contrast.carrier`` (memory share of
                the contrast ≥ θ: "memory", ≤ 1 − θ: "random walk", within: "both", CI across an
                edge: "undecided"; θ and the CI level read from the calibration,
-               ``bbb.gk_contrast.calibrated_rule``), the sides are combined by
+               ``bbb.analysis.gk_contrast.calibrated_rule``), the sides are combined by
                ``combine_sides`` ("no extremum" if a side has the wrong sign), once per floor
                period and once per collision.  The verdict is the one both step choices give;
                where they differ it is "undecided" (the split depends on what a step is), where
@@ -29,10 +29,11 @@ import math
 
 import pandas as pd
 
-from bbb.gk_contrast import Contrast, calibrated_rule, carrier, combine_sides
+from bbb.analysis.gk_contrast import Contrast, calibrated_rule, carrier, combine_sides
 
-from ...claim_measures import row_at
-from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, markdown_table, measure
+from ...claims.markdown import markdown_table
+from ...claims.measures import row_at
+from ...claims.record import Band, Claim, Measured, Part, Quantity, evaluate, measure
 
 __all__ = ["CLAIMS", "EXTREMA", "SIDES", "STEPS", "neighbour_moves", "report_lines",
            "side_contrast"]
@@ -156,7 +157,7 @@ def lyapunov_ratio(claim: Claim, ctx) -> Measured:
 def _rule_why() -> str:
     rule = calibrated_rule()
     return (f"rule: the memory share of each neighbour's log contrast, CI at "
-            f"{rule['ci']:.0%}, against θ = {rule['theta']:.3g} (bbb.gk_contrast; calibrated on "
+            f"{rule['ci']:.0%}, against θ = {rule['theta']:.3g} (bbb.analysis.gk_contrast; calibrated on "
             f"AR(1) sequences with a known split: worst wrong-verdict rate "
             f"{rule['worst_wrong']:.2f}, {rule['source']})")
 

@@ -5,7 +5,7 @@ rule's edges; (d) the largest Lyapunov exponent λ(f), of all, moving and confin
 (e) the creeping fraction.  Still frequencies (nothing left its cell, or all creeps) shaded.
 
 Drawn from the reduce tables of the mechanisms scene only: ``diffusion`` (D from the MSD) and
-``mechanisms`` (:mod:`pipeline.mechanisms`).  Units: f Hz, D mm²/s, λ 1/s.
+``mechanisms`` (:mod:`pipeline.tables.mechanisms`).  Units: f Hz, D mm²/s, λ 1/s.
 """
 
 from __future__ import annotations
@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 from matplotlib import rc_context
 
-from bbb.gk_contrast import calibrated_rule
+from bbb.analysis.gk_contrast import calibrated_rule
 
 from ..figure_style import STYLE, figure_files, new_figure, save_figure
 from .claims import EXTREMA, SIDES, STEPS, neighbour_moves, side_contrast

@@ -1,5 +1,5 @@
 """The REPORT table of λ where particles move: per frequency, λ of all measured particles, of
-the moving ones and of the confined ones (pipeline.mechanisms: moving = x spans ≥ S in λ's
+the moving ones and of the confined ones (pipeline.tables.mechanisms: moving = x spans ≥ S in λ's
 window), and where a CI is degenerate, named instead of printed as an interval."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import math
 
 import pandas as pd
 
-from ...claims import md_cell
+from ...claims.markdown import md_cell
 
 __all__ = ["lam_text", "lyapunov_lines"]
 

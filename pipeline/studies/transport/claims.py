@@ -1,22 +1,22 @@
-"""The transport claims as data (judged by :mod:`pipeline.claims` from each scene's diffusion
-table with its v, D_drift columns; :mod:`bbb.transport`).
+"""The transport claims as data (judged by :mod:`pipeline.claims.record` from each scene's diffusion
+table with its v, D_drift columns; :mod:`bbb.analysis.transport`).
 
 Rules, fixed before the data (calibrated on synthetic curves in
 tests/pipeline/studies/transport/test_claims.py):
 
 significant v   v(f) ≠ 0 at a frequency when |v| exceeds z_n standard errors (read off its CI
-                side towards 0, as bbb.extrema does), z_n = Φ⁻¹(1 − α / (2 n)) Bonferroni over
+                side towards 0, as bbb.analysis.extrema does), z_n = Φ⁻¹(1 − α / (2 n)) Bonferroni over
                 the n frequencies of the curve, α = 0.05: on a curve with v ≡ 0 the chance of
                 calling any frequency significant is ≤ 5 %; and |v| > V_MIN = 1e-6 mm/s (a
                 particle at rest has |v| ~ 1e-16 mm/s with a CI of rounding size).
-steady only     every rule uses the frequencies whose drift is steady (bbb.transport: not
+steady only     every rule uses the frequencies whose drift is steady (bbb.analysis.transport: not
                 steady when the CI of v(second half) − v(first half) lies beyond ±(5 % of |v|
                 + k SE(v) + 1e-6 mm/s), k calibrated on synthetic steady and accelerating
                 drifts, bbb/transport_rules.json); where the ensemble accelerates (runs away
                 downhill) v and D are window means, not transport coefficients.  The rows say
                 how many frequencies were left out.
 diffusive only  an extremum of v(f) or of D_drift(f) at a frequency whose D about the drift is
-                not diffusive (bbb.transport: the CI of the MSD's slope ratio, upper over
+                not diffusive (bbb.analysis.transport: the CI of the MSD's slope ratio, upper over
                 lower half of the fit lags, lies above 1 + a calibrated tolerance) is not
                 counted: the MSD about the drift still steepens over the fit lags -- particles
                 running at different speeds (some stuck), or velocity memory as long as the
@@ -25,7 +25,7 @@ diffusive only  an extremum of v(f) or of D_drift(f) at a frequency whose D abou
 reversal        a sign change between consecutive significant frequencies (those in between
                 not significant).  The claim counts reversals over all conveyor scenes; it
                 agrees with ≥ 1.
-extrema         bbb.extrema.find_extrema (Bonferroni over all pairs, family-wise α = 0.05)
+extrema         bbb.analysis.extrema.find_extrema (Bonferroni over all pairs, family-wise α = 0.05)
                 on v(f) and on D_drift(f), min_depth = V_MIN resp. D_MIN = 1e-6 mm²/s.
                 "Extrema of the transport rate": ≥ 1 extremum of v(f) per conveyor scene.
                 "D irregular": ≥ 2 extrema of D_drift(f) (a curve with a maximum and a
@@ -38,7 +38,7 @@ no current      at φ = 0, ψ = 90° (mirror symmetric): no frequency with a sig
                 by chance on a measured fraction of current-free curves (its design
                 false-alarm rate, benchmarks/transport_mirror.py -> mirror.json).
 sliding         on the sliding scenes' floor (φ = 0°, ψ = 30°), below its lift-off frequency
-                (bbb.liftoff: no particle at rest anywhere on the floor can lift off there),
+                (bbb.analysis.liftoff: no particle at rest anywhere on the floor can lift off there),
                 the frequencies with a significant v: 0 under stick (a stuck particle rides
                 with the floor, v = 0 up to rounding) and ≥ 1 under Coulomb friction.
 
@@ -57,11 +57,12 @@ import numpy as np
 import pandas as pd
 
 from bbb import Params
-from bbb.extrema import find_extrema
-from bbb.liftoff import liftoff_frequency
-from bbb.transport import SYMMETRY
+from bbb.analysis.extrema import find_extrema
+from bbb.analysis.liftoff import liftoff_frequency
+from bbb.analysis.transport import SYMMETRY
 
-from ...claims import Band, Claim, Measured, Part, Quantity, evaluate, markdown_table, measure
+from ...claims.markdown import markdown_table
+from ...claims.record import Band, Claim, Measured, Part, Quantity, evaluate, measure
 
 __all__ = ["SCENES", "HOPPING", "CONVEYORS", "LABELS", "SLIDING", "SLIDING_LABELS",
            "SLIDING_GEOMETRY", "sliding_liftoff", "CLAIMS", "significant_signs", "reversals",
@@ -236,7 +237,7 @@ def d_extrema(claim: Claim, ctx) -> Measured:
 
 
 def sliding_liftoff() -> float:
-    """The sliding scenes' lift-off frequency (Hz, bbb.liftoff): below it no particle at rest
+    """The sliding scenes' lift-off frequency (Hz, bbb.analysis.liftoff): below it no particle at rest
     anywhere on their floor can lift off."""
     return liftoff_frequency(Params.preset("klages2004", f=1.0, **SLIDING_GEOMETRY))
 
@@ -271,7 +272,7 @@ CLAIMS = [
     Claim("Integer frequency lockings produce extrema of the transport rate (paper's outlook, "
           "after Hongler et al.)", v_extrema, "",
           Band(1.0, math.inf, "rule: at least one significant extremum of v(f) per conveyor "
-               "scene (bbb.extrema, family-wise α = 0.05), none counted where D about the "
+               "scene (bbb.analysis.extrema, family-wise α = 0.05), none counted where D about the "
                "drift is not diffusive")),
     Claim("Current reversals: the sign of the current changes with the driving (paper's "
           "outlook, after Grochowski et al.)", v_reversals, "",
@@ -285,7 +286,7 @@ CLAIMS = [
     Claim("Below lift-off a vibratory conveyor transports by sliding only: the stick model "
           "carries no current there, Coulomb friction does (conveyor theory's sliding regime; "
           "issue 13)", sliding, "",
-          Band(-math.inf, math.inf, "rule: below the lift-off frequency (bbb.liftoff) the "
+          Band(-math.inf, math.inf, "rule: below the lift-off frequency (bbb.analysis.liftoff) the "
                "number of frequencies with a significant v (Bonferroni over the curve) is 0 "
                "under stick and ≥ 1 under Coulomb friction")),
 ]
@@ -296,8 +297,8 @@ def report_lines(tables) -> list[str]:
     ctx = {"tables": {sc: tables.get(f"{sc}_diffusion") for sc in SCENES}}
     rows = evaluate(CLAIMS, ctx)
     L = ["", "## Transport on a vibro-conveyor (scenes transport_*)", "",
-         "Drift v with its bootstrap CI and D about the drift (bbb.transport) along f per "
+         "Drift v with its bootstrap CI and D about the drift (bbb.analysis.transport) along f per "
          "(tilt φ, throw ψ), and on one floor (φ = 0°, ψ = 30°) per contact model from low Γ "
-         f"to above lift-off ({sliding_liftoff():.1f} Hz, bbb.liftoff); "
+         f"to above lift-off ({sliding_liftoff():.1f} Hz, bbb.analysis.liftoff); "
          "pipeline/studies/transport/claims.py states the rules.", ""]
     return L + markdown_table(rows, prefix="T")

@@ -27,13 +27,13 @@ CAPTIONS = {
         "the drift, bootstrap 95 % CIs over particles, one curve per (tilt φ, throw ψ); hollow "
         "markers where the drift is not steady (window means), crossed where D about the drift "
         "is not diffusive (its MSD still steepens over the fit lags: particles running at "
-        "different speeds, some stuck, or velocity memory as long as the lags; bbb.transport). "
+        "different speeds, some stuck, or velocity memory as long as the lags; bbb.analysis.transport). "
         "On the level floor (φ = 0°, ψ = 90°) every particle's mirror image counts: v = 0 "
         "exactly, by construction, without a CI. Scenes transport_t0, _t2, _t5, _p60, _p30."),
     "fig_transport_sliding": (
         "The sliding regime: drift v(f) on a level floor of the paper's arcs thrown at ψ = 30°, "
         "under the stick model and Coulomb friction μ = 0.3, bootstrap 95 % CIs; dashed: the "
-        "lowest lift-off frequency of this floor (bbb.liftoff), shaded below it; (b) the "
+        "lowest lift-off frequency of this floor (bbb.analysis.liftoff), shaded below it; (b) the "
         "fraction of the run each model spends held at rest on the floor (dashed) and sliding "
         "(solid), bootstrap 95 % CIs over particles, the rest in flight. Scenes "
         "transport_sliding_stick and transport_sliding_coulomb (claim T5)."),

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 
 from pipeline.studies.accuracy.scaling import per_particle_D
-from pipeline.workflow_keys import DEFAULT_ANALYSIS, Analysis
+from pipeline.workflow.keys import DEFAULT_ANALYSIS, Analysis
 
 ANALYSIS = Analysis(**DEFAULT_ANALYSIS)  # the analysis of a workflow that sets none
 

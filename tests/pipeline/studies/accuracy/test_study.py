@@ -7,7 +7,6 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.accuracy import ACCURACY_KNOBS, ACCURACY_PRESETS
 from pipeline.studies.accuracy.study import (
     ROW_COLUMNS,
     SCALING_COLUMNS,
@@ -17,7 +16,8 @@ from pipeline.studies.accuracy.study import (
     run_accuracy_study,
     variant_study,
 )
-from pipeline.workflow import parse_workflow
+from pipeline.workflow.accuracy import ACCURACY_KNOBS, ACCURACY_PRESETS
+from pipeline.workflow.load import parse_workflow
 
 TINY_REF = """\
 [study]

@@ -8,11 +8,11 @@ import numpy as np
 import pytest
 import zarr
 
-from pipeline.contact import bootstrap_mean
-from pipeline.reduce import reduce_store
-from pipeline.run import run_study
-from pipeline.verify import verify_store
-from pipeline.workflow import parse_workflow
+from pipeline.execute.run import run_study
+from pipeline.store.verify import verify_store
+from pipeline.tables.contact import bootstrap_mean
+from pipeline.tables.reduce import reduce_store
+from pipeline.workflow.load import parse_workflow
 
 from ...helpers import QUIET
 

@@ -8,9 +8,9 @@ import json
 import pytest
 
 from pipeline.make_figures import SCENES as PAPER_SCENES
-from pipeline.scenes import load_scene, scene_label, shipped_draft
 from pipeline.studies.contact import SCENES
 from pipeline.studies.contact.claims import MODELS
+from pipeline.workflow.scenes import load_scene, scene_label, shipped_draft
 
 from ..klages2004.test_make_figures import _run_outside, installed  # noqa: F401 (fixture)
 
@@ -48,7 +48,7 @@ def test_scenes_without_a_shipped_draft_keep_the_generic_draft():
 
 
 def test_the_wheel_ships_the_contact_scenes_and_their_drafts(installed, tmp_path):  # noqa: F811
-    code = ("import json; from pipeline.scenes import load_scene\n"
+    code = ("import json; from pipeline.workflow.scenes import load_scene\n"
             "from pipeline.studies.contact import SCENES\n"
             "print(json.dumps([load_scene(n, fast=True).source for n in SCENES]))")
     got = json.loads(_run_outside(installed, code, tmp_path).strip().splitlines()[-1])

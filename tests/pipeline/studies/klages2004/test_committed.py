@@ -221,8 +221,8 @@ def _stops(text: str) -> dict[str, str]:
 
 
 def test_no_row_that_stopped_with_its_target_met_shows_a_wider_ci_than_the_target():
-    from pipeline.scenes import scene_path
-    from pipeline.workflow import parse_workflow
+    from pipeline.workflow.load import parse_workflow
+    from pipeline.workflow.scenes import scene_path
 
     checked = 0
     for scene, t in _diffusion_tables().items():

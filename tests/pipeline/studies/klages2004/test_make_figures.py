@@ -14,8 +14,8 @@ from pathlib import Path
 import pytest
 
 from pipeline.make_figures import SCENES
-from pipeline.scenes import draft_text, load_scene, scene_label, scene_names, scene_path
-from pipeline.scenes import toml_dump as _toml_dump
+from pipeline.workflow.scenes import draft_text, load_scene, scene_label, scene_names, scene_path
+from pipeline.workflow.scenes import toml_dump as _toml_dump
 
 
 @pytest.mark.parametrize("name", SCENES)
@@ -62,7 +62,7 @@ def test_the_run_log_records_paths_relative_to_the_repository(tmp_path):
     import os
 
     from pipeline.make_figures import run_log_entry
-    from pipeline.scenes import ROOT
+    from pipeline.workflow.scenes import ROOT
 
     for store in (ROOT / "runs" / "figure2.zarr", tmp_path / "runs" / "figure2.zarr"):
         entry = run_log_entry("figure2", str(store))
@@ -76,7 +76,7 @@ def test_the_run_log_records_paths_relative_to_the_repository(tmp_path):
 def test_the_committed_run_log_holds_no_absolute_path():
     import json
 
-    from pipeline.scenes import ROOT
+    from pipeline.workflow.scenes import ROOT
 
     log = json.loads((ROOT / "figures" / "run_log.json").read_text())
     for name, entry in log["scenes"].items():
@@ -128,7 +128,7 @@ def _run_outside(py: Path, code: str, cwd: Path) -> str:
 
 def test_a_wheel_ships_every_scene_and_module(installed, tmp_path):
     code = ("import pipeline, bbb, json; from pipeline.make_figures import SCENES; "
-            "from pipeline.scenes import load_scene, scene_names\n"
+            "from pipeline.workflow.scenes import load_scene, scene_names\n"
             "[load_scene(n, fast=f) for n in SCENES for f in (False, True)]\n"
             "print(json.dumps({'file': pipeline.__file__, 'scenes': scene_names(), "
             "'version': bbb.__version__}))")

@@ -1,5 +1,5 @@
 """The mechanisms claim rules on tables with known answers: the contrast columns come from real
-expansions of AR(1) jump sequences (pipeline.mechanisms' own contrast step), so a verdict
+expansions of AR(1) jump sequences (pipeline.tables.mechanisms' own contrast step), so a verdict
 here is the one the pipeline would give for that split."""
 
 from __future__ import annotations
@@ -10,10 +10,10 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from bbb.greenkubo import expansion
-from pipeline.claims import evaluate_claim
-from pipeline.mechanisms import _with_contrasts
+from bbb.analysis.greenkubo import expansion
+from pipeline.claims.record import evaluate_claim
 from pipeline.studies.mechanisms.claims import CLAIMS, EXTREMA
+from pipeline.tables.mechanisms import _with_contrasts
 
 M3 = CLAIMS[2]  # the maximum at 60 Hz
 FREQS = (58.0, 60.0, 62.0)
@@ -138,8 +138,8 @@ def test_the_figure_has_a_caption_and_draws_the_contrasts(tmp_path):
 
 @pytest.mark.parametrize("fast", [True, False])
 def test_scene_caps_lyapunov_particles_and_records_collision_jumps(fast):
-    from pipeline.scenes import ROOT, draft_text
-    from pipeline.workflow import parse_workflow
+    from pipeline.workflow.load import parse_workflow
+    from pipeline.workflow.scenes import ROOT, draft_text
 
     text = (ROOT / "workflows" / "mechanisms.toml").read_text(encoding="utf-8")
     study = parse_workflow(draft_text(text) if fast else text, source="mechanisms.toml")

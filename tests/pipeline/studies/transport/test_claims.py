@@ -6,8 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pipeline.claims import evaluate
-from pipeline.scenes import load_scene
+from pipeline.claims.record import evaluate
 from pipeline.studies.transport.claims import (
     CLAIMS,
     CONVEYORS,
@@ -19,6 +18,7 @@ from pipeline.studies.transport.claims import (
     significant_signs,
     sliding_liftoff,
 )
+from pipeline.workflow.scenes import load_scene
 
 F = np.arange(50.0, 100.1, 2.0)  # the scenes' 26 frequencies
 SE = 0.5  # mm/s: standard error of each v
@@ -172,7 +172,7 @@ def test_extrema_where_D_about_the_drift_is_not_diffusive_are_not_counted():
 def test_the_docs_quote_the_committed_calibration_and_benchmark():
     from pathlib import Path
 
-    from bbb.transport import CURVATURE_TOL, STEADY_SE
+    from bbb.analysis.transport import CURVATURE_TOL, STEADY_SE
     from pipeline.studies.transport.claims import MIRROR
 
     doc = (Path(__file__).resolve().parents[4] / "docs" / "statistics.md").read_text("utf-8")

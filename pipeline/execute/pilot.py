@@ -1,0 +1,176 @@
+"""The pilot of ``bbb plan``: what a workflow's cost is measured from, on this machine.
+
+* Collisions per particle-second, c(f, family): measured by a *pilot* -- a few particles
+  (default 8) over the workflow's own t_max, with its own parameters, numerics and family, at
+  every frequency.  The collision count of the kernel is exact and deterministic (same seeds,
+  same count on any machine), and c varies irregularly with f (1070 per particle-s in the
+  creeping band 50-58 Hz from rest, ~50 in the spirals; benchmarks/results/pipeline-*.txt),
+  so no interpolation over f from a table can stand in for it.  The pilot runs the whole
+  t_max because c is not constant in time (launched particles fall into creeping one by one
+  at 54-55 Hz; creeping from rest starts with a cascade), so a short pilot would be biased.
+  It is cheap because it is few particles: for Fig. 2, 8 x 50 s at 124 frequencies is
+  ~8 CPU-s, against 3409 CPU-s for the run.  Results are cached per (kernel, parameters,
+  numerics, t_max, family, frequency), so a second ``bbb plan`` -- or the same scene at
+  another preset with the same t_max and numerics -- runs nothing.
+* Kernel rate r (collisions per CPU-second of one core): the pilot's collisions over its own
+  process CPU time (not wall time, so a load from other users while planning does not enter
+  it); a pilot of less than TIMING_FLOOR_S CPU-s is timed again until its repeats reach it,
+  and each cell keeps its fastest time (a short timing on a shared VM can read slow:
+  benchmarks/results/pilot-timing-2026-11-24.md).
+
+:func:`pilot_rates` returns a :class:`pipeline.execute.plan.Rates` table; :func:`benchmark_rate`
+reads a kernel rate from a committed benchmark instead.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import math
+import os
+import time
+from dataclasses import replace
+from datetime import UTC, datetime
+from pathlib import Path
+
+# PILOT_CHUNK, the pilot's chunk index in the seed (no real chunk has it): importable from here
+# as before pipeline.workflow.identity
+from ..workflow.identity import PILOT_CHUNK, f_key, pilot_seed  # noqa: F401
+from ..workflow.study import Study
+from .plan import Cell, Rates
+
+__all__ = ["pilot_rates", "benchmark_rate", "PILOT_PARTICLES", "TIMING_FLOOR_S"]
+
+#: pilot particles per (frequency, family)
+PILOT_PARTICLES = 8
+#: a pilot that measured less CPU than this, s, is timed again (same seeds) until its repeats
+#: add up to it, and each cell keeps its fastest repeat: on a shared 2-core VM a 0.3 s pilot
+#: timed once can read slow enough to push the tiny scene of tests/pipeline/execute/test_plan.py past
+#: its band (benchmarks/results/pilot-timing-2026-11-24.md)
+TIMING_FLOOR_S = 1.5
+#: a cached pilot older than its format is recomputed
+CACHE_VERSION = 1
+
+
+def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
+                cache_dir: str | os.PathLike | None = "runs/plan-cache",
+                echo=None) -> Rates:
+    """Measure (or read from the cache) a pilot :class:`Cell` at every (frequency, family)
+    of ``study``: ``particles`` particles, at most half the study's, over its t_max."""
+    from bbb.provenance import kernel_hash
+
+    acc = study.accuracy
+    n = max(1, min(particles, acc.n_particles // 2))
+    cells: dict[tuple[int, str], Cell] = {}
+    todo = []
+    caches = {}
+    for fam in study.families:
+        ident = {"v": CACHE_VERSION, "kernel": kernel_hash(), "params": study.base_params,
+                 "numerics": {k: getattr(acc, k) for k in ("tol_t", "v_stick", "max_step")},
+                 "t_max": acc.t_max, "sample_dt": acc.sample_dt, "n": n, "seed": study.seed,
+                 "family": {k: v for k, v in vars(fam).items() if k != "description"},
+                 "analysis": vars(study.analysis), "positions": bool(study.observables.positions)}
+        digest = hashlib.sha256(json.dumps(ident, sort_keys=True, default=str).encode())
+        path = Path(cache_dir) / f"{digest.hexdigest()[:20]}.json" if cache_dir else None
+        stored = json.loads(path.read_text()) if path and path.exists() else {}
+        caches[fam.name] = (path, stored)
+        for f in study.frequencies:
+            key = str(f_key(f))
+            if key in stored:
+                cells[(f_key(f), fam.name)] = Cell(**stored[key]["cell"])
+            else:
+                todo.append((f, fam))
+    when = {s.get("_measured") for _, s in caches.values() if s}
+    if todo:
+        from .task import warm_numba
+
+        warm_numba(study)
+        if echo:
+            echo(f"{study.name}: pilot of {n} particles x {acc.t_max:g} s at {len(todo)} "
+                 "(frequency, family) pairs ...")
+        measured = _fastest_timings(study, todo, n)
+        cells.update(measured)
+        for (mhz, name), cell in measured.items():
+            caches[name][1][str(mhz)] = {"cell": vars(cell)}
+        now = datetime.now(UTC).strftime("%Y-%m-%d %H:%M UTC")
+        for path, stored in caches.values():
+            if path is not None:
+                stored.setdefault("_measured", now)
+                path.parent.mkdir(parents=True, exist_ok=True)
+                path.write_text(json.dumps(stored, indent=0, sort_keys=True))
+        when.add(now)
+    when.discard(None)
+    src = (f"pilot {n} particles x {acc.t_max:g} s per (frequency, family), "
+           f"measured {', '.join(sorted(when))}" + (", cached" if not todo else ""))
+    return Rates(cells, source=src)
+
+
+def benchmark_rate(path: str | os.PathLike) -> float:
+    """Collisions per second of one core from a ``benchmarks/kernel.py`` table
+    (benchmarks/results/kernel-*.txt): summed collisions over summed wall time of its rows."""
+    coll = wall = 0.0
+    for line in Path(path).read_text(encoding="utf-8").splitlines():
+        parts = line.split()
+        if len(parts) == 5 and not line.startswith("#"):
+            try:
+                _, c, w, _ = float(parts[0]), float(parts[2]), float(parts[3]), float(parts[4])
+            except ValueError:
+                continue
+            coll, wall = coll + c, wall + w
+    if wall <= 0:
+        raise ValueError(f"{path}: no rows 'f family collisions wall rate' of a kernel benchmark")
+    return coll / wall
+
+
+def _fastest_timings(study: Study, todo, n: int) -> dict[tuple[int, str], Cell]:
+    """The pilot cell at each (f, family) of ``todo``, keyed (f in mHz, family name), its
+    cpu_s the least of its timings: the pilot is timed again (same seeds, so the same
+    collisions) until all its timings add up to TIMING_FLOOR_S, at most 20 rounds."""
+    cells = {(f_key(f), fam.name): _pilot_cell(study, f, fam, n) for f, fam in todo}
+    timed = sum(c.cpu_s for c in cells.values())
+    for _ in range(20):
+        if timed >= TIMING_FLOOR_S:
+            break
+        for f, fam in todo:
+            key = (f_key(f), fam.name)
+            cpu = _pilot_cpu(study, f, fam, n)
+            timed += cpu
+            cells[key] = replace(cells[key], cpu_s=min(cells[key].cpu_s, cpu))
+    return cells
+
+
+def _pilot_run(study: Study, f: float, fam, n: int):
+    """The pilot's simulation at (f, family): (SimRun, its process CPU time in s, seed)."""
+    from bbb.simulate import simulate
+
+    acc = study.accuracy
+    positions = bool(study.observables.positions)
+    seed = pilot_seed(study, f, fam)
+    t0 = time.process_time()
+    run = simulate(study.params(f), n, acc.t_max, seed,
+                   sample_times=study.sample_times() if positions else None,
+                   numerics=acc.numerics(), **fam.simulate_kwargs())
+    return run, time.process_time() - t0, seed
+
+
+def _pilot_cpu(study: Study, f: float, fam, n: int) -> float:
+    """The pilot at (f, family) timed once more, process CPU s (the same seeds and collisions)."""
+    return _pilot_run(study, f, fam, n)[1]
+
+
+def _pilot_cell(study: Study, f: float, fam, n: int) -> Cell:
+    from bbb.analysis import stats
+
+    acc, an = study.accuracy, study.analysis
+    positions = bool(study.observables.positions)
+    times = study.sample_times()
+    run, cpu, seed = _pilot_run(study, f, fam, n)
+    D = hw = math.nan
+    if positions and n >= 2:
+        T = an.duration(acc.t_max)
+        ci = stats.bootstrap_D(run.positions, times, n_resamples=400, ci=an.ci, seed=seed,
+                               fit_from=an.fit_from * T, fit_to=an.fit_to * T,
+                               discard=an.discard)
+        D, hw = ci.D, (ci.hi - ci.lo) / 2
+    return Cell(float(f), fam.name, n, acc.t_max, int(run.counters["collisions"].sum()),
+                cpu, float(D), float(hw))

@@ -1,0 +1,188 @@
+"""The Dask task: one (frequency, family, chunk) simulated on a worker and written to its own
+store chunk.
+
+:func:`compute_chunk` is all a worker runs (besides :func:`warm_numba`): it checks that the
+worker's kernel is the store's, simulates the chunk's particles from the chunk's seed
+(:meth:`pipeline.workflow.study.Study.seed_sequence`), adds the [jumps] and [lyapunov] observables,
+and writes the chunk, marking it done last.  The client side -- the cluster, which chunks to
+compute, resume, failures -- is :mod:`pipeline.execute.run`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import socket
+import time
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..store.layout import n_periods
+from ..store.study_store import KERNEL_ATTRS, StudyStore
+from ..workflow.study import Study
+
+__all__ = ["ChunkResult", "InjectedFailure", "KernelMismatch", "compute_chunk", "warm_numba",
+           "FAIL_ENV"]
+
+#: the environment variable of fault injection (read by the client, :mod:`pipeline.execute.run`)
+FAIL_ENV = "BBB_FAIL_CHUNKS"
+ChunkKey = tuple[float, str, int]  # (f in Hz, family name, chunk index)
+
+class InjectedFailure(RuntimeError):
+    """The failure asked for by BBB_FAIL_CHUNKS."""
+
+
+@dataclass(frozen=True)
+class ChunkResult:
+    """What a task reports back: its key, collisions simulated, the wall time of the
+    simulation and of the store writes (s), and the worker's host."""
+
+    key: ChunkKey
+    collisions: int
+    seconds: float
+    write_seconds: float
+    host: str
+
+
+
+def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = False
+                  ) -> ChunkResult:
+    """The Dask task: simulate one chunk of particles and write it to its own store chunk."""
+    from bbb.simulate import simulate
+
+    t0 = time.perf_counter()
+    study = store.study
+    f, fam = study.frequencies[fi], study.families[mi]
+    _check_kernel(store)
+    acc, obs = study.accuracy, study.observables
+    times, pick, period_cols = _sample_grid(study, f)
+    run = simulate(
+        study.params(f), acc.chunk_size, acc.t_max, study.seed_sequence(f, fam, ci),
+        sample_times=times,
+        record_collisions=_rows_recorded(obs), record_from=obs.collisions_from,
+        numerics=acc.numerics(), **_initial(study, f, fam, ci),
+    )
+    extra = {}
+    if obs.collisions_x_jumps:
+        run, extra = _split_collision_jumps(run, obs)
+    if obs.jumps:
+        extra["jumps"] = np.diff(run.positions[:, period_cols], axis=1).astype(np.float32)
+    if pick is not None:
+        run = dataclasses.replace(run, positions=run.positions[:, pick])
+    if obs.lyapunov:
+        extra.update(_lyapunov_chunk(study, f, fam, ci))
+    seconds = time.perf_counter() - t0
+    store.write_chunk(fi, mi, ci, run, seconds, mark_done=not fail, extra=extra)
+    if fail:
+        raise InjectedFailure(f"{FAIL_ENV} asked this chunk to fail after writing its data")
+    return ChunkResult((f, fam.name, ci), int(run.counters["collisions"].sum()), seconds,
+                       time.perf_counter() - t0 - seconds, socket.gethostname())
+
+
+def _initial(study: Study, f: float, fam, ci: int) -> dict:
+    """bbb.simulate's initial-condition keywords for one chunk: the family's draw from the
+    chunk's seed, or, with mirror pairs (Study.pairing), half of it followed by the partners
+    (bbb.ensemble.mirror_pairs)."""
+    kw = fam.simulate_kwargs()
+    if study.pairing(fam) != "pairs":
+        return kw
+    from bbb.ensemble import mirror_pairs
+
+    return {"initial": mirror_pairs(study.params(f), study.accuracy.chunk_size,
+                                    study.seed_sequence(f, fam, ci), kw.pop("initial"), **kw)}
+
+
+def _sample_grid(study: Study, f: float) -> tuple[np.ndarray | None, np.ndarray | None,
+                                                  np.ndarray | None]:
+    """The sample times of one chunk's simulation: the positions' grid and, with jumps, the
+    floor periods n/f, n = 0 … floor(t_max f).  Returns (times, columns of the positions
+    grid or None when it is all of them, columns of the period grid or None)."""
+    obs = study.observables
+    pos = study.sample_times() if obs.positions else None
+    if not obs.jumps:
+        return pos, None, None
+    periods = np.minimum(np.arange(n_periods(study.accuracy.t_max, f) + 1) / f,
+                         study.accuracy.t_max)
+    times = periods if pos is None else np.union1d(pos, periods)
+    pick = np.searchsorted(times, pos) if pos is not None else None
+    return times, pick, np.searchsorted(times, periods)
+
+
+def _rows_recorded(obs) -> int:
+    """Collisions recorded per particle: [collisions] record, or x_jumps + 1 when more."""
+    return max(obs.collisions_record or 0, (obs.collisions_x_jumps + 1) if obs.collisions_x_jumps
+               else 0)
+
+
+def _split_collision_jumps(run, obs) -> tuple:
+    """The per-collision x and t jumps of the recording (float32, ``x_jumps`` per particle),
+    and the run cut to the first ``record`` rows for the collisions array."""
+    from bbb.analysis.greenkubo import collision_jumps
+
+    J = obs.collisions_x_jumps
+    dx, dt = collision_jumps(run.collisions_dense[:, : J + 1], np.minimum(run.n_recorded, J + 1))
+    K = obs.collisions_record
+    cut = dataclasses.replace(run, collisions_dense=run.collisions_dense[:, :K],
+                              n_recorded=np.minimum(run.n_recorded, K))
+    return cut, {"collision_dx": dx.astype(np.float32), "collision_dt": dt.astype(np.float32)}
+
+
+def _lyapunov_chunk(study: Study, f: float, fam, ci: int) -> dict[str, np.ndarray]:
+    """λ (1/s, per collision) of this chunk's particles among the first
+    ``lyapunov_particles`` of the ensemble, from the same initial states as the chunk."""
+    from bbb.analysis.lyapunov import lyapunov
+    from bbb.ensemble import InitialState, initial_state
+
+    obs, acc = study.observables, study.accuracy
+    first = ci * acc.chunk_size
+    k = min(acc.chunk_size, obs.lyapunov_particles - first)
+    if k <= 0:
+        return {}
+    p = study.params(f)
+    kw = _initial(study, f, fam, ci)
+    st = kw.pop("initial")
+    if isinstance(st, str):
+        st = initial_state(p, acc.chunk_size, study.seed_sequence(f, fam, ci), st, **kw)
+    sub = InitialState(**{fd.name: getattr(st, fd.name)[:k] for fd in dataclasses.fields(st)})
+    lam = lyapunov(p, k, acc.t_max, 0, sub, discard=obs.lyapunov_discard, d0=obs.lyapunov_d0,
+                   numerics=acc.numerics(), n_resamples=10)
+    return {"lyapunov": lam.lam_i, "lyapunov_per_collision": lam.per_coll_i,
+            "lyapunov_x_range": lam.x_range}
+
+
+class KernelMismatch(RuntimeError):
+    """This worker's kernel (bbb sources, numba, numpy) is not the one that made the store."""
+
+
+def _check_kernel(store: StudyStore) -> None:
+    # The client checked the store against its own kernel; a worker of a remote cluster may
+    # run another installation of bbb.  Checked before anything is written.
+    from bbb.provenance import kernel_identity
+
+    attrs, mine = store.attrs(), kernel_identity()
+    for key in KERNEL_ATTRS:
+        if attrs.get(key) != mine[key]:
+            raise KernelMismatch(f"worker {socket.gethostname()} runs another kernel ({key}: "
+                                 f"worker {mine[key]}, store {attrs.get(key)}); allowed: workers "
+                                 "with the same bbb, numba and numpy as the store's")
+
+
+def warm_numba(study: Study) -> float:
+    """Compile (or load from numba's on-disk cache) everything a task runs; returns seconds.
+
+    One tiny simulate call per family with the study's observables, so that no task compiles
+    and no two processes write the same cache entry at once (numba issue #4807).
+    """
+    import numpy as np
+
+    from bbb.simulate import simulate
+
+    t0 = time.perf_counter()
+    obs = study.observables
+    t = min(0.05, study.accuracy.t_max)
+    for fam in study.families:
+        simulate(study.params(study.frequencies[0]), 2, t, 0,
+                 sample_times=np.array([0.0, t]) if obs.positions else None,
+                 record_collisions=2 if obs.collisions else 0, record_from=0.0,
+                 numerics=study.accuracy.numerics(), **fam.simulate_kwargs())
+    return time.perf_counter() - t0

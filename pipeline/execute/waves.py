@@ -1,0 +1,331 @@
+"""Run an adaptive study on a Dask client: waves of chunks per (frequency, family) and
+refinement rounds, every decision taken on the client by the rules of :mod:`pipeline.execute.adaptive`.
+
+While one (frequency, family) waits for its wave, the others keep the workers busy: the next
+wave of a (frequency, family) is submitted as soon as its current wave is complete.  A
+decision reads the first n chunks of the store (never the ones that happened to finish first)
+and computes D's CI with :func:`interval_of`, seeded by (f in mHz, family, "stop", n): the
+store is the same whatever the worker count, and a re-run replays the decisions from the done
+chunks (:meth:`Waves.plan`).
+
+**One CI.**  :func:`row_intervals` is the only place D's CI of a (frequency, family) and of a
+frequency's pooled families is computed: the stopping rule decides on it, `bbb reduce` reports
+it (columns D_<family>_lo/hi, and D_lo/hi, which with a single family are the same interval),
+and refinement reads it.  So a (frequency, family) that stopped as "target met" shows in the
+table the very half-width that met the target.
+"""
+
+from __future__ import annotations
+
+import sys
+import uuid
+from collections.abc import Callable
+
+import numpy as np
+
+from bbb.analysis.stats.interval import DInterval
+
+from ..store.layout import OPEN, STOP_LEGEND, ZERO
+from ..store.study_store import StudyStore
+from ..workflow.identity import f_key, reduce_seed, stop_seed  # stop_seed: importable from here as before
+from ..workflow.study import Study
+from .adaptive import (
+    StoppingRule,
+    UnitState,
+    advance,
+    decide,
+    refine_frequencies,
+    remaining,
+)
+
+__all__ = ["Waves", "rule_of", "stop_seed", "interval_of", "pair_units", "row_intervals",
+           "unit_ci", "pooled_ci"]
+
+Unit = tuple[int, int]  # (frequency index, family index)
+
+
+def rule_of(study: Study) -> StoppingRule:
+    acc = study.accuracy
+    if not acc.adaptive:
+        return StoppingRule.fixed(acc.n_chunks)
+    return StoppingRule(acc.target_ci, acc.d_resolved, acc.n_chunks, 1)
+
+
+def interval_of(study: Study, x: np.ndarray, seed, units: np.ndarray | None = None
+                ) -> DInterval | None:
+    """D's CI (:class:`bbb.analysis.stats.interval.DInterval`, mm²/s) of positions x (particle, time)
+    with the study's estimator, fit range, level, method and resamples, resampling the
+    ``units`` (mirror pairs, :func:`pair_units`) when given; None below 2 particles."""
+    from bbb.analysis import stats
+
+    if x.shape[0] < 2:
+        return None
+    an = study.analysis
+    T = an.duration(study.accuracy.t_max)
+    return stats.bootstrap_D(x, study.sample_times(), n_resamples=study.accuracy.n_resamples,
+                             ci=an.ci, seed=seed, method=an.ci_method, fit_from=an.fit_from * T,
+                             fit_to=an.fit_to * T, discard=an.discard, detail=True, units=units)
+
+
+def pair_units(study: Study, sizes: list[tuple[object, int]]) -> np.ndarray | None:
+    """The labels of the independent units of the particles of ``sizes`` = [(family, number
+    of its particles), ...] pooled in that order: mirror pairs when every family holds them
+    (:meth:`pipeline.workflow.study.Study.pairing`; each chunk's second half partners its first half,
+    bbb.ensemble.mirror_pairs), else None (particles are the units)."""
+    from bbb.analysis.transport import PAIRS
+    from bbb.ensemble import mirror_pair_units
+
+    if not sizes or any(study.pairing(fam) != PAIRS for fam, _ in sizes):
+        return None
+    labels, offset = [], 0
+    for _, n in sizes:
+        labels.append(mirror_pair_units(n, study.accuracy.chunk_size) + offset)
+        offset += n // 2
+    return np.concatenate(labels)
+
+
+def row_intervals(study: Study, fi: int, parts: dict[int, tuple[np.ndarray, int]]
+                  ) -> tuple[dict[int, DInterval], DInterval | None]:
+    """D's CIs at frequency index fi from ``parts`` = {family index: (positions, chunks
+    used)}: (per family with >= 2 particles, pooled).  A family's CI is seeded by
+    :func:`stop_seed` with its chunk count, so it is the CI its last stopping decision read;
+    the pooled CI is that same CI when one family has data, else the bootstrap of all pooled
+    (seeded by the reduction's key)."""
+
+    f = study.frequencies[fi]
+    fam = study.families
+    fams = {mi: interval_of(study, x, stop_seed(study, f, fam[mi], n),
+                            pair_units(study, [(fam[mi], x.shape[0])]))
+            for mi, (x, n) in parts.items() if x.shape[0] >= 2}
+    if len(fams) == 1:
+        return fams, next(iter(fams.values()))
+    if not fams:
+        return fams, None
+    x = np.concatenate([parts[mi][0] for mi in fams])
+    units = pair_units(study, [(fam[mi], parts[mi][0].shape[0]) for mi in fams])
+    return fams, interval_of(study, x, reduce_seed(study, f), units)
+
+
+def _as_ci(r: DInterval | None) -> tuple[float, float, float]:
+    return (np.nan, np.nan, np.nan) if r is None else (r.D, r.lo, r.hi)
+
+
+def unit_ci(store: StudyStore, fi: int, mi: int, n: int) -> tuple[float, float, float]:
+    """(D, lo, hi), mm²/s, of (frequency fi, family mi) from its first n chunks (hi NaN when
+    no particle moved: that leaves the unit open, :func:`pipeline.execute.adaptive.decide`)."""
+    study = store.study
+    first = np.arange(study.accuracy.n_chunks) < n
+    x = store.read_done("positions", fi, mi, first)
+    return _as_ci(row_intervals(study, fi, {mi: (x, n)})[0].get(mi))
+
+
+def pooled_ci(store: StudyStore, fi: int, done: np.ndarray) -> tuple[float, float, float]:
+    """(D, lo, hi) of all families pooled at frequency fi, as `bbb reduce` reports D_lo/hi."""
+    study = store.study
+    parts = {mi: (store.read_done("positions", fi, mi, done[fi, mi]), int(done[fi, mi].sum()))
+             for mi in range(len(study.families))}
+    return _as_ci(row_intervals(study, fi, parts)[1])
+
+
+def _prefix(done_fm: np.ndarray) -> int:
+    """How many leading chunks are done."""
+    return int(np.argmin(done_fm)) if not done_fm.all() else done_fm.size
+
+
+class Waves:
+    """The state of an adaptive run: one :class:`UnitState` per (frequency, family)."""
+
+    def __init__(self, store: StudyStore, echo: Callable[[str], None] = print):
+        self.store, self.echo = store, echo
+        self.rule = rule_of(store.study)
+        self.states: dict[Unit, UnitState] = {}
+        self.rounds = 0
+
+    # -- deciding ----------------------------------------------------------------------------
+    def plan(self, fis) -> None:
+        """(Re-)derive the state of every unit at the frequency indices ``fis`` from the done
+        chunks, replaying the rule from wave 1; records the stops it finds."""
+        store, study = self.store, self.store.study
+        done, stops = store.done(), store.stops()
+        for fi in fis:
+            for mi in range(len(study.families)):
+                if stops is not None and stops[1][fi, mi] != OPEN:  # decided and recorded
+                    n = int(stops[0][fi, mi])
+                    state = UnitState(n, [n], int(stops[1][fi, mi]))
+                    if state.reason == ZERO:
+                        state = self._recheck_zero(fi, mi, state, done[fi, mi])
+                else:
+                    state = self._advance(None, fi, mi, _prefix(done[fi, mi]))
+                self.states[(fi, mi)] = state
+                self._drop_beyond(fi, mi, done[fi, mi])
+
+    def _recheck_zero(self, fi, mi, state: UnitState, done_fm: np.ndarray) -> UnitState:
+        """A recorded "resolved zero" stands only if the rule still takes it: a store decided
+        before a sample with no mover had an unbounded CI (it had [0, 0], "resolved") is
+        reopened and sampled on.  One bootstrap per such unit, so cheap; other stops are
+        unaffected by that change and are not re-derived."""
+        if _prefix(done_fm) < state.n:
+            return state
+        reason, n_next = decide(self.rule, state.n, unit_ci(self.store, fi, mi, state.n))
+        if reason != OPEN:
+            return state
+        study = self.store.study
+        self.echo(f"{study.name}: f = {study.frequencies[fi]:g} Hz, {study.families[mi].name}: "
+                  f"recorded as resolved zero after {state.n} chunks, but no particle moved "
+                  f"(D has no upper bound yet): reopened, next wave {n_next} chunks")
+        g = self.store.group("r+")
+        g["stop_reason"][fi, mi] = OPEN  # first: an interrupted reopening stays open
+        g["n_chunks_used"][fi, mi] = 0
+        return UnitState(n_next, [state.n, n_next], OPEN, n_next)
+
+    def _advance(self, state, fi, mi, prefix) -> UnitState:
+        state = advance(self.rule, state, prefix,
+                        lambda n: unit_ci(self.store, fi, mi, n))
+        if state.reason != OPEN and self.store.study.accuracy.adaptive:
+            self.store.write_stop(fi, mi, state.n, state.reason)
+        return state
+
+    def _drop_beyond(self, fi, mi, done_fm) -> None:
+        # A done chunk the rule never asked for would change D if reduced: it is unmarked.
+        n = self.states[(fi, mi)].n
+        beyond = np.flatnonzero(done_fm[n:]) + n
+        if beyond.size:
+            g = self.store.group("r+")
+            for ci in beyond:
+                g["done"][fi, mi, int(ci)] = False
+            f, fam = self.store.study.frequencies[fi], self.store.study.families[mi].name
+            self.echo(f"{self.store.study.name}: f = {f:g} Hz, {fam}: chunks "
+                      f"{beyond.tolist()} lie beyond what the rule asks for (first {n}); "
+                      "unmarked as done")
+
+    def missing(self) -> list[tuple[int, int, int]]:
+        """(fi, mi, ci) of the chunks the open units want and do not have, fi-major."""
+        done = self.store.done()
+        return [(fi, mi, ci) for (fi, mi), s in sorted(self.states.items()) if s.reason == OPEN
+                for ci in range(s.n) if not done[fi, mi, ci]]
+
+    def refine(self) -> bool:
+        """One refinement round, once every unit has stopped: grow the store by the
+        frequencies the rule adds and plan them.  False if the grid is fine enough."""
+        study = self.store.study
+        if study.refine is None or any(s.reason == OPEN for s in self.states.values()):
+            return False
+        done = self.store.done()
+        table = np.array([pooled_ci(self.store, fi, done) for fi in range(len(study.frequencies))])
+        rf = study.refine
+        new = refine_frequencies(study.f_mhz, table[:, 0], table[:, 1], table[:, 2], to=rf.to,
+                                 ci=study.analysis.ci, extrema=rf.extrema, jumps=rf.jumps)
+        new = [m for m in new if m not in set(study.f_mhz)]
+        if not new:
+            return False
+        self.rounds += 1
+        old = len(study.frequencies)
+        self.store = self.store.add_frequencies(tuple(m / 1000 for m in new))
+        self.echo(f"{study.name}: refinement round {self.rounds}: {len(new)} frequencies added "
+                  f"({', '.join(f'{m / 1000:g}' for m in new[:8])}{' ...' if len(new) > 8 else ''} Hz)")
+        self.plan(range(old, len(self.store.study.frequencies)))
+        return True
+
+    def prepare(self) -> list[tuple[int, int, int]]:
+        """Plan every unit, refine while nothing is missing; the chunks to compute."""
+        self.plan(range(len(self.store.study.frequencies)))
+        while not (todo := self.missing()) and self.refine():
+            pass
+        return todo
+
+    def summary(self) -> str:
+        counts: dict[int, int] = {}
+        for s in self.states.values():
+            counts[s.reason] = counts.get(s.reason, 0) + 1
+        return ", ".join(f"{counts[k]} {STOP_LEGEND[k]}" for k in sorted(counts))
+
+    # -- computing ---------------------------------------------------------------------------
+    def execute(self, client, fails, report, progress: bool, compute_chunk, on_failure) -> None:
+        """Compute until every unit has stopped and refinement adds nothing."""
+        from distributed import as_completed
+        from tqdm import tqdm
+
+        token = uuid.uuid4().hex[:8]
+        bar = tqdm(total=0, unit="chunk", disable=not progress, file=sys.stderr,
+                   desc=self.store.study.name, smoothing=0.1)
+        pending: dict = {}
+        outstanding: dict[Unit, set[int]] = {}
+        ac = as_completed()
+        # chunks done per unit, kept here: the progress line must not re-read the store's
+        # `done` flags (one file per chunk) at every submit — that made the client the
+        # bottleneck of make figures (~90 % of its time in zarr reads)
+        done_counts: dict[Unit, int] = {}
+
+        def count_done() -> None:
+            done = self.store.done()
+            done_counts.clear()
+            done_counts.update({(fi, mi): int(done[fi, mi].sum()) for fi, mi in self.states})
+
+        def submit(chunks) -> None:
+            study = self.store.study
+            for fi, mi, ci in chunks:
+                f, fam = study.frequencies[fi], study.families[mi]
+                fail = (f_key(f), fam.name, ci) in fails
+                fut = client.submit(compute_chunk, self.store, fi, mi, ci, fail,
+                                    key=f"bbb-{f_key(f)}mHz-{fam.name}-{ci}-{token}",
+                                    priority=-fi, retries=0, pure=False)
+                pending[fut] = (fi, mi, ci)
+                outstanding.setdefault((fi, mi), set()).add(ci)
+                ac.add(fut)
+            bar.total += len(chunks)
+            self._postfix(bar, done_counts)
+            bar.refresh()
+
+        try:
+            count_done()
+            submit(self.missing())
+            while True:
+                for fut in ac:
+                    fi, mi, ci = pending.pop(fut)
+                    try:
+                        res = fut.result()
+                    except Exception as e:
+                        on_failure(fut, self.store.study, fi, mi, ci, e,
+                                   lambda: client.cancel(list(pending)))
+                    report.computed.append(res.key)
+                    report.collisions += res.collisions
+                    report.task_seconds += res.seconds
+                    report.write_seconds += res.write_seconds
+                    bar.update(1)
+                    done_counts[(fi, mi)] = done_counts.get((fi, mi), 0) + 1
+                    outstanding[(fi, mi)].discard(ci)
+                    if not outstanding[(fi, mi)]:  # its wave is complete: decide
+                        state = self.states[(fi, mi)]
+                        # only the first state.n flags: none beyond is done (plan() unmarks
+                        # them, and only chunks below state.n are submitted); the whole row is
+                        # one file per chunk, read twice per decision (figure2_matyas2004: 128)
+                        self._advance(state, fi, mi, _prefix(self._done(fi, mi, state.n)))
+                        if state.reason == OPEN:
+                            done = self._done(fi, mi, state.n)
+                            submit([(fi, mi, c) for c in range(state.n) if not done[c]])
+                        self._postfix(bar, done_counts)
+                if not self.refine():
+                    break
+                count_done()  # the store grew by the refined frequencies
+                submit(self.missing())
+        finally:
+            bar.close()
+
+    def _done(self, fi: int, mi: int, n: int) -> np.ndarray:
+        """The done flags of the first n chunks of (fi, mi)."""
+        return np.asarray(self.store.group()["done"][fi, mi, :n], dtype=bool)
+
+    def progress_line(self, done_counts: dict[Unit, int] | None = None) -> str:
+        """What the waves still need, e.g. "waves: 12 (f, family) mid-wave, need ~40 more
+        chunks; 100 target met, 20 resolved zero" (the need from the 1/sqrt(N) law).
+        ``done_counts``: chunks done per (fi, mi) if the caller keeps them; else read."""
+        if done_counts is None:
+            done = self.store.done()
+            done_counts = {(fi, mi): int(done[fi, mi].sum()) for fi, mi in self.states}
+        units = sorted(self.states)
+        k, n = remaining([self.states[u] for u in units], [done_counts.get(u, 0) for u in units])
+        return f"waves: {k} (f, family) mid-wave, need ~{n} more chunks; {self.summary()}"
+
+    def _postfix(self, bar, done_counts: dict[Unit, int]) -> None:
+        if not bar.disable:
+            bar.set_postfix_str(self.progress_line(done_counts), refresh=False)

@@ -1,0 +1,384 @@
+"""The Zarr v3 store of one study: opening, resume checks, chunk-aligned writes, done-markers,
+the root attributes and the fingerprint.  Which arrays it holds is :mod:`pipeline.store.layout`.
+
+One Dask task computes one (frequency, family, chunk) and writes exactly one chunk of every
+data array, so concurrent writers never share a chunk.  ``done`` is set only after the data:
+with Zarr v3's ``write_empty_chunks=False`` a chunk's presence proves nothing (an all-NaN or
+all-zero chunk is never written).  Root attributes hold the resolved workflow, its TOML
+source, the parameters, numerics, accuracy, the seeding rule, the package version, the kernel
+that computed the chunks (:func:`bbb.provenance.kernel_identity`: a hash of the kernel's
+sources, the numba and numpy versions) and a fingerprint of everything that determines the
+stored numbers (the workflow's data identity and the kernel); opening the store with a
+workflow of another fingerprint, or with another kernel, is refused.
+
+Root attributes are netCDF-safe (``xr.open_zarr(store).to_netcdf(...)`` works): flat strings
+and numbers; the nested ones (:data:`JSON_ATTRS`) are JSON strings, decoded by
+:func:`read_attrs`.
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import hashlib
+import json
+import os
+import warnings
+from dataclasses import dataclass
+from importlib import metadata
+from typing import Any
+
+import numpy as np
+import zarr
+
+from bbb.provenance import kernel_identity
+from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES
+
+from ..workflow.identity import SEEDING  # importable from here as before identity.py
+from ..workflow.schema import as_dict
+from ..workflow.study import Study
+from .layout import (  # importable from here as before the split
+    COUNTERS,
+    FIELD_UNITS,
+    collision_field_units,
+    create_layout,
+    n_periods,
+)
+
+__all__ = ["StoreError", "StudyStore", "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
+           "package_version", "read_attrs", "store_fingerprint", "JSON_ATTRS", "KERNEL_ATTRS",
+           # of pipeline.store.layout, importable from here too
+           "COUNTERS", "FIELD_UNITS", "collision_field_units", "create_layout", "n_periods"]
+
+# 3: root attributes record the kernel (KERNEL_ATTRS) and are netCDF-safe (JSON_ATTRS are JSON
+#    strings); 2: collisions carry bbb.record.COLLISION_FIELDS (t, x, y, vx, vy, phase);
+#    1 had no phase
+LAYOUT_VERSION = 3
+_OLDER_LAYOUTS = {2: "it records no kernel hash, so whether its chunks were computed by this "
+                     "kernel cannot be known",
+                  1: "its collisions have no floor phase"}
+#: root attributes held as JSON strings (nested dicts, which netCDF attributes cannot hold)
+JSON_ATTRS = ("workflow", "params", "numerics", "accuracy")
+#: root attributes naming the kernel that computed the chunks (bbb.provenance.kernel_identity)
+KERNEL_ATTRS = ("kernel_hash", "numba_version", "numpy_version")
+
+
+class StoreError(ValueError):
+    """A store that cannot be used as asked (wrong workflow, not a bbb store, unwritable)."""
+
+
+def package_version() -> str:
+    try:
+        return metadata.version("bbb")
+    except metadata.PackageNotFoundError:  # running from a source tree without install
+        return "unknown"
+
+
+def normalize_path(path: str | os.PathLike) -> str:
+    """A store path as used everywhere: ``file://`` URLs become plain local paths, and local
+    paths absolute (workers may run in another directory); other URLs are kept."""
+    path = os.fspath(path)
+    if path.startswith("file://"):
+        path = path.removeprefix("file://")
+    return path if "://" in path else os.path.abspath(path)
+
+
+def is_local(path: str) -> bool:
+    """Whether a store path is on the local filesystem (no ``scheme://``)."""
+    return "://" not in path
+
+
+@dataclass(frozen=True)
+class StudyStore:
+    """A handle on one study's store: its path (local or fsspec URL) and its Study."""
+
+    path: str
+    study: Study
+
+    # -- opening ---------------------------------------------------------------------------
+    @classmethod
+    def create_or_open(cls, path: str | os.PathLike, study: Study) -> StudyStore:
+        """Create the whole layout, or reopen an existing store made by the same workflow."""
+        path = normalize_path(path)
+        existing = _open_group(path)
+        if existing is not None:
+            attrs = read_attrs(existing)
+            if "fingerprint" not in attrs:
+                if attrs.get("bbb_creating"):  # layout creation was interrupted: no data yet
+                    return cls._create(path, study, overwrite=True)
+                raise StoreError(f"{path}: exists and is not a bbb study store; "
+                                 "allowed: a new path or a store made by the same workflow")
+            layout = attrs.get("bbb_store_layout")
+            if layout != LAYOUT_VERSION:
+                why = f" ({_OLDER_LAYOUTS[layout]})" if layout in _OLDER_LAYOUTS else ""
+                raise StoreError(f"{path}: store layout {layout!r} of an older bbb{why}; "
+                                 f"allowed: layout {LAYOUT_VERSION} (delete it or use another --store)")
+            kernel = kernel_identity()
+            for key in KERNEL_ATTRS:
+                if attrs.get(key) != kernel[key]:
+                    raise StoreError(f"{path}: made by another kernel ({key}: store "
+                                     f"{attrs.get(key)}, this bbb {kernel[key]}); resuming would "
+                                     "mix chunks of two kernels; allowed: a store made by this "
+                                     "kernel, or another --store (the store is left unchanged)")
+            if attrs.get("workflow_fingerprint") != study.fingerprint():
+                old = Study.from_dict(attrs["workflow"])
+                raise StoreError(f"{path}: made by a different workflow "
+                                 f"({fingerprint_difference(old, study)}); "
+                                 "allowed: the same workflow, or another --store")
+            if attrs["fingerprint"] != store_fingerprint(study.fingerprint(), kernel):
+                raise StoreError(f"{path}: its fingerprint does not match its own workflow and "
+                                 "kernel attributes (altered?); run `bbb verify` on it")
+            stored = Study.from_dict(attrs["workflow"])
+            if stored.refined:  # frequencies an earlier run added by refinement
+                study = study.with_refined(stored.refined)
+            store = cls(path, study)
+            store._update_reduce_settings(existing, study)
+            return store
+        if is_local(path) and os.path.exists(path):
+            raise StoreError(f"{path}: exists and is not a Zarr store; allowed: a new path or a "
+                             "store made by the same workflow")
+        return cls._create(path, study, overwrite=False)
+
+    @classmethod
+    def open(cls, path: str | os.PathLike) -> StudyStore:
+        """Open an existing store read-only, with the Study it was made by."""
+        path = normalize_path(path)
+        g = _open_group(path)
+        if g is None:
+            raise StoreError(f"{path}: no such store")
+        attrs = read_attrs(g)
+        if "fingerprint" not in attrs:
+            raise StoreError(f"{path}: not a (complete) bbb study store")
+        return cls(path, Study.from_dict(attrs["workflow"], text=attrs.get("workflow_toml", "")))
+
+    @classmethod
+    def _create(cls, path: str, study: Study, overwrite: bool) -> StudyStore:
+        try:
+            g = zarr.open_group(path, mode="w" if overwrite else "w-",
+                                attributes={"bbb_creating": True})
+            create_layout(g, study)
+            # The fingerprint goes last: a store without it was never completely laid out.
+            g.attrs.update(_root_attrs(study))
+            del g.attrs["bbb_creating"]
+        except (OSError, zarr.errors.ContainsGroupError, zarr.errors.ContainsArrayError) as e:
+            raise StoreError(f"{path}: cannot create the store ({e}); "
+                             "allowed: a writable, new path") from None
+        return cls(path, study)
+
+    def _update_reduce_settings(self, g: zarr.Group, study: Study) -> None:
+        # Same data, possibly new reduce settings (analysis, bootstrap resamples, name): the
+        # stored numbers stay valid, so the workflow recorded for `bbb reduce` is updated.
+        if read_attrs(g).get("workflow") != _jsonable(study.to_dict()):
+            g = zarr.open_group(self.path, mode="r+")
+            g.attrs.update({"workflow": _json_attr(study.to_dict()), "workflow_toml": study.text})
+
+    # -- reading ---------------------------------------------------------------------------
+    def group(self, mode: str = "r") -> zarr.Group:
+        return zarr.open_group(self.path, mode=mode)
+
+    def attrs(self) -> dict[str, Any]:
+        """The root attributes, JSON strings (:data:`JSON_ATTRS`) decoded."""
+        return read_attrs(self.group())
+
+    def done(self) -> np.ndarray:
+        """bool (frequency, family, chunk): chunks whose data are completely written."""
+        return np.asarray(self.group()["done"][...], dtype=bool)
+
+    def chunk_particles(self, chunk: int) -> slice:
+        c = self.study.accuracy.chunk_size
+        return slice(chunk * c, (chunk + 1) * c)
+
+    def read_done(self, name: str, fi: int, mi: int, done_fm: np.ndarray | None = None
+                  ) -> np.ndarray:
+        """Array ``name`` at (frequency index fi, family index mi) for the particles of the
+        done chunks only, in particle order: shape (particles of done chunks, ...).
+
+        Chunks not marked done are never read, so a half-written or damaged chunk of an
+        interrupted run cannot break a reduction.  A done chunk that cannot be decoded raises
+        StoreError naming it (``bbb verify`` checks every done chunk).
+        """
+        arr = self.group()[name]
+        if done_fm is None:
+            done_fm = self.done()[fi, mi]
+        # One read per run of consecutive done chunks (an adaptive store's done chunks are one
+        # run, its first n): Zarr then fetches the run's chunks at once, where one read per
+        # chunk made `bbb reduce` spend half its time in per-call overhead.
+        parts = []
+        for c0, c1 in _runs(np.flatnonzero(done_fm)):
+            sl = slice(self.chunk_particles(c0).start, self.chunk_particles(c1 - 1).stop)
+            try:
+                parts.append(np.asarray(arr[fi, mi, sl]))
+            except Exception:  # zarr/codec errors differ by cause; find the chunk, name it
+                for ci in range(c0, c1):
+                    self._read_chunk(arr, name, fi, mi, ci)
+                raise
+        if parts:
+            return np.concatenate(parts) if len(parts) > 1 else parts[0]
+        return np.zeros((0, *arr.shape[3:]), dtype=arr.dtype)
+
+    def _read_chunk(self, arr, name: str, fi: int, mi: int, ci: int) -> np.ndarray:
+        try:
+            return np.asarray(arr[fi, mi, self.chunk_particles(ci)])
+        except Exception as e:
+            f = self.study.frequencies[fi]
+            fam = self.study.families[mi].name
+            raise StoreError(
+                f"{self.path}: {name}[f = {f:g} Hz, family {fam}, chunk {ci}] is marked done "
+                f"but cannot be read ({type(e).__name__}: {e}); run `bbb verify` on the "
+                "store") from None
+
+    # -- writing ---------------------------------------------------------------------------
+    def write_chunk(self, fi: int, mi: int, ci: int, run: Any, seconds: float,
+                    mark_done: bool = True, extra: dict[str, np.ndarray] | None = None) -> None:
+        """Write one task's results (a bbb SimRun) into its own chunk of every array, then
+        mark it done.  Indices: fi frequency, mi family, ci chunk; seconds: its simulation time.
+
+        Idempotent: Dask may run a task twice, and a rerun writes the same bytes.
+        mark_done=False leaves a written chunk unfinished (fault injection in tests).
+        extra: {array name: values for this chunk's particles (leading axis)} ([jumps],
+        [lyapunov]); a shorter leading axis fills the chunk's first particles.
+        """
+        g = self.group("r+")
+        sl = self.chunk_particles(ci)
+        obs = self.study.observables
+        if obs.positions:
+            g["positions"][fi, mi, sl, :] = run.positions
+        if obs.collisions:
+            g["collisions"][fi, mi, sl, :, :] = run.collisions_dense
+            g["n_recorded"][fi, mi, sl] = run.n_recorded
+        for name in COUNTERS:
+            g[f"n_{name}"][fi, mi, sl] = run.counters[name]
+        if obs.contact:
+            for name in CONTACT_TIME_NAMES:
+                g[f"{name}_time"][fi, mi, sl] = run.contact_time[name]
+        for name, values in (extra or {}).items():
+            a = np.asarray(values)
+            rows = slice(sl.start, sl.start + a.shape[0])
+            if a.ndim == 1:
+                g[name][fi, mi, rows] = a
+            else:
+                g[name][fi, mi, rows, : a.shape[1]] = a
+        g["chunk_seconds"][fi, mi, ci] = seconds
+        # Only now, after every data array: the chunk is complete.
+        if mark_done:
+            g["done"][fi, mi, ci] = True
+
+    def write_stop(self, fi: int, mi: int, n_chunks: int, reason: int) -> None:
+        """Record that (frequency fi, family mi) stopped after ``n_chunks`` chunks, and why
+        (pipeline.store.layout.STOP_LEGEND).  The reason goes last: it marks the record final."""
+        g = self.group("r+")
+        g["n_chunks_used"][fi, mi] = n_chunks
+        g["stop_reason"][fi, mi] = reason
+
+    def stops(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """(n_chunks_used, stop_reason), each (frequency, family), of a target_ci store."""
+        g = self.group()
+        if "stop_reason" not in g:
+            return None
+        return (np.asarray(g["n_chunks_used"][...]), np.asarray(g["stop_reason"][...]))
+
+    def add_frequencies(self, new: tuple[float, ...]) -> StudyStore:
+        """Grow the store along the frequency axis by ``new`` (Hz, refined frequencies);
+        returns the handle on the grown store.  Arrays are resized (Zarr writes no chunk for
+        the new, empty rows), the coordinates extended, and the stored workflow updated last,
+        so an interruption leaves a store that a re-run grows the same way again."""
+        study = self.study.with_refined(self.study.refined + tuple(new))
+        F = len(study.frequencies)
+        g = self.group("r+")
+        for _, arr in g.arrays():
+            dims = arr.metadata.dimension_names
+            if dims and dims[0] == "frequency" and arr.shape[0] != F:
+                arr.resize((F, *arr.shape[1:]))
+        old = len(self.study.frequencies)
+        g = zarr.open_group(self.path, mode="r+", use_consolidated=False)  # the new shapes
+        g["frequency"][old:] = np.asarray(study.frequencies[old:], dtype=np.float64)
+        g["refined"][old:] = True
+        g.attrs.update({"workflow": _json_attr(study.to_dict())})
+        grown = StudyStore(self.path, study)
+        grown.consolidate()
+        return grown
+
+    def consolidate(self) -> None:
+        with warnings.catch_warnings():  # consolidated metadata is not yet in the v3 spec
+            warnings.simplefilter("ignore")
+            zarr.consolidate_metadata(self.path)
+
+
+def _open_group(path: str) -> zarr.Group | None:
+    try:
+        return zarr.open_group(path, mode="r")
+    except (FileNotFoundError, zarr.errors.GroupNotFoundError, zarr.errors.NodeTypeValidationError):
+        return None
+    except Exception as e:  # e.g. an unreadable file where the store should be
+        raise StoreError(f"{path}: cannot open ({type(e).__name__}: {e})") from None
+
+
+def _root_attrs(study: Study) -> dict[str, Any]:
+    kernel = kernel_identity()
+    return {
+        "bbb_store_layout": LAYOUT_VERSION,
+        "bbb_version": package_version(),
+        "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
+        "workflow": _json_attr(study.to_dict()),
+        "workflow_toml": study.text,
+        "params": _json_attr(study.base_params),
+        "numerics": _json_attr(study.accuracy.numerics().as_dict()),
+        "accuracy": _json_attr(as_dict(study.accuracy)),
+        "seeding": SEEDING,
+        **kernel,
+        "workflow_fingerprint": study.fingerprint(),
+        "fingerprint": store_fingerprint(study.fingerprint(), kernel),
+    }
+
+
+def store_fingerprint(workflow_fingerprint: str, kernel: dict[str, str]) -> str:
+    """sha256 over the workflow's data fingerprint and the kernel identity (KERNEL_ATTRS):
+    two stores with the same fingerprint hold the same numbers, chunk for chunk."""
+    blob = json.dumps({"workflow": workflow_fingerprint, **{k: kernel[k] for k in KERNEL_ATTRS}},
+                      sort_keys=True)
+    return hashlib.sha256(blob.encode()).hexdigest()
+
+
+def read_attrs(group: zarr.Group) -> dict[str, Any]:
+    """A store's root attributes with the JSON strings of :data:`JSON_ATTRS` decoded (a store
+    of layout <= 2 holds them as nested dicts already: returned as they are)."""
+    attrs = dict(group.attrs)
+    for key in JSON_ATTRS:
+        if isinstance(attrs.get(key), str):
+            try:
+                attrs[key] = json.loads(attrs[key])
+            except ValueError:
+                pass  # left as it is: bbb verify reports an unreadable attribute
+    return attrs
+
+
+def _json_attr(o: Any) -> str:
+    return json.dumps(_jsonable(o), sort_keys=True)
+
+
+def _jsonable(o: Any) -> Any:
+    if isinstance(o, dict):
+        return {k: _jsonable(v) for k, v in o.items()}
+    if isinstance(o, list | tuple):
+        return [_jsonable(v) for v in o]
+    return o
+
+
+def fingerprint_difference(old: Study, new: Study) -> str:
+    """Name the first data-determining key that differs, e.g. 'params.alpha: 0.7 -> 0.5'."""
+    a, b = old.data_identity(), new.data_identity()
+    for k in a:
+        if a[k] != b[k]:
+            if isinstance(a[k], dict):
+                for kk in sorted(set(a[k]) | set(b[k])):
+                    if a[k].get(kk) != b[k].get(kk):
+                        return f"{k}.{kk}: store {a[k].get(kk)!r}, workflow {b[k].get(kk)!r}"
+            return f"{k}: store {a[k]!r}, workflow {b[k]!r}"
+    return "fingerprints differ"
+
+
+def _runs(indices: np.ndarray) -> list[tuple[int, int]]:
+    """[start, stop) of each run of consecutive integers in the sorted ``indices``."""
+    if indices.size == 0:
+        return []
+    breaks = np.flatnonzero(np.diff(indices) != 1) + 1
+    return [(int(r[0]), int(r[-1]) + 1) for r in np.split(indices, breaks)]

@@ -1,0 +1,93 @@
+"""``bbb reduce``: a study store's tables (:mod:`pipeline.tables.catalog`) written beside it
+as Parquet and CSV, and read back.
+
+``counters.parquet`` / ``.csv`` (every store), ``diffusion`` (stores with positions: D(f)
+with CIs, ergodicity, stationarity, transport on a conveyor), ``contact`` (stores with
+``[observables.contact]``), ``mechanisms`` (stores with jumps or lyapunov); the columns of
+each in its module (:mod:`pipeline.tables.counters`, :mod:`~pipeline.tables.diffusion`,
+:mod:`~pipeline.tables.contact`, :mod:`~pipeline.tables.mechanisms`).
+
+Every Parquet table carries its provenance in the schema metadata under the key ``bbb``
+(a JSON object: ``units`` per column, ``store_fingerprint``, ``kernel_hash``,
+``bbb_version`` of the reducing package and of the store, ``study``, ``table``), and each
+column its unit as field metadata ``unit``, from the one map :mod:`pipeline.tables.units`
+("1": dimensionless, "": not a quantity, such as a label or flag).  :func:`table_metadata`
+reads them back.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from collections.abc import Callable, Iterable
+from pathlib import Path
+
+import pandas as pd
+import pyarrow as pa
+import pyarrow.parquet as pq
+
+from ..store.layout import OPEN
+from ..store.study_store import StudyStore, package_version
+from ..workflow.study import Study
+from .catalog import tables
+from .units import column_unit, units
+
+__all__ = ["reduce_store", "default_out_dir", "column_unit", "table_metadata", "write_table"]
+
+
+def default_out_dir(store_path: str, study: Study) -> str:
+    """Beside the store: ``runs/smoke.zarr`` -> ``runs/smoke``."""
+    if "://" in store_path:
+        return study.name
+    p = Path(store_path.rstrip("/"))
+    return str(p.with_suffix("") if p.suffix == ".zarr" else p.parent / f"{p.name}.tables")
+
+
+def reduce_store(store_path: str | os.PathLike | StudyStore,
+                 out_dir: str | os.PathLike | None = None,
+                 *, names: Iterable[str] | None = None,
+                 echo: Callable[[str], None] = print) -> dict[str, pd.DataFrame]:
+    """Write the tables of one store (``names``, default: those of
+    :func:`pipeline.tables.catalog.table_names`) to ``out_dir`` (default: beside the store);
+    returns them.  A StudyStore may carry other reduce settings than the stored ones
+    (`bbb reduce --workflow`)."""
+    store = store_path if isinstance(store_path, StudyStore) else StudyStore.open(store_path)
+    study = store.study
+    out = Path(out_dir if out_dir is not None else default_out_dir(store.path, study))
+    out.mkdir(parents=True, exist_ok=True)
+    done = store.done()
+    stops = store.stops()
+    if not done.all() and not (stops is not None and (stops[1] != OPEN).all()):
+        echo(f"{study.name}: {int((~done).sum())} of {done.size} chunks not done; "
+             "reducing the done ones (re-run `bbb run` to finish)")
+    made = tables(store, names, done)
+    provenance = _provenance(store)
+    for name, df in made.items():
+        write_table(df, out / f"{name}.parquet", {**provenance, "table": name})
+        df.to_csv(out / f"{name}.csv", index=False)
+    echo(f"{study.name}: wrote {', '.join(f'{n}.parquet/.csv' for n in made)} to {out}")
+    return made
+
+
+def write_table(df: pd.DataFrame, path: str | os.PathLike, provenance: dict) -> None:
+    """``df`` as Parquet with per-column units (:mod:`pipeline.tables.units`) and
+    ``provenance`` (plus the units) as the schema metadata ``bbb`` (JSON)."""
+    table = pa.Table.from_pandas(df, preserve_index=False)
+    col_units = units(df.columns)
+    schema = pa.schema([f.with_metadata({"unit": col_units[f.name]}) for f in table.schema],
+                       metadata={**(table.schema.metadata or {}),
+                                 b"bbb": json.dumps({**provenance, "units": col_units}).encode()})
+    pq.write_table(table.cast(schema), path)
+
+
+def table_metadata(path: str | os.PathLike) -> dict:
+    """The ``bbb`` metadata of a reduced Parquet table (units, fingerprint, versions)."""
+    meta = pq.read_schema(path).metadata or {}
+    return json.loads(meta[b"bbb"]) if b"bbb" in meta else {}
+
+
+def _provenance(store: StudyStore) -> dict:
+    attrs = store.attrs()
+    return {"study": store.study.name, "store_fingerprint": attrs.get("fingerprint"),
+            "kernel_hash": attrs.get("kernel_hash"), "store_bbb_version": attrs.get("bbb_version"),
+            "bbb_version": package_version()}

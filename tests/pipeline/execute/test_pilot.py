@@ -1,0 +1,95 @@
+"""The pilot of `bbb plan`: exact collisions, and a short pilot's timing taken at its fastest.
+
+The rule is tested with scripted CPU times (the collisions and D are real pilot runs), so no
+test here depends on how fast this machine is; the one with the machine's own timings is
+marked slow."""
+
+from __future__ import annotations
+
+import pytest
+
+import pipeline.execute.pilot as pilot
+from pipeline.workflow.load import parse_workflow
+
+from .test_plan import PLAN_TINY
+
+
+def _scripted(monkeypatch, first: dict[float, float], repeat: dict[float, float]):
+    """Pilot cells whose first timing is ``first[f]`` s and every repeat ``repeat[f]`` s; returns
+    ({f: the first cell}, {f: [repeat timings]}) as the pilot fills them."""
+    cells, repeats = {}, {}
+    real_cell = pilot._pilot_cell
+
+    def cell(study, f, fam, n):
+        cells[f] = pilot.replace(real_cell(study, f, fam, n), cpu_s=first[f])
+        return cells[f]
+
+    def cpu(study, f, fam, n):
+        repeats.setdefault(f, []).append(repeat[f])
+        return repeat[f]
+
+    monkeypatch.setattr(pilot, "_pilot_cell", cell)
+    monkeypatch.setattr(pilot, "_pilot_cpu", cpu)
+    return cells, repeats
+
+
+def test_a_short_pilot_is_timed_again_until_the_floor_and_keeps_each_cells_fastest_time(
+        monkeypatch):
+    """First timings 0.35 s at 54 Hz (slow) and 0.05 s elsewhere (0.5 s in all, under the
+    1.5 s floor); each repeat 0.1 s at 54 Hz, 0.06 s elsewhere (0.28 s a round): 4 rounds
+    reach 1.62 s; 54 Hz keeps 0.1 (its slow first timing dropped), the others their first
+    0.05; collisions and D are those of the first run."""
+    study = parse_workflow(PLAN_TINY)
+    first = {f: 0.35 if f == 54.0 else 0.05 for f in study.frequencies}
+    repeat = {f: 0.1 if f == 54.0 else 0.06 for f in study.frequencies}
+    cells, repeats = _scripted(monkeypatch, first, repeat)
+    rates = pilot.pilot_rates(study, cache_dir=None)
+    assert {f: len(r) for f, r in repeats.items()} == {f: 4 for f in study.frequencies}
+    for f in study.frequencies:
+        cell = rates.cells[(round(f * 1000), "rest")]
+        assert cell.cpu_s == (0.1 if f == 54.0 else 0.05)
+        assert (cell.collisions, cell.D) == (cells[f].collisions, cells[f].D)
+        assert cell.collisions > 0
+
+
+def test_a_pilot_that_reaches_the_floor_at_once_keeps_its_first_timings(monkeypatch):
+    """First timings of 0.5 s at each of 4 frequencies (2 s ≥ the 1.5 s floor): no repeat,
+    each cell its first timing.  (The earlier version of the test above read the repeats of
+    every frequency and failed here with KeyError: 54.0.)"""
+    study = parse_workflow(PLAN_TINY)
+    first = {f: 0.5 for f in study.frequencies}
+    cells, repeats = _scripted(monkeypatch, first, dict.fromkeys(study.frequencies, 0.01))
+    rates = pilot.pilot_rates(study, cache_dir=None)
+    assert repeats == {}
+    assert [rates.cells[(round(f * 1000), "rest")] for f in study.frequencies] == [
+        cells[f] for f in study.frequencies]
+
+
+@pytest.mark.slow
+def test_with_this_machines_timings_each_cell_keeps_its_fastest_timing(monkeypatch):
+    """The real timings, the first one at 54 Hz inflated by 0.3 s: each cell's cpu_s is the
+    least of its timings, the timings add up to at least the floor, collisions and D are the
+    first run's; where the first timings already reached the floor, nothing was repeated."""
+    study = parse_workflow(PLAN_TINY)
+    first, repeats = {}, {}
+    real_cell, real_cpu = pilot._pilot_cell, pilot._pilot_cpu
+
+    def slow_first(study, f, fam, n):
+        cell = real_cell(study, f, fam, n)
+        first[f] = pilot.replace(cell, cpu_s=cell.cpu_s + 0.3 * (f == 54.0))
+        return first[f]
+
+    def recorded(study, f, fam, n):
+        cpu = real_cpu(study, f, fam, n)
+        repeats.setdefault(f, []).append(cpu)
+        return cpu
+
+    monkeypatch.setattr(pilot, "_pilot_cell", slow_first)
+    monkeypatch.setattr(pilot, "_pilot_cpu", recorded)
+    rates = pilot.pilot_rates(study, cache_dir=None)
+    assert sum(c.cpu_s for c in first.values()) + sum(map(sum, repeats.values())) >= (
+        pilot.TIMING_FLOOR_S)
+    for f in study.frequencies:
+        cell = rates.cells[(round(f * 1000), "rest")]
+        assert cell.cpu_s == min([first[f].cpu_s, *repeats.get(f, [])])
+        assert (cell.collisions, cell.D) == (first[f].collisions, first[f].D)

@@ -1,0 +1,189 @@
+"""`bbb plan`: the cost model against a measured run, its table for every workflow, bad input."""
+
+from __future__ import annotations
+
+import logging
+import math
+import subprocess
+import sys
+import time
+from pathlib import Path
+from types import SimpleNamespace
+
+import pytest
+
+from pipeline.cli import main
+from pipeline.execute.pilot import pilot_rates
+from pipeline.execute.plan import Cell, Overheads, Rates, makespan, particles_needed, predict
+from pipeline.workflow.load import load_workflow, parse_workflow
+
+from ..helpers import QUIET
+
+ROOT = Path(__file__).resolve().parents[3]
+BBB = Path(sys.executable).with_name("bbb")
+WORKFLOWS = sorted((ROOT / "workflows").glob("*.toml"))
+
+# Two creeping frequencies (most of the cost, as in Fig. 2) and two bouncing ones, fixed N:
+# 16 tasks, ~4 CPU-s in all.
+PLAN_TINY = """\
+[study]
+name = "plantiny"
+seed = 11
+
+[params]
+preset = "klages2004"
+
+[frequencies]
+values = [54.0, 55.0, 60.0, 72.0]
+
+[families.rest]
+initial = "rest"
+
+[accuracy]
+preset = "draft"
+n_particles = 128
+chunk_size = 32
+t_max = 30.0
+
+[observables.positions]
+"""
+
+
+@pytest.mark.parametrize("workflow", WORKFLOWS, ids=[w.stem for w in WORKFLOWS])
+def test_plan_prints_a_table_for_every_workflow(workflow, tmp_path, monkeypatch, capsys):
+    """Every workflow in workflows/ gets a table whose total row counts all its frequencies and
+    chunks, and a predicted wall time (pilot of 2 particles, cached under tmp_path)."""
+    monkeypatch.chdir(tmp_path)
+    assert main(["plan", str(workflow), "--workers", "2", "--pilot-particles", "2"]) == 0
+    out = capsys.readouterr().out
+    study = load_workflow(workflow)
+    total = next(line for line in out.splitlines() if line.startswith("total"))
+    units = len(study.frequencies) * len(study.families)
+    assert total.split()[1] == str(len(study.frequencies))
+    if study.accuracy.adaptive:  # a target-driven scene: at least one chunk each, at most the cap
+        assert units <= int(total.split()[2]) <= units * study.accuracy.n_chunks
+    else:
+        assert int(total.split()[2]) == units * study.accuracy.n_chunks
+    assert "predicted:" in out and "on 2 workers" in out
+
+
+def test_the_plan_of_a_tiny_scene_is_its_arithmetic_on_fixed_rates():
+    """Pilot cells of 1000, 500, 100, 50 collisions per particle-s at 54, 55, 60, 72 Hz and a
+    kernel rate of 1e6 per CPU-s, half of it inside tasks, 0.01 s per task, 4 s start-up: each
+    f is 128 particles x 30 s in 4 chunks of 32, a chunk 32 x 30 x c / 5e5 CPU-s (1.92, 0.96,
+    0.192, 0.096 s); the tasks in order on 2 workers pair up, so the makespan is 2 x the sum
+    of one chunk per f plus 2 tasks' overhead each."""
+    study = parse_workflow(PLAN_TINY)
+    per_s = {54.0: 1000, 55.0: 500, 60.0: 100, 72.0: 50}
+    cells = {(round(f * 1000), "rest"): Cell(f, "rest", 8, 30.0, c * 8 * 30, c * 8 * 30 / 1e6)
+             for f, c in per_s.items()}
+    plan = predict(study, Rates(cells), workers=2,
+                   overheads=Overheads(start_up=4.0, per_task=0.01, in_task=0.5))
+    chunk = {f: 32 * 30.0 * c / 5e5 for f, c in per_s.items()}
+    assert [(r.f, r.particles, r.chunks, r.why) for r in plan.rows] == [
+        (f, 128, 4, "fixed") for f in per_s]
+    assert plan.collisions == pytest.approx(sum(128 * 30.0 * c for c in per_s.values()))
+    assert plan.cpu_s == pytest.approx(4 * sum(chunk.values()))
+    assert plan.busy_s == pytest.approx(plan.cpu_s + 16 * 0.01)
+    assert plan.makespan == pytest.approx(2 * sum(d + 0.01 for d in chunk.values()))
+    assert plan.longest_task == pytest.approx(chunk[54.0] + 0.01)
+    assert plan.wall_s == pytest.approx(4.0 + plan.makespan)
+
+
+@pytest.mark.slow
+def test_prediction_of_a_tiny_scene_matches_its_measured_run(tmp_path):
+    """Collisions within 10 %, worker CPU within 30 %, and the compute wall within 1.5x once
+    the load of other processes is taken out, of a real run on a 2-worker LocalCluster.
+    A wall-time band on a shared machine: marked slow (`make test-slow`), not in `make test`.
+
+    The worker CPU is the workers' process time (not the tasks' wall clocks), so a loaded
+    machine does not inflate it; the compute wall is compared with the predicted makespan
+    times the load inflation the tasks themselves saw (their wall time over the CPU time)."""
+    from distributed import Client, LocalCluster
+
+    from pipeline.execute.run import run_study, warm_numba
+
+    study = parse_workflow(PLAN_TINY)
+    plan = predict(study, pilot_rates(study, cache_dir=None), workers=2)
+    with (LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
+                       env={"NUMBA_NUM_THREADS": "1"}, silence_logs=logging.CRITICAL) as cluster,
+          Client(cluster) as client):
+        client.run(warm_numba, study)  # numba's cache load is start-up, not task time
+        cpu0 = client.run(time.process_time)
+        report = run_study(study, tmp_path / "p.zarr", scheduler=cluster.scheduler_address,
+                           **QUIET)
+        cpu1 = client.run(time.process_time)
+    worker_cpu = sum(cpu1[w] - cpu0[w] for w in cpu0)
+    assert abs(plan.collisions / report.collisions - 1) <= 0.10
+    assert 0.7 <= plan.busy_s / worker_cpu <= 1.3, (plan.busy_s, worker_cpu)
+    inflation = max(1.0, report.task_seconds / worker_cpu)
+    assert 1 / 1.5 <= report.compute_wall / (plan.makespan * inflation) <= 1.5, (
+        report.compute_wall, plan.makespan, inflation)
+
+
+def test_makespan_places_tasks_in_order_on_the_first_free_worker():
+    """[3, 1, 1, 1] on 2 workers: the long task on one, the three short ones on the other."""
+    assert makespan([3.0, 1.0, 1.0, 1.0], 2) == 3.0
+    assert makespan([1.0, 1.0, 1.0, 3.0], 2) == 4.0  # the tail: the long task comes last
+    assert makespan([2.0] * 5, 1) == 10.0
+
+
+def _target_study(target_ci, d_resolved=None, max_particles=None):
+    acc = SimpleNamespace(target_ci=target_ci, d_resolved=d_resolved,
+                          max_particles=max_particles, chunk_size=512, n_particles=4096)
+    return SimpleNamespace(accuracy=acc)
+
+
+def _cell(D, hw_rel):
+    """A pilot of 8 particles whose relative 95 % half-width is ``hw_rel``."""
+    return Cell(60.0, "rest", 8, 50.0, 10_000, 0.01, D, D * hw_rel)
+
+
+def test_target_driven_particles_follow_the_one_over_sqrt_n_law():
+    """3 % needs (1.6 / 0.03)^2 = 2844 particles: 6 chunks of 512 = 3072; 10 % needs 256:
+    one chunk."""
+    law = _cell(300.0, 1.6 / math.sqrt(8))
+    assert particles_needed(_target_study(0.03), law) == (3072, "target")
+    assert particles_needed(_target_study(0.10), law) == (512, "target")
+
+
+def test_target_driven_particles_take_the_pilots_spread_far_outside_the_law():
+    """A pilot spread 4x the law's (mixed creeping/bouncing): 16x the particles, 10 % then
+    needs 4096 = 8 chunks."""
+    assert particles_needed(_target_study(0.10), _cell(300.0, 4 * 1.6 / math.sqrt(8))) == (
+        4096, "law?")
+
+
+def test_target_driven_zero_is_resolved_by_the_first_wave():
+    """D = 1e-4 mm^2/s with a half-width of 50 % at 8 particles: far below d_resolved = 1."""
+    assert particles_needed(_target_study(0.03, d_resolved=1.0), _cell(1e-4, 0.5)) == (
+        512, "resolved")
+
+
+def test_target_driven_particles_stop_at_the_cap():
+    """1 % needs 25 600 particles; max_particles = 8192 stops at 16 chunks and says so;
+    without max_particles the cap is n_particles (4096)."""
+    law = _cell(300.0, 1.6 / math.sqrt(8))
+    assert particles_needed(_target_study(0.01, max_particles=8192), law) == (8192, "cap")
+    assert particles_needed(_target_study(0.01), law) == (4096, "cap")
+
+
+def test_fixed_n_scene_keeps_its_particles():
+    study = parse_workflow(PLAN_TINY)
+    assert particles_needed(study, _cell(300.0, 0.5)) == (128, "fixed")
+
+
+@pytest.mark.parametrize("args, needle", [
+    (["plan", "no/such/workflow.toml"], "no/such/workflow.toml: no such workflow file"),
+    (["plan", str(ROOT / "workflows" / "smoke.toml"), "--workers", "0"],
+     "--workers: 0 is out of range"),
+    (["plan", str(ROOT / "workflows" / "smoke.toml"), "--kernel-rate", str(ROOT / "README.md")],
+     "no rows"),
+], ids=["missing-workflow", "workers-0", "not-a-kernel-table"])
+def test_bad_input_exits_2_in_one_line(args, needle, tmp_path):
+    run = subprocess.run([str(BBB), *args], capture_output=True, text=True, cwd=tmp_path,
+                         timeout=120)
+    assert run.returncode == 2
+    assert run.stderr.count("\n") == 1 and run.stderr.startswith("bbb: error: ")
+    assert needle in run.stderr and run.stdout == ""
+
