@@ -30,8 +30,22 @@ REEXPORTS = {
     "pipeline.run": "pipeline.execute.run", "pipeline.cluster": "pipeline.execute.cluster",
     "pipeline.identity": "pipeline.workflow.identity",
 }
-#: the one file that imports the re-exports on purpose: it checks they still work
+#: bbb's old module paths kept for one release (the kernel's, now bbb/dynamics/; the
+#: analyses', now bbb/analysis/), each with one module it re-exports
+BBB_REEXPORTS = {
+    "bbb.kernel": "bbb.dynamics.evolve", "bbb.conveyor": "bbb.dynamics.evolve",
+    "bbb.search": "bbb.dynamics.search", "bbb.conveyor_search": "bbb.dynamics.search",
+    "bbb.contact": "bbb.dynamics.slide", "bbb.conveyor_contact": "bbb.dynamics.contact_conveyor",
+    "bbb.stats": "bbb.analysis.stats", "bbb.stats.bootstrap": "bbb.analysis.stats.bootstrap",
+    "bbb.stats.ergodicity": "bbb.analysis.stats.ergodicity",
+    "bbb.stats.interval": "bbb.analysis.stats.interval",
+    **{f"bbb.{m}": f"bbb.analysis.{m}" for m in (
+        "stationarity", "transport", "greenkubo", "gk_contrast", "locking", "extrema", "approx",
+        "liftoff", "lyapunov")},
+}
+#: the files that import the re-exports on purpose: they check they still work
 REEXPORT_TEST = "tests/pipeline/test_reexports.py"
+BBB_REEXPORT_TESTS = ("tests/bbb/test_old_kernel_paths.py", "tests/bbb/analysis/test_old_paths.py")
 #: engine modules allowed to import pipeline.studies: the entry points over engine and
 #: studies (docs/design.md), each with why
 ENTRY_POINTS = {
@@ -278,8 +292,14 @@ def test_no_module_imports_a_name_through_a_re_export():
     assert found == [], f"import the moved module's new path (REEXPORTS): {found}"
 
 
+def test_no_module_imports_a_name_through_an_old_bbb_path():
+    found = reexport_imports("bbb", "pipeline", "tests", "benchmarks", "examples",
+                             reexports=BBB_REEXPORTS, allowed=BBB_REEXPORT_TESTS)
+    assert found == [], f"import bbb.dynamics / bbb.analysis (BBB_REEXPORTS): {found}"
+
+
 def test_each_re_export_re_exports_its_module():
-    for old, new in REEXPORTS.items():
+    for old, new in {**REEXPORTS, **BBB_REEXPORTS}.items():
         path = ROOT.joinpath(*old.split("."))
         path = path / "__init__.py" if path.is_dir() else path.with_suffix(".py")
         assert new in imported_modules(path), f"{old} does not re-export {new}"
