@@ -256,7 +256,7 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
               f"CI lies beyond ±{100 * STATIONARITY_TOL:g} % of D (`bbb.analysis.stationarity`; the rule "
               "was calibrated on synthetic walks before it was applied here: its false-flag rate "
               "and its power on a diffusivity that doubles over the run are tabulated in that "
-              "module and re-measured by tests/bbb/test_stationarity.py).", ""] + stat
+              "module and re-measured by tests/bbb/analysis/test_stationarity.py).", ""] + stat
     ergo = tables.get("ergodicity")
     if ergo is not None and "CV_D_upper" in ergo:
         L += ["", "## Ergodicity verdicts, frequency by frequency", "",
