@@ -83,6 +83,15 @@ def too_long_without_reason(path: Path) -> bool:
                    for line in doc.splitlines())
 
 
+def from_module(node: ast.ImportFrom, package: list[str]) -> str:
+    """The dotted module of ``from <module> import ...`` written in ``package``, relative
+    imports resolved."""
+    if not node.level:
+        return node.module or ""
+    base = package[: len(package) - node.level + 1]
+    return ".".join(base + ([node.module] if node.module else []))
+
+
 def imported_modules(path: Path, root: Path = ROOT) -> set[str]:
     """Absolute names of every module ``path`` imports, at any depth (relative imports
     resolved against its package; ``from X import y`` also counts as importing ``X.y``)."""
@@ -93,11 +102,7 @@ def imported_modules(path: Path, root: Path = ROOT) -> set[str]:
         if isinstance(node, ast.Import):
             out.update(a.name for a in node.names)
         elif isinstance(node, ast.ImportFrom):
-            if node.level:
-                base = package[: len(package) - node.level + 1]
-                mod = ".".join(base + ([node.module] if node.module else []))
-            else:
-                mod = node.module or ""
+            mod = from_module(node, package)
             out.add(mod)
             out.update(f"{mod}.{a.name}" for a in node.names)
     return out
@@ -252,11 +257,7 @@ def reexport_imports(*packages: str, root: Path = ROOT, reexports=None,
             if isinstance(node, ast.Import):
                 out.update((me, a.name) for a in node.names if a.name in reexports)
             elif isinstance(node, ast.ImportFrom):
-                if node.level:
-                    base = package[: len(package) - node.level + 1]
-                    mod = ".".join(base + ([node.module] if node.module else []))
-                else:
-                    mod = node.module or ""
+                mod = from_module(node, package)
                 folder = root.joinpath(*mod.split("."))
                 for a in node.names:
                     if f"{mod}.{a.name}" in reexports:
