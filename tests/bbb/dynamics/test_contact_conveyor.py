@@ -11,8 +11,8 @@ from hypothesis import strategies as st
 
 from bbb import Params, simulate
 from bbb.ensemble import InitialState, initial_state
+from tests.bbb.dynamics.test_conveyor_mechanics import mirrored_runs
 from tests.bbb.no_miss import assert_no_miss
-from tests.bbb.test_transport import mirrored_runs
 
 G = 9800.0
 STOP, CONTACT_LIFT, CUSP = 6.0, 5.0, 7.0  # bbb.record.EVENT_CODES
