@@ -11,6 +11,7 @@ file, the line, the key and what is allowed (:class:`pipeline.workflow.schema.Re
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import re
 
@@ -64,7 +65,8 @@ def _axis_values(r: Reader, path: tuple[str, ...], k: Key, values) -> tuple:
              else "number" if isinstance(v, int | float) else tname(v) for v in values}
     if len(types) > 1:
         r.fail(path, f"mixed types ({', '.join(sorted(types))}) in {values!r}", allowed)
-    out = tuple(r.check(v, path, k, {}) for v in values)
+    each = dataclasses.replace(k, allowed=allowed)  # a bad value's line says: a list of ...
+    out = tuple(r.check(v, path, each, {}) for v in values)
     out = tuple(float(v) if k.kind == "float" else v for v in out)
     dup = [v for i, v in enumerate(out) if v in out[:i]]
     if dup:
