@@ -20,6 +20,9 @@ alpha = 0.7
 values = [54.0, 60.0, 72.0]
 # ... or an inclusive grid:  start = 50.0, stop = 99.2, step = 0.4
 
+# [grid]                       # optional sweep axes over [params] keys (pipeline.workflow.grid):
+# beta = [0.9, 0.99]           # the points are every combination with [frequencies], f innermost
+
 [families.launched]            # initial-condition families, by name
 initial = "launched"
 launch_speed = [0.0, 200.0]    # mm/s, upward relative to the floor
