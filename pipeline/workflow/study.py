@@ -136,8 +136,7 @@ class Study:
         Params; with ``invalid = "skip"`` the points bbb.Params refuses are left out.  Without
         a grid: one point per frequency, in the order of ``frequencies``."""
         out = []
-        for combo in itertools.product(*(values for _, values in self.grid)):
-            grid = tuple(zip((a for a, _ in self.grid), combo, strict=True))
+        for grid in self._grid_values():
             for f in self.frequencies:
                 try:
                     p = resolve_params(self.preset, f, {**self.overrides, **dict(grid)})
@@ -147,6 +146,20 @@ class Study:
                     raise
                 out.append(Point(f, grid, p))
         return tuple(out)
+
+    def skipped(self) -> tuple:
+        """The keys (:func:`pipeline.workflow.identity.point_key`) of the grid's combinations
+        left out as invalid (``invalid = "skip"``), in axis order; () when none is."""
+        have = {p.key for p in self.points}
+        keys = (point_key(f, grid) for grid in self._grid_values() for f in self.frequencies)
+        return tuple(k for k in keys if k not in have)
+
+    def _grid_values(self):
+        """Every combination of the grid axes' values as (axis, value) pairs, in axis order
+        (one empty combination without a grid)."""
+        names = [a for a, _ in self.grid]
+        for combo in itertools.product(*(values for _, values in self.grid)):
+            yield tuple(zip(names, combo, strict=True))
 
     @property
     def base_params(self) -> dict[str, float]:
@@ -302,7 +315,9 @@ class Study:
             d["refine"] = as_dict(self.refine)
         if self.grid:  # absent without a grid: every older store keeps its fingerprint
             d["grid"] = _grid_list(self.grid)
-            d["invalid"] = self.invalid
+            skipped = self.skipped()
+            if skipped:  # which points exist, not the policy: skip with none left out is refuse
+                d["skipped"] = list(skipped)
         return d
 
     def _family_identity(self, fam: Family) -> dict[str, Any]:

@@ -154,9 +154,15 @@ def test_the_fingerprint_holds_the_grid_values():
     assert parse(GRID).fingerprint() != parse(GRID.replace("0.7]", "0.8]")).fingerprint()
 
 
-def test_the_fingerprint_holds_the_invalid_policy():
+def test_invalid_skip_that_leaves_nothing_out_keeps_the_fingerprint():
     skip = GRID + 'invalid = "skip"\n'
-    assert parse(GRID).fingerprint() != parse(skip).fingerprint()
+    assert parse(GRID).fingerprint() == parse(skip).fingerprint()
+
+
+def test_the_data_identity_lists_the_skipped_points():
+    s = parse(with_grid('R = [1.0, 15.0]\ncontact = ["stick", "slide"]\ninvalid = "skip"'))
+    assert s.data_identity()["skipped"] == [
+        (f_key(f), ("R", 1.0), ("contact", "slide")) for f in (54.0, 60.0)]
 
 
 def test_a_workflow_without_grid_stores_no_grid_keys():
