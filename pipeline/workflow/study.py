@@ -147,6 +147,33 @@ class Study:
                 out.append(Point(f, grid, p))
         return tuple(out)
 
+    def line(self, values: Mapping[str, Any]) -> Study:
+        """The scene without a grid at one value of every grid axis (``values``: axis ->
+        value): its points are this grid line's, along f, and it is the Study of the same
+        workflow with those values in [params] instead of [grid] -- same seeds, same
+        fingerprint (a contact of "stick" is no override, as in [params])."""
+        names = [a for a, _ in self.grid]
+        if sorted(values) != sorted(names):
+            raise ValueError(f"a grid line needs one value of each axis ({', '.join(names)}), "
+                             f"got {', '.join(values) or 'none'}")
+        overrides = dict(self.overrides)
+        for a, axis in self.grid:
+            v = values[a]
+            if v not in axis:
+                raise ValueError(f"{a} = {_fmt_value(v)} is not on the grid; allowed: "
+                                 + ", ".join(_fmt_value(x) for x in axis))
+            if a == "contact" and v == "stick":
+                overrides.pop(a, None)
+            else:
+                overrides[a] = v
+        grid = tuple((a, values[a]) for a in names)
+        freqs = tuple(p.f for p in self.points if p.grid == grid)
+        if not freqs:
+            label = ", ".join(f"{a} = {_fmt_value(v)}" for a, v in grid)
+            raise ValueError(f"every point of the line {label} is skipped as invalid")
+        return replace(self, overrides=overrides, frequencies=freqs, grid=(), invalid="refuse",
+                       refined=tuple(f for f in self.refined if f in freqs))
+
     def skipped(self) -> tuple:
         """The keys (:func:`pipeline.workflow.identity.point_key`) of the grid's combinations
         left out as invalid (``invalid = "skip"``), in axis order; () when none is."""

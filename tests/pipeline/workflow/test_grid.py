@@ -200,3 +200,28 @@ def test_a_grid_scene_lays_out_no_store(tmp_path):
 def test_a_tilt_axis_with_a_tilted_value_makes_the_floor_not_mirror_symmetric():
     assert not parse(with_grid("tilt = [0.0, 5.0]")).mirror_symmetric
 
+
+
+def test_a_grid_line_is_the_study_with_its_values_in_params():
+    assert parse(GRID).line({"alpha": 0.5}) == parse(with_param("alpha = 0.5"))
+
+
+def test_a_grid_line_at_contact_stick_is_the_study_without_a_contact_override():
+    assert parse(with_grid('contact = ["stick", "slide"]')).line({"contact": "stick"}) == parse(TINY)
+
+
+def test_a_grid_line_keeps_the_fingerprint_of_the_scene_with_its_values_in_params():
+    line = parse(with_grid("alpha = [0.5, 0.7]\nbeta = [0.9]")).line({"alpha": 0.7, "beta": 0.9})
+    assert line.fingerprint() == parse(with_param("alpha = 0.7\nbeta = 0.9")).fingerprint()
+
+
+def test_a_grid_line_whose_points_are_all_skipped_is_refused():
+    s = parse(with_grid('R = [1.0, 15.0]\ncontact = ["stick", "slide"]\ninvalid = "skip"'))
+    with pytest.raises(ValueError, match='^every point of the line R = 1, contact = "slide" is '
+                       "skipped as invalid$"):
+        s.line({"R": 1.0, "contact": "slide"})
+
+
+def test_a_grid_line_off_the_grid_is_refused():
+    with pytest.raises(ValueError, match=r"^alpha = 0.6 is not on the grid; allowed: 0.5, 0.7$"):
+        parse(GRID).line({"alpha": 0.6})
