@@ -168,11 +168,13 @@ class Study:
                 overrides[a] = v
         grid = tuple((a, values[a]) for a in names)
         freqs = tuple(p.f for p in self.points if p.grid == grid)
+        label = ", ".join(f"{a} = {_fmt_value(v)}" for a, v in grid)
         if not freqs:
-            label = ", ".join(f"{a} = {_fmt_value(v)}" for a, v in grid)
             raise ValueError(f"every point of the line {label} is skipped as invalid")
+        # the TOML a store keeps says which line of which grid it holds
+        text = f"# the grid line {label} of this workflow\n{self.text}" if self.text else ""
         return replace(self, overrides=overrides, frequencies=freqs, grid=(), invalid="refuse",
-                       refined=tuple(f for f in self.refined if f in freqs))
+                       refined=tuple(f for f in self.refined if f in freqs), text=text)
 
     def skipped(self) -> tuple:
         """The keys (:func:`pipeline.workflow.identity.point_key`) of the grid's combinations
