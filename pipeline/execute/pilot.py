@@ -59,6 +59,7 @@ def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
     of ``study``: ``particles`` particles, at most half the study's, over its t_max."""
     from bbb.provenance import kernel_hash
 
+    study.refuse_grid("bbb plan")
     acc = study.accuracy
     n = max(1, min(particles, acc.n_particles // 2))
     cells: dict[tuple[int, str], Cell] = {}

@@ -131,6 +131,7 @@ def run_study(
 
     Raises RunFailed naming the chunk if a task fails; finished chunks stay done.
     """
+    study.refuse_grid("bbb run")
     t_start = time.perf_counter()
     store_path = normalize_path(store_path)
     fails = parse_fail_chunks(os.environ.get(FAIL_ENV) if fail_chunks is None else fail_chunks)

@@ -98,6 +98,7 @@ class StudyStore:
     @classmethod
     def create_or_open(cls, path: str | os.PathLike, study: Study) -> StudyStore:
         """Create the whole layout, or reopen an existing store made by the same workflow."""
+        study.refuse_grid("a study store")
         path = normalize_path(path)
         existing = _open_group(path)
         if existing is not None:

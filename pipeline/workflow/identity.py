@@ -1,7 +1,10 @@
 """The identity of a point and every seed derived from it, defined once.
 
-A point of a study is its floor frequency f, Hz; its identity is :func:`f_key`, f as an integer
-number of mHz (workflows accept only multiples of 1 mHz, pipeline.workflow.load).  Every random
+A point of a study is its floor frequency f, Hz, and, in a scene with a ``[grid]``, one value of
+each grid axis; its identity is :func:`point_key`, which without a grid is :func:`f_key`, f as an
+integer number of mHz (workflows accept only multiples of 1 mHz, pipeline.workflow.load).  The
+seeds below are keyed by f alone, never by a grid value: the points of a grid line that differ
+only in a parameter share their chunks' random numbers (common random numbers, a paired design).  Every random
 number of the pipeline comes from a :class:`numpy.random.SeedSequence` whose entropy is the
 workflow's ``seed`` and whose ``spawn_key`` is built from values only -- the point's key, the
 family's key (crc32 of its name, :func:`family_key`), a chunk index or the crc32 of a label
@@ -31,7 +34,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
-__all__ = ["f_key", "f_keys", "family_key", "label_key", "chunk_seed", "pilot_seed", "stop_seed",
+__all__ = ["f_key", "f_keys", "point_key", "family_key", "label_key", "chunk_seed", "pilot_seed", "stop_seed",
            "reduce_seed", "mechanisms_seed", "table_seed", "child_seed", "PILOT_CHUNK", "SEEDING"]
 
 #: the pilot's chunk index: above every chunk a store can hold, so the pilot's particles are
@@ -55,6 +58,18 @@ def f_key(f: Any) -> int:
     """The integer key of a frequency f (Hz, or any value in Hz such as a grid step): f in mHz,
     rounded half to even (Python's ``round``)."""
     return int(round(f * 1000))
+
+
+def point_key(f: Any, grid: Any = ()) -> int | tuple:
+    """The key of a point: its frequency f (Hz) and its grid values ``grid``, (axis, value)
+    pairs in the study's axis order (or a mapping in that order).  Without grid values it is
+    :func:`f_key` (today's key of a frequency, so every store made before grids keeps its
+    keys); with them, the tuple ``(f_key(f), (axis, value), ...)``, values as the workflow
+    resolved them (floats, or a contact model's name)."""
+    pairs = tuple(grid.items()) if hasattr(grid, "items") else tuple(tuple(p) for p in grid)
+    if not pairs:
+        return f_key(f)
+    return (f_key(f), *((str(a), v) for a, v in pairs))
 
 
 def f_keys(f: Any) -> np.ndarray:

@@ -35,7 +35,8 @@ from .accuracy import ACCURACY_PRESETS, DEFAULT_ACCURACY, NUMERICS_KNOBS
 from .identity import family_key
 from .schema import REQUIRED, declared, key, reference
 
-__all__ = ["Family", "Accuracy", "RefineTable", "Observables", "Analysis", "SECTIONS", "DEFAULT_ANALYSIS",
+__all__ = ["Family", "Accuracy", "RefineTable", "GridTable", "GRID_AXES", "INVALID_POLICIES",
+           "Observables", "Analysis", "SECTIONS", "DEFAULT_ANALYSIS",
            "INITIAL_KINDS", "CI_METHODS", "PARAM_FIELDS", "reference_markdown",
            "readme_with_reference", "README"]
 
@@ -65,6 +66,10 @@ class ParamsTable:
                           default_doc="preset")
     A: float | None = key(None, "floor amplitude; y_f = -A sin(2 pi f t)", allowed="A >= 0 (mm)",
                           default_doc="preset")
+    # not a bbb.Params field: the workflow turns it into A at each point's f (study.resolve_params)
+    Gamma: float | None = key(None, "peak floor acceleration Γ = A (2 pi f)² / g at each "
+                              "point's f, instead of A", ge=0, allowed="Gamma >= 0 (in g), not with A",
+                              omit_default=True, default_doc="–")
     R: float | None = key(None, "scatterer (arc) radius", allowed="R >= S/2 (mm), or inf",
                           finite=False, default_doc="preset")
     S: float | None = key(None, "distance between scatterer centres", allowed="S > 0 (mm)",
@@ -85,6 +90,19 @@ class ParamsTable:
                        choices=CONTACT_MODELS)
     mu: float | None = key(None, "Coulomb friction coefficient", allowed="mu >= 0",
                            when=("contact", "coulomb"), default_doc="0")
+
+
+INVALID_POLICIES = ("refuse", "skip")
+
+
+@dataclass(frozen=True)
+class GridTable:
+    """The settings of ``[grid]``; its other keys are the axes (:data:`GRID_AXES`), read by
+    pipeline.workflow.load."""
+
+    invalid: str = key("refuse", "a point whose parameters bbb.Params refuses (e.g. slide on "
+                       "near-vertical cusps): refuse the workflow, naming the point, or skip "
+                       "the point", choices=INVALID_POLICIES)
 
 
 @dataclass(frozen=True)
@@ -301,13 +319,20 @@ class Analysis:
 
 
 DEFAULT_ANALYSIS: dict[str, Any] = {k.name: k.default for k in declared(Analysis)}
-PARAM_FIELDS = tuple(k.name for k in declared(ParamsTable) if k.kind == "float")
+#: the bbb.Params overrides a [params] table may hold (Gamma is not one: it becomes A)
+PARAM_FIELDS = tuple(k.name for k in declared(ParamsTable) if k.kind == "float" and k.name != "Gamma")
+#: the keys a [grid] axis may sweep: every [params] key but the preset, in their declared order
+GRID_AXES = tuple(k.name for k in declared(ParamsTable) if k.name != "preset")
 # The tables of a workflow, as in the reference: (header, declarations, note).
 SECTIONS: list[tuple[str, type, str]] = [
     ("[study]", StudyTable, ""),
     ("[params]", ParamsTable, "bbb.Params, mm and s; `f` comes from [frequencies]"),
     ("[frequencies]", FrequenciesTable, "Hz, multiples of 1 mHz: `values`, or `start, stop, "
      "step`; required"),
+    ("[grid]", GridTable, "sweep axes: `NAME = [v1, v2, ...]` for any [params] key but preset "
+     "(" + ", ".join(GRID_AXES) + "), distinct values of its type, not also in [params]; "
+     "the points are every combination of the axes, in their order, with [frequencies] "
+     "innermost"),
     ("[frequencies.refine]", RefineTable, "an inline table, e.g. `refine = { extrema = true, "
      "to = 0.1 }`"),
     ("[families.NAME]", Family, "NAME: a letter, then letters, digits, _ -; default: one "
@@ -318,7 +343,7 @@ SECTIONS: list[tuple[str, type, str]] = [
     ("[observables.lyapunov]", LyapunovTable, "e.g. `[observables.lyapunov] particles = 64`"),
     ("[analysis]", Analysis, "settings of `bbb reduce`, not of the stored data"),
 ]
-TABLES = ("study", "params", "frequencies", "families", "accuracy", "observables", "analysis")
+TABLES = ("study", "params", "frequencies", "grid", "families", "accuracy", "observables", "analysis")
 
 
 # -- the reference in pipeline/README.md ------------------------------------------------------

@@ -20,6 +20,9 @@ alpha = 0.7
 values = [54.0, 60.0, 72.0]
 # ... or an inclusive grid:  start = 50.0, stop = 99.2, step = 0.4
 
+# [grid]                       # optional sweep axes over [params] keys (pipeline.workflow.grid):
+# beta = [0.9, 0.99]           # the points are every combination with [frequencies], f innermost
+
 [families.launched]            # initial-condition families, by name
 initial = "launched"
 launch_speed = [0.0, 200.0]    # mm/s, upward relative to the floor
@@ -46,9 +49,9 @@ import sys
 from pathlib import Path
 
 from bbb.numerics import Numerics
-from bbb.params import Params
 
 from .accuracy import ACCURACY_PRESETS, NUMERICS_KNOBS
+from .grid import Grid, check_points, read_grid
 from .identity import f_key
 from .keys import (
     ALLOWED_F,
@@ -69,8 +72,13 @@ from .keys import (
     readme_with_reference,
     reference_markdown,
 )
-from .schema import InputError, Reader, declared, tname
-from .study import Study  # the validated workflow; importable from here as before the split
+from .schema import Reader, declared, tname
+from .study import (  # the validated workflow; importable from here as before the split
+    GridNotRunnable,
+    Study,
+    WorkflowError,
+    resolve_params,
+)
 
 __all__ = [
     "WorkflowError",
@@ -81,14 +89,11 @@ __all__ = [
     "Study",
     "load_workflow",
     "parse_workflow",
+    "GridNotRunnable",
     "reference_markdown",
     "INITIAL_KINDS",
     "DEFAULT_ANALYSIS",
 ]
-
-
-class WorkflowError(InputError):
-    """A malformed workflow: one line with file, line, key and what is allowed."""
 
 
 # -- reading ----------------------------------------------------------------------------------
@@ -116,22 +121,26 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
     if name is None:  # the file name, which must then be a valid name too
         stem = Path(source).stem if source and not source.startswith("<") else "study"
         name = r.check(stem, ("study", "name"), _key(StudyTable, "name"), {})
-    preset, overrides = _params(r, doc)
+    grid, invalid = read_grid(r, doc)
+    preset, overrides = _params(r, doc, grid)
     freqs, refine = _frequencies(r, doc)
-    for f in freqs:  # every frequency must give valid Params
+    if grid:
+        check_points(r, preset, overrides, grid, invalid, freqs)
+    for f in freqs if not grid else ():  # every frequency must give valid Params
         try:
-            Params.preset(preset, f=f, **overrides)
+            resolve_params(preset, f, overrides)
         except ValueError as e:
             fld = _field_of(e, "Params")
             path = ("frequencies",) if fld == "f" else ("params", fld) if fld else ("params",)
             if fld in PARAM_FIELDS and fld not in overrides:
-                path = ("params", "preset")
+                path = ("params", "Gamma" if fld == "A" and "Gamma" in overrides else "preset")
             r.fail(path, f"invalid parameters at f = {f:g} Hz: {e}")
     acc = _accuracy(r, doc)
     obs = _observables(r, doc, acc)
     study = Study(name=name, source=source, seed=st["seed"], preset=preset, overrides=overrides,
                   frequencies=freqs, families=_families(r, doc), accuracy=acc,
-                  observables=obs, analysis=_analysis(r, doc), refine=refine, text=text)
+                  observables=obs, analysis=_analysis(r, doc), refine=refine, grid=grid,
+                  invalid=invalid, text=text)
     _mirror_pairs(r, study)
     return study
 
@@ -152,17 +161,26 @@ def _mirror_pairs(r: Reader, study: Study) -> None:
                    "the same mirror for every family on a floor with tilt or throw")
 
 
-def _params(r: Reader, doc: dict) -> tuple[str, dict[str, float | str]]:
+def _params(r: Reader, doc: dict, grid: Grid = ()) -> tuple[str, dict[str, float | str]]:
     tbl = r.table(doc.get("params"), ("params",), ParamsTable)
     overrides: dict[str, float | str] = {k: float(tbl[k]) for k in PARAM_FIELDS
                                          if tbl[k] is not None}
     if tbl["contact"] != "stick":
         # only a non-default model is an override: stick scenes keep their fingerprints
         overrides["contact"] = tbl["contact"]
+    if tbl["Gamma"] is not None:  # the amplitude in g: A at each point's f (resolve_params)
+        if tbl["A"] is not None:
+            r.fail(("params", "Gamma"), "given with A (the amplitude twice)",
+                   "A (mm) or Gamma (peak floor acceleration in g), not both")
+        overrides["Gamma"] = float(tbl["Gamma"])
+    if grid:  # whether [params] and the grid's values go together is each point's check
+        return tbl["preset"], overrides
     try:
-        Params.preset(tbl["preset"], f=1.0, **overrides)
+        resolve_params(tbl["preset"], 1.0, overrides)
     except ValueError as e:
         fld = _field_of(e, "Params")
+        if fld == "A" and "Gamma" in overrides:
+            fld = "Gamma"
         r.fail(("params", fld) if fld in overrides else ("params",), str(e))
     return tbl["preset"], overrides
 

@@ -2,6 +2,13 @@
 from it -- the parameters at each frequency, the sample times, every chunk's seed, the
 serialised form a store keeps, and the fingerprint of what determines the stored numbers.
 
+A scene with a ``[grid]`` has points: every combination of its grid axes (in the order the
+workflow gives them) with its frequencies, frequency innermost, so that each grid line -- one
+value per axis -- is a contiguous D(f) curve, the unit along which frequency refinement works,
+and a scene without a grid is the one-line case whose points are its frequencies, in order.
+:attr:`Study.points` holds each point's Params; the per-frequency API (:meth:`Study.params`)
+serves scenes without a grid only.
+
 A Study is made by :func:`pipeline.workflow.load.parse_workflow` (which validates the TOML) or
 read back from a store (:meth:`Study.from_dict`).  Frequencies in Hz (multiples of 1 mHz),
 times in s, lengths in mm.
@@ -10,19 +17,73 @@ times in s, lengths in mm.
 from __future__ import annotations
 
 import hashlib
+import itertools
 import json
+import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 
-from bbb.params import Params
+from bbb.params import PRESETS, Params
 
-from .identity import chunk_seed, f_key
+from .identity import chunk_seed, f_key, point_key
 from .keys import Accuracy, Analysis, Family, Observables, RefineTable
-from .schema import as_dict
+from .schema import InputError, as_dict, line_of
 
-__all__ = ["Study"]
+__all__ = ["Study", "Point", "resolve_params", "WorkflowError", "GridNotRunnable"]
+
+#: a grid: (axis, values) per [grid] axis, in the workflow's order
+Grid = tuple[tuple[str, tuple[Any, ...]], ...]
+
+
+class WorkflowError(InputError):
+    """A malformed workflow: one line with file, line, key and what is allowed."""
+
+
+class GridNotRunnable(WorkflowError):
+    """A grid scene asked for something that runs one point per frequency (the store, the
+    tasks, the tables, the plan): not built yet, so refused in one line."""
+
+    def __init__(self, study: Study, what: str):
+        axes = ", ".join(a for a, _ in study.grid)
+        super().__init__(study.source, "grid", f"grid scenes cannot run yet: {what} knows one "
+                         f"point per frequency, and this scene also sweeps {axes}",
+                         "a workflow without [grid] (meanwhile one scene per grid value, e.g. "
+                         "[params] alpha = 0.5)", line_of(study.text, ("grid",)))
+
+
+def resolve_params(preset: str, f: float, values: Mapping[str, Any]) -> Params:
+    """The Params of ``preset`` at f (Hz) with ``values`` (overrides and grid values); a
+    ``Gamma`` among them (peak floor acceleration in g) becomes A = Gamma g / (2 pi f)^2 at
+    this f.  Raises ValueError as bbb.Params does."""
+    v = dict(values)
+    gamma = v.pop("Gamma", None)
+    if gamma is not None:
+        g = float(v.get("g", PRESETS[preset]["g"] if preset in PRESETS else 1.0))
+        v["A"] = float(gamma) * g / (2.0 * math.pi * float(f)) ** 2
+    return Params.preset(preset, f=float(f), **v)
+
+
+@dataclass(frozen=True)
+class Point:
+    """One point of a study: its frequency f (Hz), its grid values as (axis, value) pairs in
+    the study's axis order (empty without a grid), and its Params."""
+
+    f: float
+    grid: tuple[tuple[str, Any], ...]
+    params: Params
+
+    @property
+    def key(self) -> int | tuple:
+        """:func:`pipeline.workflow.identity.point_key`: f_key(f) without a grid."""
+        return point_key(self.f, self.grid)
+
+    def label(self) -> str:
+        """The point as a person reads it: ``f = 60 Hz, alpha = 0.5, contact = "slide"``."""
+        return ", ".join([f"f = {self.f:g} Hz"] + [f"{a} = {_fmt_value(v)}" for a, v in self.grid])
 
 
 @dataclass(frozen=True)
@@ -44,17 +105,106 @@ class Study:
     #: frequencies added by refinement, Hz, in the order they joined the store; they follow
     #: the workflow's own grid in ``frequencies``
     refined: tuple[float, ...] = ()
+    #: the [grid] axes, (axis, values) in the workflow's order; () without a grid
+    grid: Grid = ()
+    #: what a point bbb.Params refuses does: "refuse" (the workflow is refused) or "skip"
+    invalid: str = "refuse"
     text: str = field(default="", compare=False, repr=False)
 
     # -- derived quantities -------------------------------------------------------------------
     def params(self, f: float) -> Params:
-        return Params.preset(self.preset, f=float(f), **self.overrides)
+        """The Params at frequency f (Hz) of a scene without a grid (a grid scene's points
+        each have theirs: :attr:`points`)."""
+        self.refuse_grid("Study.params(f)")
+        return resolve_params(self.preset, f, self.overrides)
+
+    def refuse_grid(self, what: str) -> None:
+        """Refuse (GridNotRunnable, one line) ``what`` on a scene with a [grid]: the store,
+        the tasks, the tables and the plan know one point per frequency only, so far."""
+        if self.grid:
+            raise GridNotRunnable(self, what)
+
+    @property
+    def axes(self) -> tuple[tuple[str, tuple[Any, ...]], ...]:
+        """Every axis of the points, outermost first: the [grid] axes in the workflow's order,
+        then ("f", the frequencies in Hz) innermost."""
+        return (*self.grid, ("f", self.frequencies))
+
+    @cached_property
+    def points(self) -> tuple[Point, ...]:
+        """Every point, in axis order (:attr:`axes`; frequency innermost), each with its
+        Params; with ``invalid = "skip"`` the points bbb.Params refuses are left out.  Without
+        a grid: one point per frequency, in the order of ``frequencies``."""
+        out = []
+        for grid in self._grid_values():
+            for f in self.frequencies:
+                try:
+                    p = resolve_params(self.preset, f, {**self.overrides, **dict(grid)})
+                except ValueError:
+                    if self.invalid == "skip":
+                        continue
+                    raise
+                out.append(Point(f, grid, p))
+        return tuple(out)
+
+    def line(self, values: Mapping[str, Any]) -> Study:
+        """The scene without a grid at one value of every grid axis (``values``: axis ->
+        value): its points are this grid line's, along f, and it is the Study of the same
+        workflow with those values in [params] instead of [grid] -- same seeds, same
+        fingerprint (a contact of "stick" is no override, as in [params])."""
+        names = [a for a, _ in self.grid]
+        if sorted(values) != sorted(names):
+            raise ValueError(f"a grid line needs one value of each axis ({', '.join(names)}), "
+                             f"got {', '.join(values) or 'none'}")
+        overrides = dict(self.overrides)
+        for a, axis in self.grid:
+            v = values[a]
+            if v not in axis:
+                raise ValueError(f"{a} = {_fmt_value(v)} is not on the grid; allowed: "
+                                 + ", ".join(_fmt_value(x) for x in axis))
+            if a == "contact" and v == "stick":
+                overrides.pop(a, None)
+            else:
+                overrides[a] = v
+        grid = tuple((a, values[a]) for a in names)
+        freqs = tuple(p.f for p in self.points if p.grid == grid)
+        label = ", ".join(f"{a} = {_fmt_value(v)}" for a, v in grid)
+        if not freqs:
+            raise ValueError(f"every point of the line {label} is skipped as invalid")
+        # the TOML a store keeps says which line of which grid it holds
+        text = f"# the grid line {label} of this workflow\n{self.text}" if self.text else ""
+        return replace(self, overrides=overrides, frequencies=freqs, grid=(), invalid="refuse",
+                       refined=tuple(f for f in self.refined if f in freqs), text=text)
+
+    def skipped(self) -> tuple:
+        """The keys (:func:`pipeline.workflow.identity.point_key`) of the grid's combinations
+        left out as invalid (``invalid = "skip"``), in axis order; () when none is."""
+        have = {p.key for p in self.points}
+        keys = (point_key(f, grid) for grid in self._grid_values() for f in self.frequencies)
+        return tuple(k for k in keys if k not in have)
+
+    def _grid_values(self):
+        """Every combination of the grid axes' values as (axis, value) pairs, in axis order
+        (one empty combination without a grid)."""
+        names = [a for a, _ in self.grid]
+        for combo in itertools.product(*(values for _, values in self.grid)):
+            yield tuple(zip(names, combo, strict=True))
 
     @property
     def base_params(self) -> dict[str, float]:
-        """The resolved parameters except f (which varies over the grid)."""
-        d = Params.preset(self.preset, f=1.0, **self.overrides).as_dict()
-        del d["f"]
+        """The resolved parameters except f (which varies over the grid), the grid axes (so
+        do they), and, with Gamma, A (Gamma instead)."""
+        if not self.grid and "Gamma" not in self.overrides:
+            d = Params.preset(self.preset, f=1.0, **self.overrides).as_dict()
+            del d["f"]
+            return d
+        p = (self.points[0].params if self.grid and self.points
+             else resolve_params(self.preset, 1.0, self.overrides))
+        axes = {a for a, _ in self.grid}
+        drop = {"f"} | axes | ({"A"} if "Gamma" in axes | set(self.overrides) else set())
+        d = {k: v for k, v in p.as_dict().items() if k not in drop}
+        if "Gamma" in self.overrides:
+            d["Gamma"] = float(self.overrides["Gamma"])
         return d
 
     @property
@@ -92,7 +242,9 @@ class Study:
     def mirror_symmetric(self) -> bool:
         """Whether the floor is mirror-symmetric (level, vibrated vertically: no tilt, throw
         90°), under any contact model: a particle's mirror image then moves as its reflection."""
-        return not Params.preset(self.preset, f=1.0, **self.overrides).transport
+        if self.grid:  # every point's floor (tilt and throw may be axes)
+            return not any(p.params.transport for p in self.points)
+        return not resolve_params(self.preset, 1.0, self.overrides).transport
 
     def pairing(self, family: Family) -> str:
         """How ``family``'s particles enter the estimates (bbb.analysis.transport.PAIRING): "mirror
@@ -130,6 +282,9 @@ class Study:
             d["refine"] = as_dict(self.refine)
         if self.refined:
             d["refined"] = list(self.refined)
+        if self.grid:
+            d["grid"] = _grid_list(self.grid)
+            d["invalid"] = self.invalid
         return d
 
     @classmethod
@@ -160,6 +315,9 @@ class Study:
             analysis=Analysis(**d["analysis"]),
             refine=RefineTable(**d["refine"]) if d.get("refine") is not None else None,
             refined=tuple(float(f) for f in d.get("refined", ())),
+            grid=tuple((a, tuple(v if isinstance(v, str) else float(v) for v in values))
+                       for a, values in d.get("grid", ())),
+            invalid=d.get("invalid", "refuse"),
             text=text,
         )
 
@@ -184,6 +342,11 @@ class Study:
                              "fit_from": an.fit_from, "fit_to": an.fit_to}
         if self.refine is not None:
             d["refine"] = as_dict(self.refine)
+        if self.grid:  # absent without a grid: every older store keeps its fingerprint
+            d["grid"] = _grid_list(self.grid)
+            skipped = self.skipped()
+            if skipped:  # which points exist, not the policy: skip with none left out is refuse
+                d["skipped"] = list(skipped)
         return d
 
     def _family_identity(self, fam: Family) -> dict[str, Any]:
@@ -198,6 +361,14 @@ class Study:
     def fingerprint(self) -> str:
         blob = json.dumps(self.data_identity(), sort_keys=True, default=_json_default)
         return hashlib.sha256(blob.encode()).hexdigest()
+
+
+def _grid_list(grid: Grid) -> list:
+    return [[a, list(values)] for a, values in grid]
+
+
+def _fmt_value(v: Any) -> str:
+    return f'"{v}"' if isinstance(v, str) else f"{v:g}"
 
 
 def _drop_none(d: dict) -> dict:

@@ -96,6 +96,24 @@ WORKFLOWS = {
     "store name with a path": (_sub('name = "tiny"', 'name = "../tiny"'), 2, "study.name",
                                "allowed: letters, digits"),
     "empty file": (lambda t: "", None, "frequencies", "allowed: [frequencies] values = [...]"),
+    # [grid] (TINY is 30 lines: [grid] is line 31, its first axis line 32)
+    "grid key also in params": (lambda t: _param("alpha = 0.5")(t) + "[grid]\nalpha = [0.5, 0.7]\n",
+                                33, "grid.alpha", "allowed: alpha in [params] (one value) or in "
+                                "[grid] (an axis), not both"),
+    "grid unknown axis": (lambda t: t + "[grid]\nomega = [1.0]\n", 32, "grid.omega",
+                          "allowed: an axis named by a [params] key"),
+    "grid empty axis": (lambda t: t + "[grid]\nalpha = []\n", 32, "grid.alpha",
+                        "allowed: a non-empty list of distinct values"),
+    "grid axis not a list": (lambda t: t + "[grid]\nalpha = 0.5\n", 32, "grid.alpha",
+                             "allowed: a non-empty list of distinct values"),
+    "grid mixed types": (lambda t: t + '[grid]\nalpha = [0.5, "a"]\n', 32, "grid.alpha",
+                         "allowed: a non-empty list of distinct values"),
+    "grid duplicates": (lambda t: t + "[grid]\nalpha = [0.5, 0.5]\n", 32, "grid.alpha",
+                        "allowed: a non-empty list of distinct values"),
+    "grid invalid point": (lambda t: t + '[grid]\nR = [1.0]\ncontact = ["slide"]\n', 33,
+                           "grid.contact", 'or invalid = "skip" in [grid]'),
+    "grid scene": (lambda t: t + "[grid]\nalpha = [0.5, 0.7]\n", 31, "grid",
+                   "grid scenes cannot run yet: bbb run knows one point per frequency"),
 }
 
 
@@ -176,6 +194,14 @@ def test_a_store_of_another_workflow_exits_2_naming_the_difference(
     assert_one_line_usage_error(rc, out, err, f"{existing}: made by a different workflow (families",
                                 "allowed: the same workflow, or another --store")
     assert snapshot(existing) == pristine
+
+
+def test_bbb_plan_refuses_a_grid_scene_in_one_line(tmp_path, capsys):
+    grid = tmp_path / "grid.toml"
+    grid.write_text(TINY + "[grid]\nalpha = [0.5, 0.7]\n")
+    rc, out, err = run_main(["plan", str(grid)], capsys)
+    assert_one_line_usage_error(rc, out, err, f"bbb: error: {grid}:31: grid: grid scenes cannot "
+                                "run yet: bbb plan knows one point per frequency")
 
 
 # -- malformed command lines ----------------------------------------------------------------------

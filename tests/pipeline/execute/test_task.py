@@ -46,3 +46,23 @@ def test_a_stored_chunk_is_what_bbb_simulate_gives_for_its_seed(reference, tiny_
     sl = slice(4 * ci, 4 * ci + 4)
     assert np.array_equal(g["positions"][fi, mi, sl, :], run.positions)
     assert np.array_equal(g["collisions"][fi, mi, sl], run.collisions_dense, equal_nan=True)
+
+
+def test_a_chunk_of_a_gamma_scene_is_bbb_simulate_at_the_amplitude_of_that_gamma(tmp_path):
+    # [params] Gamma = 2: at 60 Hz the chunk runs with A = 2 g / (2 pi 60)^2
+    import math
+
+    from bbb import Params, simulate
+    from pipeline.workflow.load import parse_workflow
+
+    from ..helpers import TINY
+
+    study = parse_workflow(TINY.replace('preset = "klages2004"',
+                                        'preset = "klages2004"\nGamma = 2.0'))
+    store = StudyStore.create_or_open(tmp_path / "gamma.zarr", study)
+    compute_chunk(store, 1, 0, 0)  # f = 60 Hz, family "rest", first chunk
+    p = Params.preset("klages2004", f=60.0, A=2.0 * 9800.0 / (2 * math.pi * 60.0) ** 2)
+    run = simulate(p, 4, 10.0, study.seed_sequence(60.0, study.families[0], 0), "rest",
+                   sample_times=np.arange(21) * 0.5, record_collisions=40, record_from=2.0,
+                   numerics=study.accuracy.numerics())
+    assert np.array_equal(store_arrays(tmp_path / "gamma.zarr")["positions"][1, 0, :4], run.positions)

@@ -111,3 +111,14 @@ def test_the_study_and_the_pipeline_modules_use_these_seeds():
     assert pilot.PILOT_CHUNK == 2**31
     assert store.SEEDING == ("SeedSequence(workflow seed, spawn_key=(round(f * 1000), "
                              "zlib.crc32(family name), chunk index))")
+
+
+@pytest.mark.parametrize("f", FREQS)
+def test_point_key_without_grid_values_is_the_frequency_key(f):
+    assert identity.point_key(f) == identity.point_key(f, ()) == identity.point_key(f, {}) \
+        == identity.f_key(f)
+
+
+def test_point_key_with_grid_values_holds_them_after_the_frequency_key():
+    assert identity.point_key(60.0, {"alpha": 0.5, "contact": "slide"}) == (
+        60000, ("alpha", 0.5), ("contact", "slide"))
