@@ -7,7 +7,8 @@ batch_sched_delay = 3 s, SLURM's default, which the cluster keeps).
     python3 benchmarks/slurm_fixture.py [--repeats 5] [--jobs 5]
 
 Needs root and slurm-wlm + munge (`slurm.sh up` installs them).  Runs its own cluster in
-/tmp/bbb-slurm-bench on ports 16837-16839; leaves nothing running.  Standard library only.
+bbb-slurm-bench in the temporary directory on ports 16837-16839; leaves nothing running.
+Standard library only.
 Commit the output under benchmarks/results/."""
 
 from __future__ import annotations
@@ -19,12 +20,13 @@ import platform
 import shutil
 import statistics
 import subprocess
+import tempfile
 import time
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
 SCRIPT = ROOT / "tests" / "cluster" / "slurm.sh"
-RUN_DIR = Path("/tmp/bbb-slurm-bench")
+RUN_DIR = Path(tempfile.gettempdir()) / "bbb-slurm-bench"
 ENV = {**os.environ, "BBB_SLURM_DIR": str(RUN_DIR), "BBB_SLURM_PORT": "16837"}
 
 
@@ -67,7 +69,7 @@ def main() -> None:
           "jobs one after another (sbatch --wrap 'echo done > FILE'), down")
     ups, downs, first, later = [], [], [], []
     env = {**ENV, "SLURM_CONF": str(RUN_DIR / "slurm.conf")}
-    out = Path("/tmp/bbb-slurm-bench-out.txt")
+    out = Path(tempfile.gettempdir()) / "bbb-slurm-bench-out.txt"
     try:
         for _ in range(args.repeats):
             timed(str(SCRIPT), "down")

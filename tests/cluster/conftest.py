@@ -4,7 +4,8 @@ session (munged, slurmctld, two slurmd: nodes n1 and n2 of one CPU each, partiti
 never starts SLURM, `make test-slow` or ``pytest -m slurm tests/cluster`` does.
 
 The cluster runs in a directory and on ports of its own (`RUN_DIR`, `PORT`), so a test cluster
-started by hand with `slurm.sh up` (default /tmp/bbb-slurm, port 16817) is left alone.  It needs
+started by hand with `slurm.sh up` (default bbb-slurm in the temporary directory, port 16817)
+is left alone.  It needs
 root (slurmd, and apt-get if slurm-wlm is missing): as another user the tests are skipped."""
 
 from __future__ import annotations
@@ -12,13 +13,14 @@ from __future__ import annotations
 import os
 import shlex
 import subprocess
+import tempfile
 from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
 SCRIPT = Path(__file__).with_name("slurm.sh")
-RUN_DIR = "/tmp/bbb-slurm-pytest"
+RUN_DIR = str(Path(tempfile.gettempdir()) / "bbb-slurm-pytest")
 PORT = 16827  # slurmctld; the nodes listen on the next two
 
 

@@ -7,7 +7,7 @@
 #   tests/cluster/slurm.sh status   sinfo of the cluster
 #
 # Environment:
-#   BBB_SLURM_DIR   run directory (default /tmp/bbb-slurm): slurm.conf, munge key and socket,
+#   BBB_SLURM_DIR   run directory (default bbb-slurm in the temporary directory): slurm.conf, munge key and socket,
 #                   state, spool, pid and log files; `up` writes $BBB_SLURM_DIR/env, which
 #                   clients source (it exports SLURM_CONF) -- nothing under /etc is written
 #   BBB_SLURM_PORT  slurmctld's port (default 16817); n1 and n2 listen on the next two
@@ -19,7 +19,7 @@
 # ever stopped.
 set -euo pipefail
 
-DIR=${BBB_SLURM_DIR:-/tmp/bbb-slurm}
+DIR=${BBB_SLURM_DIR:-$(dirname "$(mktemp -u)")/bbb-slurm}
 PORT=${BBB_SLURM_PORT:-16817}
 WAIT=${BBB_SLURM_WAIT:-60}
 CONF=$DIR/slurm.conf
@@ -242,5 +242,5 @@ case ${1:-} in
         [[ -n $(live_pid slurmctld) ]] || die "no slurmctld running for $DIR"
         client sinfo
         ;;
-    *) die "usage: $0 up|down|status   (run directory \$BBB_SLURM_DIR, default /tmp/bbb-slurm)" ;;
+    *) die "usage: $0 up|down|status   (run directory \$BBB_SLURM_DIR, default bbb-slurm in the temporary directory)" ;;
 esac
