@@ -33,7 +33,8 @@ if TYPE_CHECKING:
 
 from .tables.units import UNITS
 
-__all__ = ["open_study", "reduced", "run_study", "load_study", "attach_tables", "TABLE_UNITS"]
+__all__ = ["open_study", "reduced", "reduced_dataset", "run_study", "load_study",
+           "attach_tables", "TABLE_UNITS"]
 
 #: the units of the tables' columns by exact name: now the one map of every table,
 #: :data:`pipeline.tables.units.UNITS` (families of columns and CI bounds:
@@ -99,13 +100,16 @@ def _address(client: Client | str | None) -> str | None:
                         "or a scheduler address") from None
 
 
-def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = False
-               ) -> xr.Dataset:
+def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = False,
+               unstack: bool = True) -> xr.Dataset:
     """The store at ``path`` as an :class:`xarray.Dataset` (lazy, dask-backed).
 
-    Dimensions ``frequency`` (Hz), ``family``, ``particle``, ``chunk`` and, as recorded,
-    ``time`` (s), ``collision`` and ``field``; each variable's ``units`` and ``long_name`` are in
-    its attributes (positions in mm; collisions' fields t s, x mm, y mm, vx mm/s, vy mm/s).
+    Dimensions ``frequency`` (Hz), a grid's axes (``alpha``, ``contact``, ... in the
+    workflow's order; a store without ``[grid]`` has none), ``family``, ``particle``,
+    ``chunk`` and, as recorded, ``time`` (s), ``collision`` and ``field``; each variable's
+    ``units`` and ``long_name`` are in its attributes (positions in mm; collisions' fields t s,
+    x mm, y mm, vx mm/s, vy mm/s).  A grid is unstacked: one dimension per axis, NaN where a
+    point is absent (left out as invalid, or not in the store).
 
     mask    -- True (default): every variable with a ``particle`` dimension is NaN for the
                particles of chunks not marked done (``ds.where(done)`` applied chunk by
@@ -113,10 +117,10 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
                chunks.  The per-particle mask is the coordinate ``particle_done``.  False:
                the raw arrays (a chunk not done may hold partial data or fill values).
     reduced -- True: also attach the tables of :func:`reduced` (computed now, with the
-               bootstrap), every column a variable with its ``units``: D(f), mechanisms
-               along ``frequency`` (``D``, ``D_lo``, ``D_hi``, ``ergodic``, ``D_inf``, ...),
-               counters and contact along (``frequency``, ``family``)
-               (:func:`attach_tables` names them).
+               bootstrap), every column a variable with its ``units``
+               (:func:`attach_tables`; :func:`reduced_dataset` gives them alone).
+    unstack -- False: a grid store as stored, along one dimension ``point`` with the
+               coordinates ``frequency`` and each axis.
 
     Root attributes are netCDF-safe: nested ones (workflow, params, numerics, accuracy) are
     JSON strings (``json.loads(ds.attrs["workflow"])``), so ``ds.to_netcdf`` can write them.
@@ -127,23 +131,38 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     from .store.study_store import StudyStore, normalize_path
 
     st = StudyStore.open(path)  # checks that it is a complete bbb store
+    study = st.study
     ds = xr.open_zarr(normalize_path(path), consolidated=None)
     ds.attrs = {k: json.dumps(v) if isinstance(v, dict | list) else v for k, v in ds.attrs.items()}
     # the per-particle mask in memory (F x M x N booleans): as a dask array indexed from
     # `done`'s one-element chunks it would split every variable into one chunk per particle
-    chunk_of = np.arange(ds.sizes["particle"]) // st.study.accuracy.chunk_size
+    chunk_of = np.arange(ds.sizes["particle"]) // study.accuracy.chunk_size
     done_p = np.asarray(ds["done"].values, dtype=bool)[:, :, chunk_of]
-    ds = ds.assign_coords(particle_done=(("frequency", "family", "particle"), done_p, {
+    ds = ds.assign_coords(particle_done=((study.point_dim, "family", "particle"), done_p, {
         "long_name": "the particle's chunk is marked done", "units": ""}))
     if mask:
         for name, var in ds.data_vars.items():
             if "particle" in var.dims:
                 ds[name] = var.where(ds["particle_done"]).assign_attrs(var.attrs)
+    if study.grid and unstack:
+        ds = _unstack(ds, dict(study.grid))
     if reduced:
         from .tables.catalog import tables
 
         ds = attach_tables(ds, tables(st))
     return ds
+
+
+def _unstack(ds: xr.Dataset, axes: dict) -> xr.Dataset:
+    """A grid store's ``point`` dimension as one dimension per axis and ``frequency``, each
+    axis with all its values ({axis: values}: NaN where no point has one)."""
+    attrs = {c: dict(ds[c].attrs) for c in ("frequency", *axes)}
+    out = ds.drop_vars("point").set_index(point=["frequency", *axes]).unstack("point")
+    out = out.reindex({a: sorted(set(out[a].values.tolist()) | set(v)) for a, v in axes.items()})
+    out = out.transpose("frequency", *axes, ...)
+    for c, a in attrs.items():
+        out[c].attrs.update(a)
+    return out
 
 
 def reduced(path: str | os.PathLike, names: list[str] | None = None
@@ -159,45 +178,62 @@ def reduced(path: str | os.PathLike, names: list[str] | None = None
     return tables(StudyStore.open(path), names)
 
 
+def reduced_dataset(path: str | os.PathLike, names: list[str] | None = None) -> xr.Dataset:
+    """The tables of :func:`reduced` as one Dataset: dims ``frequency``, a grid's axes and
+    ``family`` (the per-family ``D_<family>`` columns as ``D_family`` along ``family``), CF
+    attributes (``Conventions``, ``units``, ``long_name``) on every variable; columns and
+    names in :mod:`pipeline.tables.dataset`.  ``ds.to_netcdf(...)`` writes it (needs the
+    ``netcdf`` extra: ``pip install bbb[netcdf]``)."""
+    from .store.study_store import StudyStore
+    from .tables.catalog import tables
+    from .tables.dataset import tables_dataset
+
+    st = StudyStore.open(path)
+    attrs = st.attrs()
+    return tables_dataset(tables(st, names), dict(st.study.grid),
+                          [f.name for f in st.study.families],
+                          {"title": f"bbb reduce: study {st.study.name}",
+                           "store_fingerprint": attrs["fingerprint"],
+                           "kernel_hash": attrs["kernel_hash"]})
+
+
 def attach_tables(ds: xr.Dataset, tables: dict[str, pd.DataFrame]) -> xr.Dataset:
-    """``ds`` with every column of ``tables`` as a variable: along ``frequency`` for a table
-    with a row per f, along (``frequency``, ``family``) for one with a row per (f, family).
+    """``ds`` with every column of ``tables`` as a variable
+    (:func:`pipeline.tables.dataset.tables_dataset`: over ``frequency`` and a grid's axes,
+    and ``family`` for a table with a row per (point, family); per-family columns of a table
+    with a row per point as ``D_family`` etc. along ``family``); along ``point`` on a grid
+    store opened with ``unstack=False``.
 
-    A variable is named as its column; a column already attached by an earlier table (the
-    tables with a row per f come first) is left out where it holds the same values (Gamma,
-    t_max of the counters), else attached as ``<table>_<column>`` (e.g.
-    ``counters_n_particles``: per family, where the diffusion table's ``n_particles`` pools
-    them).  Each variable's attributes: ``units``
-    (:func:`pipeline.tables.units.column_unit`, as the Parquet metadata), ``source`` (``bbb
-    reduce: <table> table``) and ``column``.  The label columns ``family`` and ``initial``
-    are the Dataset's own coordinates."""
-    import xarray as xr
+    A column already in ``ds`` (Gamma, t_max, ...) is left out where it holds the same
+    values, else attached as ``<table>_<column>`` (e.g. ``counters_n_left_cell``: per family,
+    where the store's ``n_left_cell`` is per particle).  Each variable's attributes: ``units``
+    (:func:`pipeline.tables.units.column_unit`, as the Parquet metadata), ``long_name``,
+    ``source`` (``bbb reduce: <table> table``) and ``column``."""
+    from .tables.dataset import tables_dataset
 
-    from .tables.catalog import index_of
-    from .tables.units import column_unit
-
+    axes = _grid_axes(ds)
+    families = [str(f) for f in ds["family"].values] if "family" in ds.coords else []
+    tds = tables_dataset(tables, axes, families)
+    if "point" in ds.dims:  # a grid as stored: each point's row
+        tds = tds.sel({c: ds[c] for c in ("frequency", *axes)})
+        tds = tds.drop_vars([c for c in ("frequency", *axes) if c in tds.coords])
     out = ds.copy()
-    # the tables with a row per f first: D(f)'s columns keep their plain names
-    for name, df in sorted(tables.items(), key=lambda item: len(index_of(item[0]))):
-        index = index_of(name)
-        dims = tuple({"f": "frequency"}.get(c, c) for c in index)
-        frame = df.rename(columns={"f": "frequency"}).set_index(list(dims))
-        for col in [c for c in frame.columns if c not in ("family", "initial")]:
-            series = frame[col]
-            if len(dims) == 1:
-                values = series.reindex(ds["frequency"].values).to_numpy()
-            else:
-                values = series.unstack("family").reindex(
-                    index=ds["frequency"].values, columns=ds["family"].values).to_numpy()
-            var = xr.Variable(dims, values, {"units": column_unit(col),
-                                             "source": f"bbb reduce: {name} table",
-                                             "column": col})
-            if col in out.variables:
-                if _same_values(out[col].variable, var):
-                    continue
-                col = f"{name}_{col}"
-            out[col] = var
+    for name, var in tds.data_vars.items():
+        if name in out.variables:
+            if _same_values(out[name].variable, var.variable):
+                continue
+            name = f"{var.attrs['source'].rsplit(': ', 1)[-1].split()[0]}_{name}"
+        out[name] = var
     return out
+
+
+def _grid_axes(ds: xr.Dataset) -> list[str]:
+    """The grid axes of a Dataset of :func:`open_study` (from its stored workflow)."""
+    wf = ds.attrs.get("workflow")
+    if not wf:
+        return []
+    wf = json.loads(wf) if isinstance(wf, str) else wf
+    return [a for a, _ in wf.get("grid", ())]
 
 
 def _same_values(a, b) -> bool:

@@ -343,8 +343,10 @@ def _cmd_verify(args) -> int:
 def _status_text(store) -> str:
     study = store.study
     done = store.done()
+    where = (f"{len(study.points)} points ({' x '.join(a for a, _ in study.axes)})"
+             if study.grid else f"{len(study.frequencies)} frequencies")
     lines = [f"{study.name}: {int(done.sum())}/{done.size} chunks done in {store.path} "
-             f"({len(study.frequencies)} frequencies x {len(study.families)} families x "
+             f"({where} x {len(study.families)} families x "
              f"{study.accuracy.n_chunks} chunks of {study.accuracy.chunk_size} particles)"]
     names = [fam.name for fam in study.families]
     width = max(len(n) for n in names)
@@ -355,17 +357,26 @@ def _status_text(store) -> str:
         width = max(width, 22)
         lines[0] += f"; target CI half-width {study.accuracy.target_ci:g} of D"
     refined = {f_key(f) for f in study.refined}
-    lines.append("f (Hz)    " + "  ".join(n.rjust(max(width, 5)) for n in names))
-    for fi, f in enumerate(study.frequencies):
+    axes = [a for a, _ in study.grid]
+    aw = {a: max(len(a), *(len(_cell(dict(p.grid)[a])) for p in study.points)) for a in axes}
+    lines.append("f (Hz)    " + "".join(f"{a:<{aw[a]}}  " for a in axes)
+                 + "  ".join(n.rjust(max(width, 5)) for n in names))
+    for fi, point in enumerate(study.points):
+        f = point.f
         cells = [f"{int(done[fi, mi].sum())}/{done.shape[2]}" for mi in range(len(names))]
         if stops is not None:
             cells = [c + f" {STOP_LEGEND[int(stops[1][fi, mi])]}" for mi, c in enumerate(cells)]
         mark = "*" if f_key(f) in refined else " "
-        lines.append(f"{f:<8g}{mark} " + "  ".join(c.rjust(max(width, 5)) for c in cells))
+        values = "".join(f"{_cell(v):<{aw[a]}}  " for a, v in point.grid)
+        lines.append(f"{f:<8g}{mark} " + values + "  ".join(c.rjust(max(width, 5)) for c in cells))
     if refined:
         lines.append(f"* added by refinement ({len(refined)} frequencies, to "
                      f"{study.refine.to:g} Hz)")
     return "\n".join(lines)
+
+
+def _cell(v) -> str:
+    return v if isinstance(v, str) else f"{v:g}"
 
 
 def _error(message: str) -> None:

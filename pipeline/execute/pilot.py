@@ -39,7 +39,7 @@ from ..workflow.identity import PILOT_CHUNK, f_key, pilot_seed  # noqa: F401
 from ..workflow.study import Study
 from .plan import Cell, Rates
 
-__all__ = ["pilot_rates", "benchmark_rate", "PILOT_PARTICLES", "TIMING_FLOOR_S"]
+__all__ = ["pilot_rates", "probe_lines", "benchmark_rate", "PILOT_PARTICLES", "TIMING_FLOOR_S"]
 
 #: pilot particles per (frequency, family)
 PILOT_PARTICLES = 8
@@ -56,10 +56,13 @@ def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
                 cache_dir: str | os.PathLike | None = "runs/plan-cache",
                 echo=None) -> Rates:
     """Measure (or read from the cache) a pilot :class:`Cell` at every (frequency, family)
-    of ``study``: ``particles`` particles, at most half the study's, over its t_max."""
+    of ``study``: ``particles`` particles, at most half the study's, over its t_max.  A grid
+    is piloted along its probe lines (:func:`probe_lines`: the corners and the centre of its
+    axes), every other point costed as the nearest of them (:meth:`Rates.cell`)."""
     from bbb.provenance import kernel_hash
 
-    study.refuse_grid("bbb plan")
+    if study.grid:
+        return _grid_rates(study, particles, cache_dir, echo)
     acc = study.accuracy
     n = max(1, min(particles, acc.n_particles // 2))
     cells: dict[tuple[int, str], Cell] = {}
@@ -104,6 +107,42 @@ def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
     src = (f"pilot {n} particles x {acc.t_max:g} s per (frequency, family), "
            f"measured {', '.join(sorted(when))}" + (", cached" if not todo else ""))
     return Rates(cells, source=src)
+
+
+def probe_lines(study: Study) -> list[tuple[tuple[str, object], ...]]:
+    """The grid lines a grid scene's plan pilots, as grid values: every corner of the
+    numeric axes (their least and greatest values) with every value of the string axes
+    (contact), and the centre (each numeric axis's middle value); lines with no valid point
+    are left out."""
+    import itertools
+
+    corner_values, centre = [], []
+    for a, values in study.grid:
+        if isinstance(values[0], str):
+            corner_values.append([(a, v) for v in values])
+            centre.append([(a, v) for v in values])
+        else:
+            s = sorted(values)
+            corner_values.append([(a, v) for v in dict.fromkeys((s[0], s[-1]))])
+            centre.append([(a, s[(len(s) - 1) // 2])])
+    lines = [*itertools.product(*corner_values), *itertools.product(*centre)]
+    have = {p.grid for p in study.points}
+    return [line for line in dict.fromkeys(tuple(x) for x in lines) if line in have]
+
+
+def _grid_rates(study: Study, particles: int, cache_dir, echo) -> Rates:
+    """The pilot of a grid scene: the 1-D pilot of each probe line (cached as that scene's)."""
+    cells, sources = {}, set()
+    for line in probe_lines(study):
+        rates = pilot_rates(study.line(dict(line)), particles=particles, cache_dir=cache_dir,
+                            echo=echo)
+        cells.update({(mhz, fam, line): c for (mhz, fam), c in rates.cells.items()})
+        sources.add(rates.source)
+    scales = tuple((a, float(min(v)), float(max(v))) for a, v in study.grid
+                   if not isinstance(v[0], str))
+    src = (f"{'; '.join(sorted(sources))}; {len(probe_lines(study))} probe lines of the grid "
+           "(corners and centre), each point costed as the nearest")
+    return Rates(cells, source=src, scales=scales)
 
 
 def benchmark_rate(path: str | os.PathLike) -> float:

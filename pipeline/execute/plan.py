@@ -93,9 +93,37 @@ class Rates:
     """The cost table: a pilot cell per (frequency in mHz, family name), and the kernel rate
     (collisions per CPU-second of one core) -- the pilot's own unless ``rate`` is given."""
 
-    cells: dict[tuple[int, str], Cell]
+    cells: dict[tuple, Cell]
     rate: float | None = None
     source: str = ""
+    #: a grid's probed lines: cells keyed (f in mHz, family, grid values); the numeric axes'
+    #: (lo, hi), by which the nearest probed line of a point is found
+    scales: tuple[tuple[str, float, float], ...] = ()
+
+    def cell(self, f: float, family: str, grid: tuple = ()) -> Cell:
+        """The pilot cell for (f, family) at the grid values ``grid`` (() without a grid):
+        the probed line's own, else the nearest probed line's (numeric axes scaled to their
+        range; a string axis must match)."""
+        if not grid:
+            return self.cells[(f_key(f), family)]
+        key = (f_key(f), family, grid)
+        if key in self.cells:
+            return self.cells[key]
+        lines = {k[2] for k in self.cells if k[0] == key[0] and k[1] == family}
+        scale = {a: (hi - lo) or 1.0 for a, lo, hi in self.scales}
+        want = dict(grid)
+
+        def distance(line) -> float:
+            d = 0.0
+            for a, v in line:
+                if isinstance(v, str):
+                    d += 0.0 if v == want[a] else math.inf
+                else:
+                    d += ((v - want[a]) / scale[a]) ** 2
+            return d
+
+        best = min(sorted(lines, key=repr), key=distance)
+        return self.cells[(key[0], family, best)]
 
     @property
     def kernel_rate(self) -> float:
@@ -115,7 +143,8 @@ class Rates:
 
 @dataclass(frozen=True)
 class TaskRow:
-    """The prediction for one (frequency, family): particles, chunks, collisions, CPU-s."""
+    """The prediction for one (point, family): particles, chunks, collisions, CPU-s (f: the
+    point's frequency, Hz)."""
 
     f: float
     family: str
@@ -207,9 +236,10 @@ def predict(study: Study, rates: Rates, workers: int, overheads: Overheads = Ove
     acc = study.accuracy
     r = rates.kernel_rate * overheads.in_task
     rows, durations = [], []
-    for f in study.frequencies:
+    for point in study.points:
+        f = point.f
         for fam in study.families:
-            cell = rates.cells[(f_key(f), fam.name)]
+            cell = rates.cell(f, fam.name, point.grid)
             n, why = particles_needed(study, cell)
             chunk_cpu = acc.chunk_size * acc.t_max * cell.per_particle_s / r
             chunks = n // acc.chunk_size
@@ -220,7 +250,9 @@ def predict(study: Study, rates: Rates, workers: int, overheads: Overheads = Ove
     size = (f"target_ci {target:g} (chunks of {acc.chunk_size})" if target is not None else
             f"{acc.n_particles} particles in chunks of {acc.chunk_size}")
     fams = "family" if len(study.families) == 1 else "families"
-    header = (f"{study.name}: {len(study.frequencies)} frequencies x {len(study.families)} "
+    where = (f"{len(study.points)} points ({' x '.join(a for a, _ in study.axes)})"
+             if study.grid else f"{len(study.frequencies)} frequencies")
+    header = (f"{study.name}: {where} x {len(study.families)} "
               f"{fams}, accuracy {acc.preset}: {size}, t_max {acc.t_max:g} s")
     return Plan(study.name, tuple(rows), workers, r, overheads, makespan(durations, workers),
                 max(durations, default=0.0), rates.source, header, acc.t_max)

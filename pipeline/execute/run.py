@@ -33,6 +33,8 @@ from .task import (  # the task and what it reports, importable from here as bef
     ChunkResult,
     KernelMismatch,
     compute_chunk,
+    is_failing,
+    task_key,
     warm_numba,
 )
 from .waves import Waves
@@ -131,7 +133,6 @@ def run_study(
 
     Raises RunFailed naming the chunk if a task fails; finished chunks stay done.
     """
-    study.refuse_grid("bbb run")
     t_start = time.perf_counter()
     store_path = normalize_path(store_path)
     fails = parse_fail_chunks(os.environ.get(FAIL_ENV) if fail_chunks is None else fail_chunks)
@@ -158,8 +159,9 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
             todo = waves.prepare()
             store, study = waves.store, waves.store.study
         else:
+            study = store.study  # a grid store's points, in its order
             todo = [(fi, mi, ci)
-                    for fi in range(len(study.frequencies))
+                    for fi in range(len(study.points))
                     for mi in range(len(study.families))
                     for ci in range(study.accuracy.n_chunks)
                     if not done[fi, mi, ci]]
@@ -292,23 +294,19 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
     token = uuid.uuid4().hex[:8]
     futures = {}
     for i, (fi, mi, ci) in enumerate(todo):
-        f, fam = study.frequencies[fi], study.families[mi]
-        fail = (f_key(f), fam.name, ci) in fails
-        fut = client.submit(compute_chunk, store, fi, mi, ci, fail,
-                            key=f"bbb-{f_key(f)}mHz-{fam.name}-{ci}-{token}",
+        fut = client.submit(compute_chunk, store, fi, mi, ci, is_failing(study, fi, mi, ci, fails),
+                            key=task_key(study, fi, mi, ci, token),
                             priority=len(todo) - i, retries=0, pure=False)
-        futures[fut] = (f, fam.name, ci)
+        futures[fut] = (fi, mi, ci)
     bar = tqdm(total=len(todo), unit="chunk", disable=not progress, file=sys.stderr,
                desc=study.name, smoothing=0.1)
     try:
         for fut in as_completed(futures):
-            f, fam, ci = futures[fut]
+            fi, mi, ci = futures[fut]
             try:
                 res: ChunkResult = fut.result()
             except Exception as e:
-                _failed(fut, study, study.f_mhz.index(f_key(f)),
-                        [m.name for m in study.families].index(fam), ci, e,
-                        lambda: client.cancel(list(futures)))
+                _failed(fut, study, fi, mi, ci, e, lambda: client.cancel(list(futures)))
             report.computed.append(res.key)
             report.collisions += res.collisions
             report.task_seconds += res.seconds
@@ -323,8 +321,8 @@ def _failed(fut, study: Study, fi: int, mi: int, ci: int, e: Exception, cancel) 
     task, its cause and where it was raised (read first: cancelling drops the traceback)."""
     where = _where(fut)
     cancel()
-    f, fam = study.frequencies[fi], study.families[mi].name
-    raise RunFailed(f"chunk f = {f:g} Hz, family {fam}, chunk {ci} failed: "
+    fam = study.families[mi].name
+    raise RunFailed(f"chunk {study.points[fi].label()}, family {fam}, chunk {ci} failed: "
                     f"{type(e).__name__}: {e}{where}") from e
 
 

@@ -1,4 +1,4 @@
-"""The Dask task: one (frequency, family, chunk) simulated on a worker and written to its own
+"""The Dask task: one (point, family, chunk) simulated on a worker and written to its own
 store chunk.
 
 :func:`compute_chunk` is all a worker runs (besides :func:`warm_numba`): it checks that the
@@ -19,9 +19,11 @@ import numpy as np
 
 from ..store.layout import n_periods
 from ..store.study_store import KERNEL_ATTRS, StudyStore
+from ..workflow.identity import f_key
 from ..workflow.study import Study
 
 __all__ = ["ChunkResult", "InjectedFailure", "KernelMismatch", "compute_chunk", "warm_numba",
+           "task_key", "is_failing",
            "FAIL_ENV"]
 
 #: the environment variable of fault injection (read by the client, :mod:`pipeline.execute.run`)
@@ -47,20 +49,23 @@ class ChunkResult:
 
 def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = False
                   ) -> ChunkResult:
-    """The Dask task: simulate one chunk of particles and write it to its own store chunk."""
+    """The Dask task: simulate one chunk of particles of the point of store index fi (the
+    frequency index without a grid) and write it to its own store chunk.  The chunk's seed is
+    (study seed, f, family, chunk): the same at every point of f whatever its grid values."""
     from bbb.simulate import simulate
 
     t0 = time.perf_counter()
     study = store.study
-    f, fam = study.frequencies[fi], study.families[mi]
+    point, fam = study.points[fi], study.families[mi]
+    f = point.f
     _check_kernel(store)
     acc, obs = study.accuracy, study.observables
     times, pick, period_cols = _sample_grid(study, f)
     run = simulate(
-        study.params(f), acc.chunk_size, acc.t_max, study.seed_sequence(f, fam, ci),
+        point.params, acc.chunk_size, acc.t_max, study.seed_sequence(f, fam, ci),
         sample_times=times,
         record_collisions=_rows_recorded(obs), record_from=obs.collisions_from,
-        numerics=acc.numerics(), **_initial(study, f, fam, ci),
+        numerics=acc.numerics(), **_initial(study, point, fam, ci),
     )
     extra = {}
     if obs.collisions_x_jumps:
@@ -70,7 +75,7 @@ def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = Fal
     if pick is not None:
         run = dataclasses.replace(run, positions=run.positions[:, pick])
     if obs.lyapunov:
-        extra.update(_lyapunov_chunk(study, f, fam, ci))
+        extra.update(_lyapunov_chunk(study, point, fam, ci))
     seconds = time.perf_counter() - t0
     store.write_chunk(fi, mi, ci, run, seconds, mark_done=not fail, extra=extra)
     if fail:
@@ -79,17 +84,19 @@ def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = Fal
                        time.perf_counter() - t0 - seconds, socket.gethostname())
 
 
-def _initial(study: Study, f: float, fam, ci: int) -> dict:
-    """bbb.simulate's initial-condition keywords for one chunk: the family's draw from the
-    chunk's seed, or, with mirror pairs (Study.pairing), half of it followed by the partners
+def _initial(study: Study, point, fam, ci: int) -> dict:
+    """bbb.simulate's initial-condition keywords for one chunk of ``point``
+    (:class:`pipeline.workflow.study.Point`): the family's draw from the chunk's seed, or,
+    with mirror pairs (Study.pairing), half of it followed by the partners
     (bbb.ensemble.mirror_pairs)."""
     kw = fam.simulate_kwargs()
-    if study.pairing(fam) != "pairs":
+    if study.pairing(fam, point) != "pairs":
         return kw
     from bbb.ensemble import mirror_pairs
 
-    return {"initial": mirror_pairs(study.params(f), study.accuracy.chunk_size,
-                                    study.seed_sequence(f, fam, ci), kw.pop("initial"), **kw)}
+    return {"initial": mirror_pairs(point.params, study.accuracy.chunk_size,
+                                    study.seed_sequence(point.f, fam, ci), kw.pop("initial"),
+                                    **kw)}
 
 
 def _sample_grid(study: Study, f: float) -> tuple[np.ndarray | None, np.ndarray | None,
@@ -127,7 +134,7 @@ def _split_collision_jumps(run, obs) -> tuple:
     return cut, {"collision_dx": dx.astype(np.float32), "collision_dt": dt.astype(np.float32)}
 
 
-def _lyapunov_chunk(study: Study, f: float, fam, ci: int) -> dict[str, np.ndarray]:
+def _lyapunov_chunk(study: Study, point, fam, ci: int) -> dict[str, np.ndarray]:
     """λ (1/s, per collision) of this chunk's particles among the first
     ``lyapunov_particles`` of the ensemble, from the same initial states as the chunk."""
     from bbb.analysis.lyapunov import lyapunov
@@ -138,16 +145,30 @@ def _lyapunov_chunk(study: Study, f: float, fam, ci: int) -> dict[str, np.ndarra
     k = min(acc.chunk_size, obs.lyapunov_particles - first)
     if k <= 0:
         return {}
-    p = study.params(f)
-    kw = _initial(study, f, fam, ci)
+    p = point.params
+    kw = _initial(study, point, fam, ci)
     st = kw.pop("initial")
     if isinstance(st, str):
-        st = initial_state(p, acc.chunk_size, study.seed_sequence(f, fam, ci), st, **kw)
+        st = initial_state(p, acc.chunk_size, study.seed_sequence(point.f, fam, ci), st, **kw)
     sub = InitialState(**{fd.name: getattr(st, fd.name)[:k] for fd in dataclasses.fields(st)})
     lam = lyapunov(p, k, acc.t_max, 0, sub, discard=obs.lyapunov_discard, d0=obs.lyapunov_d0,
                    numerics=acc.numerics(), n_resamples=10)
     return {"lyapunov": lam.lam_i, "lyapunov_per_collision": lam.per_coll_i,
             "lyapunov_x_range": lam.x_range}
+
+
+def task_key(study: Study, fi: int, mi: int, ci: int, token: str) -> str:
+    """The Dask key of the task of (point fi, family mi, chunk ci): readable on the
+    dashboard, unique within a run (``token``); a grid point is named by its index too."""
+    f, fam = study.points[fi].f, study.families[mi].name
+    where = f"p{fi}-" if study.grid else ""
+    return f"bbb-{where}{f_key(f)}mHz-{fam}-{ci}-{token}"
+
+
+def is_failing(study: Study, fi: int, mi: int, ci: int, fails) -> bool:
+    """Whether fault injection (``fails``, :func:`parse_fail_chunks`) names this chunk (F:
+    every point of that frequency)."""
+    return (f_key(study.points[fi].f), study.families[mi].name, ci) in fails
 
 
 class KernelMismatch(RuntimeError):
@@ -170,8 +191,9 @@ def _check_kernel(store: StudyStore) -> None:
 def warm_numba(study: Study) -> float:
     """Compile (or load from numba's on-disk cache) everything a task runs; returns seconds.
 
-    One tiny simulate call per family with the study's observables, so that no task compiles
-    and no two processes write the same cache entry at once (numba issue #4807).
+    One tiny simulate call per family with the study's observables, at one point of each
+    kernel variant the points use (contact model, level floor or conveyor), so that no task
+    compiles and no two processes write the same cache entry at once (numba issue #4807).
     """
     import numpy as np
 
@@ -180,9 +202,13 @@ def warm_numba(study: Study) -> float:
     t0 = time.perf_counter()
     obs = study.observables
     t = min(0.05, study.accuracy.t_max)
-    for fam in study.families:
-        simulate(study.params(study.frequencies[0]), 2, t, 0,
-                 sample_times=np.array([0.0, t]) if obs.positions else None,
-                 record_collisions=2 if obs.collisions else 0, record_from=0.0,
-                 numerics=study.accuracy.numerics(), **fam.simulate_kwargs())
+    variants = {}
+    for p in study.points:
+        variants.setdefault((p.params.contact, p.params.transport), p)
+    for point in variants.values():
+        for fam in study.families:
+            simulate(point.params, 2, t, 0,
+                     sample_times=np.array([0.0, t]) if obs.positions else None,
+                     record_collisions=2 if obs.collisions else 0, record_from=0.0,
+                     numerics=study.accuracy.numerics(), **fam.simulate_kwargs())
     return time.perf_counter() - t0

@@ -27,7 +27,7 @@ from bbb.analysis.stats.interval import DInterval
 
 from ..store.layout import OPEN, STOP_LEGEND, ZERO
 from ..store.study_store import StudyStore
-from ..workflow.identity import f_key, reduce_seed, stop_seed  # stop_seed: importable from here as before
+from ..workflow.identity import reduce_seed, stop_seed  # stop_seed: importable from here as before
 from ..workflow.study import Study
 from .adaptive import (
     StoppingRule,
@@ -37,6 +37,7 @@ from .adaptive import (
     refine_frequencies,
     remaining,
 )
+from .task import is_failing, task_key
 
 __all__ = ["Waves", "rule_of", "stop_seed", "interval_of", "pair_units", "row_intervals",
            "unit_ci", "pooled_ci"]
@@ -67,15 +68,16 @@ def interval_of(study: Study, x: np.ndarray, seed, units: np.ndarray | None = No
                              fit_to=an.fit_to * T, discard=an.discard, detail=True, units=units)
 
 
-def pair_units(study: Study, sizes: list[tuple[object, int]]) -> np.ndarray | None:
+def pair_units(study: Study, sizes: list[tuple[object, int]], point=None) -> np.ndarray | None:
     """The labels of the independent units of the particles of ``sizes`` = [(family, number
     of its particles), ...] pooled in that order: mirror pairs when every family holds them
-    (:meth:`pipeline.workflow.study.Study.pairing`; each chunk's second half partners its first half,
-    bbb.ensemble.mirror_pairs), else None (particles are the units)."""
+    (:meth:`pipeline.workflow.study.Study.pairing` at ``point``, None: the scene without a
+    grid; each chunk's second half partners its first half, bbb.ensemble.mirror_pairs), else
+    None (particles are the units)."""
     from bbb.analysis.transport import PAIRS
     from bbb.ensemble import mirror_pair_units
 
-    if not sizes or any(study.pairing(fam) != PAIRS for fam, _ in sizes):
+    if not sizes or any(study.pairing(fam, point) != PAIRS for fam, _ in sizes):
         return None
     labels, offset = [], 0
     for _, n in sizes:
@@ -86,23 +88,24 @@ def pair_units(study: Study, sizes: list[tuple[object, int]]) -> np.ndarray | No
 
 def row_intervals(study: Study, fi: int, parts: dict[int, tuple[np.ndarray, int]]
                   ) -> tuple[dict[int, DInterval], DInterval | None]:
-    """D's CIs at frequency index fi from ``parts`` = {family index: (positions, chunks
-    used)}: (per family with >= 2 particles, pooled).  A family's CI is seeded by
-    :func:`stop_seed` with its chunk count, so it is the CI its last stopping decision read;
-    the pooled CI is that same CI when one family has data, else the bootstrap of all pooled
-    (seeded by the reduction's key)."""
+    """D's CIs at point index fi (the frequency index without a grid) from ``parts`` =
+    {family index: (positions, chunks used)}: (per family with >= 2 particles, pooled).  A
+    family's CI is seeded by :func:`stop_seed` with its chunk count, so it is the CI its last
+    stopping decision read; the pooled CI is that same CI when one family has data, else the
+    bootstrap of all pooled (seeded by the reduction's key)."""
 
-    f = study.frequencies[fi]
+    point = study.points[fi]
+    f, at = point.f, point if study.grid else None
     fam = study.families
     fams = {mi: interval_of(study, x, stop_seed(study, f, fam[mi], n),
-                            pair_units(study, [(fam[mi], x.shape[0])]))
+                            pair_units(study, [(fam[mi], x.shape[0])], at))
             for mi, (x, n) in parts.items() if x.shape[0] >= 2}
     if len(fams) == 1:
         return fams, next(iter(fams.values()))
     if not fams:
         return fams, None
     x = np.concatenate([parts[mi][0] for mi in fams])
-    units = pair_units(study, [(fam[mi], parts[mi][0].shape[0]) for mi in fams])
+    units = pair_units(study, [(fam[mi], parts[mi][0].shape[0]) for mi in fams], at)
     return fams, interval_of(study, x, reduce_seed(study, f), units)
 
 
@@ -170,7 +173,7 @@ class Waves:
         if reason != OPEN:
             return state
         study = self.store.study
-        self.echo(f"{study.name}: f = {study.frequencies[fi]:g} Hz, {study.families[mi].name}: "
+        self.echo(f"{study.name}: {study.points[fi].label()}, {study.families[mi].name}: "
                   f"recorded as resolved zero after {state.n} chunks, but no particle moved "
                   f"(D has no upper bound yet): reopened, next wave {n_next} chunks")
         g = self.store.group("r+")
@@ -193,8 +196,8 @@ class Waves:
             g = self.store.group("r+")
             for ci in beyond:
                 g["done"][fi, mi, int(ci)] = False
-            f, fam = self.store.study.frequencies[fi], self.store.study.families[mi].name
-            self.echo(f"{self.store.study.name}: f = {f:g} Hz, {fam}: chunks "
+            where, fam = self.store.study.points[fi].label(), self.store.study.families[mi].name
+            self.echo(f"{self.store.study.name}: {where}, {fam}: chunks "
                       f"{beyond.tolist()} lie beyond what the rule asks for (first {n}); "
                       "unmarked as done")
 
@@ -208,7 +211,7 @@ class Waves:
         """One refinement round, once every unit has stopped: grow the store by the
         frequencies the rule adds and plan them.  False if the grid is fine enough."""
         study = self.store.study
-        if study.refine is None or any(s.reason == OPEN for s in self.states.values()):
+        if study.refine is None or study.grid or any(s.reason == OPEN for s in self.states.values()):
             return False
         done = self.store.done()
         table = np.array([pooled_ci(self.store, fi, done) for fi in range(len(study.frequencies))])
@@ -228,7 +231,7 @@ class Waves:
 
     def prepare(self) -> list[tuple[int, int, int]]:
         """Plan every unit, refine while nothing is missing; the chunks to compute."""
-        self.plan(range(len(self.store.study.frequencies)))
+        self.plan(range(len(self.store.study.points)))
         while not (todo := self.missing()) and self.refine():
             pass
         return todo
@@ -264,10 +267,9 @@ class Waves:
         def submit(chunks) -> None:
             study = self.store.study
             for fi, mi, ci in chunks:
-                f, fam = study.frequencies[fi], study.families[mi]
-                fail = (f_key(f), fam.name, ci) in fails
-                fut = client.submit(compute_chunk, self.store, fi, mi, ci, fail,
-                                    key=f"bbb-{f_key(f)}mHz-{fam.name}-{ci}-{token}",
+                fut = client.submit(compute_chunk, self.store, fi, mi, ci,
+                                    is_failing(study, fi, mi, ci, fails),
+                                    key=task_key(study, fi, mi, ci, token),
                                     priority=-fi, retries=0, pure=False)
                 pending[fut] = (fi, mi, ci)
                 outstanding.setdefault((fi, mi), set()).add(ci)

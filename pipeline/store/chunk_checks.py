@@ -37,12 +37,13 @@ ON_SURFACE_MM = 1e-6
 
 
 def chunk_problems(g: zarr.Group, study: Study, fi: int, mi: int, ci: int,
-                   params_at: Callable[[float], Params]) -> Iterator[tuple[str, str]]:
-    """What is wrong with the data of chunk ci of (frequency fi, family mi), as (array, what)."""
+                   params_at: Callable[[int], Params]) -> Iterator[tuple[str, str]]:
+    """What is wrong with the data of chunk ci of (point fi, family mi), as (array, what);
+    ``params_at(fi)``: the Params the point's data were made with."""
     acc, obs = study.accuracy, study.observables
     cs = acc.chunk_size
     sl = slice(ci * cs, (ci + 1) * cs)
-    p = params_at(study.frequencies[fi])
+    p = params_at(fi)
     data: dict[str, np.ndarray] = {}
     names = ["chunk_seconds", *(f"n_{c}" for c in COUNTERS)]
     names += ["positions"] if obs.positions else []

@@ -65,6 +65,7 @@ import zarr
 from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES
 
 from ..workflow.identity import f_key
+from ..workflow.keys import PARAM_LONG_NAMES, PARAM_UNITS
 from ..workflow.study import Study
 
 __all__ = ["COUNTERS", "default_store_path", "FIELD_UNITS", "collision_field_units", "create_layout",
@@ -87,13 +88,14 @@ def default_store_path(name: str) -> str:
 def create_layout(g: zarr.Group, study: Study) -> None:
     """Create every array of ``study``'s store in the empty group ``g`` (no data written)."""
     acc, obs = study.accuracy, study.observables
-    F, M, N, C = len(study.frequencies), len(study.families), acc.n_particles, acc.n_chunks
+    F, M, N, C = len(study.points), len(study.families), acc.n_particles, acc.n_chunks
     cs = acc.chunk_size
+    P0 = study.point_dim  # "frequency", or "point" for a grid
     # chunked by the workflow's own grid, so that refinement (which appends) keeps the chunks
-    n_base = max(1, len(study.base_frequencies))
+    n_base = max(1, len(study.base_frequencies) if not study.grid else len(study.points))
 
     def coord(name, values, dtype, units, long_name, dim=None, chunk=None):
-        arr = g.create_array(name, shape=(len(values),), dtype=dtype,
+        arr = g.create_array(name, shape=(len(values),), dtype=dtype if dtype is not str else str,
                              chunks=(chunk or max(1, len(values)),),
                              dimension_names=[dim or name],
                              attributes={"units": units, "long_name": long_name})
@@ -106,8 +108,18 @@ def create_layout(g: zarr.Group, study: Study) -> None:
         g.create_array(name, shape=shape, chunks=chunks, dtype=dtype, fill_value=fill,
                        dimension_names=list(dims), attributes=attrs)
 
-    coord("frequency", list(study.frequencies), "float64", "Hz", "floor frequency f",
-          chunk=n_base)
+    if study.grid:
+        coord("point", np.arange(F), "int64", "", "point of the grid, in store order",
+              chunk=n_base)
+        coord("frequency", [p.f for p in study.points], "float64", "Hz", "floor frequency f",
+              dim="point", chunk=n_base)
+        for a, values in study.grid:
+            kind = str if isinstance(values[0], str) else "float64"
+            coord(a, [dict(p.grid)[a] for p in study.points], kind, PARAM_UNITS[a],
+                  PARAM_LONG_NAMES[a], dim="point", chunk=n_base)
+    else:
+        coord("frequency", list(study.frequencies), "float64", "Hz", "floor frequency f",
+              chunk=n_base)
     if study.refine is not None:
         added = {f_key(f) for f in study.refined}
         coord("refined", [f_key(f) in added for f in study.frequencies], "bool", "",
@@ -120,7 +132,7 @@ def create_layout(g: zarr.Group, study: Study) -> None:
     if obs.positions:
         times = study.sample_times()
         coord("time", times, "float64", "s", "sample time")
-        data("positions", ("frequency", "family", "particle", "time"), (F, M, N, len(times)),
+        data("positions", (P0, "family", "particle", "time"), (F, M, N, len(times)),
              (1, 1, cs, len(times)), "float64", np.nan, "mm", "horizontal position x")
     if obs.collisions:
         K = obs.collisions_record
@@ -128,46 +140,46 @@ def create_layout(g: zarr.Group, study: Study) -> None:
               f"{obs.collisions_from:g} s")
         units = ", ".join(collision_field_units())
         coord("field", list(COLLISION_FIELDS), str, units, "post-collision state component")
-        data("collisions", ("frequency", "family", "particle", "collision", "field"),
+        data("collisions", (P0, "family", "particle", "collision", "field"),
              (F, M, N, K, len(COLLISION_FIELDS)), (1, 1, cs, K, len(COLLISION_FIELDS)), "float64",
              np.nan, units, f"post-collision ({', '.join(COLLISION_FIELDS)}), NaN-padded")
-        data("n_recorded", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs), "int64",
+        data("n_recorded", (P0, "family", "particle"), (F, M, N), (1, 1, cs), "int64",
              0, "", "valid rows of collisions")
     for name in COUNTERS:
-        data(f"n_{name}", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs), "int64", 0,
+        data(f"n_{name}", (P0, "family", "particle"), (F, M, N), (1, 1, cs), "int64", 0,
              "", f"number of {name} up to t_max")
     if obs.contact:
         for name in CONTACT_TIME_NAMES:
-            data(f"{name}_time", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs),
+            data(f"{name}_time", (P0, "family", "particle"), (F, M, N), (1, 1, cs),
                  "float64", np.nan, "s", f"time {name} in sustained contact up to t_max")
     if obs.jumps:
-        P = max(n_periods(study.accuracy.t_max, f) for f in study.frequencies)
+        P = max(n_periods(study.accuracy.t_max, p.f) for p in study.points)
         coord("period", np.arange(P), "int64", "", "floor period n: jump from n/f to (n+1)/f")
-        data("jumps", ("frequency", "family", "particle", "period"), (F, M, N, P), (1, 1, cs, P),
+        data("jumps", (P0, "family", "particle", "period"), (F, M, N, P), (1, 1, cs, P),
              "float32", np.nan, "mm", "displacement over floor period n, NaN beyond t_max f")
     if obs.lyapunov:
-        data("lyapunov", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs), "float64",
+        data("lyapunov", (P0, "family", "particle"), (F, M, N), (1, 1, cs), "float64",
              np.nan, "1/s", "largest Lyapunov exponent per unit time (NaN: not measured)")
-        data("lyapunov_per_collision", ("frequency", "family", "particle"), (F, M, N),
+        data("lyapunov_per_collision", (P0, "family", "particle"), (F, M, N),
              (1, 1, cs), "float64", np.nan, "1", "largest Lyapunov exponent per collision")
-        data("lyapunov_x_range", ("frequency", "family", "particle"), (F, M, N), (1, 1, cs),
+        data("lyapunov_x_range", (P0, "family", "particle"), (F, M, N), (1, 1, cs),
              "float64", np.nan, "mm", "max - min of x at the period ends of the λ window")
     if obs.collisions and obs.collisions_x_jumps:
         J = obs.collisions_x_jumps
         coord("collision_jump", np.arange(J), "int64", "", "jump n: recorded collision n to n + 1")
         for name, unit, what in (("collision_dx", "mm", "x"), ("collision_dt", "s", "t")):
-            data(name, ("frequency", "family", "particle", "collision_jump"), (F, M, N, J),
+            data(name, (P0, "family", "particle", "collision_jump"), (F, M, N, J),
                  (1, 1, cs, J), "float32", np.nan, unit,
                  f"{what} of recorded collision n + 1 minus {what} of collision n, NaN beyond")
-    data("done", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "bool", False, "",
+    data("done", (P0, "family", "chunk"), (F, M, C), (1, 1, 1), "bool", False, "",
          "chunk completely written")
-    data("chunk_seconds", ("frequency", "family", "chunk"), (F, M, C), (1, 1, 1), "float64",
+    data("chunk_seconds", (P0, "family", "chunk"), (F, M, C), (1, 1, 1), "float64",
          np.nan, "s", "wall time of the chunk's simulation (not reproducible)")
     if acc.adaptive:
         legend = "; ".join(f"{k} {v}" for k, v in STOP_LEGEND.items())
-        data("n_chunks_used", ("frequency", "family"), (F, M), (1, 1), "int64", 0, "",
+        data("n_chunks_used", (P0, "family"), (F, M), (1, 1), "int64", 0, "",
              "chunks used: the first n_chunks_used chunks (0: not decided yet)")
-        data("stop_reason", ("frequency", "family"), (F, M), (1, 1), "int8", 0, "",
+        data("stop_reason", (P0, "family"), (F, M), (1, 1), "int8", 0, "",
              f"why sampling stopped ({legend})", legend=legend)
 
 

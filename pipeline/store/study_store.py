@@ -1,15 +1,14 @@
-"""The Zarr v3 store of one study: opening, resume checks, chunk-aligned writes, done-markers,
-the root attributes and the fingerprint.  Which arrays it holds is :mod:`pipeline.store.layout`.
+"""The Zarr v3 store of one study: opening, resume checks, growth along points,
+chunk-aligned writes and done-markers.  Which arrays it holds is :mod:`pipeline.store.layout`;
+its root attributes and fingerprint, :mod:`pipeline.store.attrs`.
 
-One Dask task computes one (frequency, family, chunk) and writes exactly one chunk of every
-data array, so concurrent writers never share a chunk.  ``done`` is set only after the data:
-with Zarr v3's ``write_empty_chunks=False`` a chunk's presence proves nothing (an all-NaN or
-all-zero chunk is never written).  Root attributes hold the resolved workflow, its TOML
-source, the parameters, numerics, accuracy, the seeding rule, the package version, the kernel
-that computed the chunks (:func:`bbb.provenance.kernel_identity`: a hash of the kernel's
-sources, the numba and numpy versions) and a fingerprint of everything that determines the
-stored numbers (the workflow's data identity and the kernel); opening the store with a
-workflow of another fingerprint, or with another kernel, is refused.
+One Dask task computes one (point, family, chunk) -- a point is a frequency without a grid --
+and writes exactly one chunk of every data array, so concurrent writers never share a chunk.
+``done`` is set only after the data: with Zarr v3's ``write_empty_chunks=False`` a chunk's
+presence proves nothing (an all-NaN or all-zero chunk is never written).  Opening the store
+with a workflow of another fingerprint, or with another kernel, is refused; a grid store is
+opened by any workflow of the same axes and settings, and grows by the points it lacks
+(:meth:`StudyStore.add_points`), never rewriting a done chunk.
 
 Root attributes are netCDF-safe (``xr.open_zarr(store).to_netcdf(...)`` works): flat strings
 and numbers; the nested ones (:data:`JSON_ATTRS`) are JSON strings, decoded by
@@ -18,13 +17,9 @@ and numbers; the nested ones (:data:`JSON_ATTRS`) are JSON strings, decoded by
 
 from __future__ import annotations
 
-import datetime as _dt
-import hashlib
-import json
 import os
 import warnings
 from dataclasses import dataclass
-from importlib import metadata
 from typing import Any
 
 import numpy as np
@@ -33,9 +28,21 @@ import zarr
 from bbb.provenance import kernel_identity
 from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES
 
-from ..workflow.identity import SEEDING  # importable from here as before identity.py
-from ..workflow.schema import as_dict
+from ..workflow.identity import SEEDING  # noqa: F401  (importable from here, as before)
 from ..workflow.study import Study
+from .attrs import (  # importable from here as before the split
+    JSON_ATTRS,
+    KERNEL_ATTRS,
+    LAYOUT_VERSION,
+    OLDER_LAYOUTS,
+    fingerprint_difference,
+    json_attr,
+    jsonable,
+    package_version,
+    read_attrs,
+    root_attrs,
+    store_fingerprint,
+)
 from .layout import (  # importable from here as before the split
     COUNTERS,
     FIELD_UNITS,
@@ -49,28 +56,8 @@ __all__ = ["StoreError", "StudyStore", "normalize_path", "COLLISION_FIELDS", "LA
            # of pipeline.store.layout, importable from here too
            "COUNTERS", "FIELD_UNITS", "collision_field_units", "create_layout", "n_periods"]
 
-# 3: root attributes record the kernel (KERNEL_ATTRS) and are netCDF-safe (JSON_ATTRS are JSON
-#    strings); 2: collisions carry bbb.record.COLLISION_FIELDS (t, x, y, vx, vy, phase);
-#    1 had no phase
-LAYOUT_VERSION = 3
-_OLDER_LAYOUTS = {2: "it records no kernel hash, so whether its chunks were computed by this "
-                     "kernel cannot be known",
-                  1: "its collisions have no floor phase"}
-#: root attributes held as JSON strings (nested dicts, which netCDF attributes cannot hold)
-JSON_ATTRS = ("workflow", "params", "numerics", "accuracy")
-#: root attributes naming the kernel that computed the chunks (bbb.provenance.kernel_identity)
-KERNEL_ATTRS = ("kernel_hash", "numba_version", "numpy_version")
-
-
 class StoreError(ValueError):
     """A store that cannot be used as asked (wrong workflow, not a bbb store, unwritable)."""
-
-
-def package_version() -> str:
-    try:
-        return metadata.version("bbb")
-    except metadata.PackageNotFoundError:  # running from a source tree without install
-        return "unknown"
 
 
 def normalize_path(path: str | os.PathLike) -> str:
@@ -97,8 +84,9 @@ class StudyStore:
     # -- opening ---------------------------------------------------------------------------
     @classmethod
     def create_or_open(cls, path: str | os.PathLike, study: Study) -> StudyStore:
-        """Create the whole layout, or reopen an existing store made by the same workflow."""
-        study.refuse_grid("a study store")
+        """Create the whole layout, or reopen an existing store made by the same workflow (a
+        grid store also by a workflow of the same grid axes with other values: its new points
+        are added, :meth:`add_points`)."""
         path = normalize_path(path)
         existing = _open_group(path)
         if existing is not None:
@@ -110,7 +98,7 @@ class StudyStore:
                                  "allowed: a new path or a store made by the same workflow")
             layout = attrs.get("bbb_store_layout")
             if layout != LAYOUT_VERSION:
-                why = f" ({_OLDER_LAYOUTS[layout]})" if layout in _OLDER_LAYOUTS else ""
+                why = f" ({OLDER_LAYOUTS[layout]})" if layout in OLDER_LAYOUTS else ""
                 raise StoreError(f"{path}: store layout {layout!r} of an older bbb{why}; "
                                  f"allowed: layout {LAYOUT_VERSION} (delete it or use another --store)")
             kernel = kernel_identity()
@@ -131,6 +119,11 @@ class StudyStore:
             stored = Study.from_dict(attrs["workflow"])
             if stored.refined:  # frequencies an earlier run added by refinement
                 study = study.with_refined(stored.refined)
+            if study.grid:  # the store's points first, in its order; then the workflow's new
+                study = study.with_stored_points(tuple((p.f, p.grid) for p in stored.points))
+                if len(study.points) > len(stored.points):
+                    return cls(path, stored.with_stored_points(study.stored_points)
+                               ).add_points(study)
             store = cls(path, study)
             store._update_reduce_settings(existing, study)
             return store
@@ -153,12 +146,13 @@ class StudyStore:
 
     @classmethod
     def _create(cls, path: str, study: Study, overwrite: bool) -> StudyStore:
+        _ = study.points  # every point's Params first: one bbb.Params refuses leaves no store
         try:
             g = zarr.open_group(path, mode="w" if overwrite else "w-",
                                 attributes={"bbb_creating": True})
             create_layout(g, study)
             # The fingerprint goes last: a store without it was never completely laid out.
-            g.attrs.update(_root_attrs(study))
+            g.attrs.update(root_attrs(study))
             del g.attrs["bbb_creating"]
         except (OSError, zarr.errors.ContainsGroupError, zarr.errors.ContainsArrayError) as e:
             raise StoreError(f"{path}: cannot create the store ({e}); "
@@ -168,9 +162,9 @@ class StudyStore:
     def _update_reduce_settings(self, g: zarr.Group, study: Study) -> None:
         # Same data, possibly new reduce settings (analysis, bootstrap resamples, name): the
         # stored numbers stay valid, so the workflow recorded for `bbb reduce` is updated.
-        if read_attrs(g).get("workflow") != _jsonable(study.to_dict()):
+        if read_attrs(g).get("workflow") != jsonable(study.to_dict()):
             g = zarr.open_group(self.path, mode="r+")
-            g.attrs.update({"workflow": _json_attr(study.to_dict()), "workflow_toml": study.text})
+            g.attrs.update({"workflow": json_attr(study.to_dict()), "workflow_toml": study.text})
 
     # -- reading ---------------------------------------------------------------------------
     def group(self, mode: str = "r") -> zarr.Group:
@@ -181,7 +175,8 @@ class StudyStore:
         return read_attrs(self.group())
 
     def done(self) -> np.ndarray:
-        """bool (frequency, family, chunk): chunks whose data are completely written."""
+        """bool (point, family, chunk): chunks whose data are completely written (the point
+        index is the frequency index without a grid)."""
         return np.asarray(self.group()["done"][...], dtype=bool)
 
     def chunk_particles(self, chunk: int) -> slice:
@@ -220,10 +215,10 @@ class StudyStore:
         try:
             return np.asarray(arr[fi, mi, self.chunk_particles(ci)])
         except Exception as e:
-            f = self.study.frequencies[fi]
+            where = self.study.points[fi].label()
             fam = self.study.families[mi].name
             raise StoreError(
-                f"{self.path}: {name}[f = {f:g} Hz, family {fam}, chunk {ci}] is marked done "
+                f"{self.path}: {name}[{where}, family {fam}, chunk {ci}] is marked done "
                 f"but cannot be read ({type(e).__name__}: {e}); run `bbb verify` on the "
                 "store") from None
 
@@ -277,6 +272,45 @@ class StudyStore:
             return None
         return (np.asarray(g["n_chunks_used"][...]), np.asarray(g["stop_reason"][...]))
 
+    def add_points(self, study: Study) -> StudyStore:
+        """Grow a grid store along its points to those of ``study`` (the store's points
+        first, in store order, then new ones); returns the handle on the grown store.  As
+        :meth:`add_frequencies`: arrays resized, coordinates written, the stored workflow
+        (whose point list is the store's truth) updated last, nothing done rewritten."""
+        old, P = len(self.study.points), len(study.points)
+        new = study.points[old:]
+        if [p.key for p in study.points[:old]] != [p.key for p in self.study.points]:
+            raise StoreError(f"{self.path}: cannot grow: the new points do not follow the "
+                             "store's own")
+        g = self.group("r+")
+        periods = None
+        if "jumps" in g:  # a higher frequency has more floor periods in t_max
+            periods = max(g["jumps"].shape[3],
+                          *(n_periods(study.accuracy.t_max, p.f) for p in new))
+        for _, arr in g.arrays():
+            dims = arr.metadata.dimension_names
+            if not dims:
+                continue
+            shape = list(arr.shape)
+            if dims[0] == "point":
+                shape[0] = P
+            if periods is not None and "period" in dims:
+                shape[dims.index("period")] = periods
+            if tuple(shape) != arr.shape:
+                arr.resize(tuple(shape))
+        g = zarr.open_group(self.path, mode="r+", use_consolidated=False)  # the new shapes
+        if periods is not None:
+            g["period"][:] = np.arange(periods)
+        g["point"][old:] = np.arange(old, P)
+        g["frequency"][old:] = np.asarray([p.f for p in new], dtype=np.float64)
+        for a, _ in study.grid:
+            values = [dict(p.grid)[a] for p in new]
+            g[a][old:] = np.asarray(values, dtype=None if isinstance(values[0], str) else np.float64)
+        g.attrs.update({"workflow": json_attr(study.to_dict()), "workflow_toml": study.text})
+        grown = StudyStore(self.path, study)
+        grown.consolidate()
+        return grown
+
     def add_frequencies(self, new: tuple[float, ...]) -> StudyStore:
         """Grow the store along the frequency axis by ``new`` (Hz, refined frequencies);
         returns the handle on the grown store.  Arrays are resized (Zarr writes no chunk for
@@ -293,7 +327,7 @@ class StudyStore:
         g = zarr.open_group(self.path, mode="r+", use_consolidated=False)  # the new shapes
         g["frequency"][old:] = np.asarray(study.frequencies[old:], dtype=np.float64)
         g["refined"][old:] = True
-        g.attrs.update({"workflow": _json_attr(study.to_dict())})
+        g.attrs.update({"workflow": json_attr(study.to_dict())})
         grown = StudyStore(self.path, study)
         grown.consolidate()
         return grown
@@ -311,70 +345,6 @@ def _open_group(path: str) -> zarr.Group | None:
         return None
     except Exception as e:  # e.g. an unreadable file where the store should be
         raise StoreError(f"{path}: cannot open ({type(e).__name__}: {e})") from None
-
-
-def _root_attrs(study: Study) -> dict[str, Any]:
-    kernel = kernel_identity()
-    return {
-        "bbb_store_layout": LAYOUT_VERSION,
-        "bbb_version": package_version(),
-        "created": _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds"),
-        "workflow": _json_attr(study.to_dict()),
-        "workflow_toml": study.text,
-        "params": _json_attr(study.base_params),
-        "numerics": _json_attr(study.accuracy.numerics().as_dict()),
-        "accuracy": _json_attr(as_dict(study.accuracy)),
-        "seeding": SEEDING,
-        **kernel,
-        "workflow_fingerprint": study.fingerprint(),
-        "fingerprint": store_fingerprint(study.fingerprint(), kernel),
-    }
-
-
-def store_fingerprint(workflow_fingerprint: str, kernel: dict[str, str]) -> str:
-    """sha256 over the workflow's data fingerprint and the kernel identity (KERNEL_ATTRS):
-    two stores with the same fingerprint hold the same numbers, chunk for chunk."""
-    blob = json.dumps({"workflow": workflow_fingerprint, **{k: kernel[k] for k in KERNEL_ATTRS}},
-                      sort_keys=True)
-    return hashlib.sha256(blob.encode()).hexdigest()
-
-
-def read_attrs(group: zarr.Group) -> dict[str, Any]:
-    """A store's root attributes with the JSON strings of :data:`JSON_ATTRS` decoded (a store
-    of layout <= 2 holds them as nested dicts already: returned as they are)."""
-    attrs = dict(group.attrs)
-    for key in JSON_ATTRS:
-        if isinstance(attrs.get(key), str):
-            try:
-                attrs[key] = json.loads(attrs[key])
-            except ValueError:
-                pass  # left as it is: bbb verify reports an unreadable attribute
-    return attrs
-
-
-def _json_attr(o: Any) -> str:
-    return json.dumps(_jsonable(o), sort_keys=True)
-
-
-def _jsonable(o: Any) -> Any:
-    if isinstance(o, dict):
-        return {k: _jsonable(v) for k, v in o.items()}
-    if isinstance(o, list | tuple):
-        return [_jsonable(v) for v in o]
-    return o
-
-
-def fingerprint_difference(old: Study, new: Study) -> str:
-    """Name the first data-determining key that differs, e.g. 'params.alpha: 0.7 -> 0.5'."""
-    a, b = old.data_identity(), new.data_identity()
-    for k in a:
-        if a[k] != b[k]:
-            if isinstance(a[k], dict):
-                for kk in sorted(set(a[k]) | set(b[k])):
-                    if a[k].get(kk) != b[k].get(kk):
-                        return f"{k}.{kk}: store {a[k].get(kk)!r}, workflow {b[k].get(kk)!r}"
-            return f"{k}: store {a[k]!r}, workflow {b[k]!r}"
-    return "fingerprints differ"
 
 
 def _runs(indices: np.ndarray) -> list[tuple[int, int]]:

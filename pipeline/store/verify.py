@@ -252,19 +252,23 @@ _DATA = ("positions", "collisions", "n_recorded", "done", "chunk_seconds",
 
 
 # -- chunks --------------------------------------------------------------------------------------
-def _stored_params(attrs: dict[str, Any], study: Study) -> Callable[[float], Params]:
-    """Params at f from the stored ``params`` attribute (what the data were made with), or
-    from the workflow if that attribute is unusable (reported by the attribute checks)."""
+def _stored_params(attrs: dict[str, Any], study: Study) -> Callable[[int], Params]:
+    """Params of the point of store index fi from the stored ``params`` attribute (what the
+    data were made with), or from the workflow if that attribute is unusable (reported by the
+    attribute checks) or does not name them alone (a grid's axes, Gamma)."""
+    from_workflow = lambda fi: study.points[fi].params  # noqa: E731
     try:
         base = {k: float(v) for k, v in dict(attrs["params"]).items()}
         Params(f=1.0, **base)
     except Exception:
-        return study.params
-    return lambda f: Params(f=float(f), **base)
+        return from_workflow
+    if study.grid:
+        return from_workflow
+    return lambda fi: Params(f=float(study.frequencies[fi]), **base)
 
 
 def _check_chunks(g: zarr.Group, study: Study, report: VerifyReport,
-                  params_at: Callable[[float], Params]) -> None:
+                  params_at: Callable[[int], Params]) -> None:
     problems = report.problems
     try:
         done = np.asarray(g["done"][...], dtype=bool)
@@ -274,8 +278,8 @@ def _check_chunks(g: zarr.Group, study: Study, report: VerifyReport,
     report.n_chunks, report.n_done = done.size, int(done.sum())
     report.chunks_checked = True
     for fi, mi, ci in zip(*np.nonzero(done), strict=True):
-        f, fam = study.frequencies[fi], study.families[mi]
-        label = f"[f = {f:g} Hz, family {fam.name}, chunk {ci}]"
+        fam = study.families[mi]
+        label = f"[{study.points[fi].label()}, family {fam.name}, chunk {ci}]"
         for array, what in chunk_problems(g, study, int(fi), int(mi), int(ci), params_at):
             problems.append(Problem(array + label, what))
 

@@ -76,7 +76,8 @@ def tables(store: StudyStore, names: Iterable[str] | None = None,
            done: np.ndarray | None = None) -> dict[str, pd.DataFrame]:
     """{name: table} of ``store``: ``names`` (default: :func:`table_names`), each from the
     particles of done chunks (``done``: the store's done markers, read once if not given),
-    sorted by f (refined frequencies are appended to the store's frequency axis).
+    sorted by f (refined frequencies are appended to the store's frequency axis); a grid
+    store's by its axes, then f (a long table: one column per axis, after f).
 
     Raises ValueError naming a table the store does not have."""
     study = store.study
@@ -87,13 +88,17 @@ def tables(store: StudyStore, names: Iterable[str] | None = None,
         raise ValueError(f"{store.path}: no table {', '.join(map(repr, unknown))}; "
                          f"allowed: {', '.join(have)}")
     done = store.done() if done is None else done
+    order = [a for a, _ in study.grid] + ["f"]  # a grid's lines, each along f
     out = {}
     for name in wanted:
         df = _BY_NAME[name].make(store, done)
-        out[name] = df.sort_values("f", kind="stable").reset_index(drop=True)
+        out[name] = df.sort_values(order, kind="stable").reset_index(drop=True)
     return out
 
 
-def index_of(name: str) -> tuple[str, ...]:
-    """The columns that say which row of table ``name`` (``("f",)`` or ``("f", "family")``)."""
-    return _BY_NAME[name].index
+def index_of(name: str, study: Study | None = None) -> tuple[str, ...]:
+    """The columns that say which row of table ``name`` (``("f",)`` or ``("f", "family")``;
+    for a grid ``study``, its axes follow f: ``("f", "alpha", "family")``)."""
+    index = _BY_NAME[name].index
+    axes = tuple(a for a, _ in study.grid) if study is not None else ()
+    return index[:1] + axes + index[1:]

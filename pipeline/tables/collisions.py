@@ -63,8 +63,10 @@ def field_names(store: StudyStore) -> tuple[str, ...]:
 
 
 def states(store: str | os.PathLike | StudyStore, f: float, family: str,
-           names: Iterable[str] = ("t", "y", "vy")) -> dict[str, np.ndarray]:
-    """Post-collision fields at frequency ``f`` (Hz, nearest stored) of one family.
+           names: Iterable[str] = ("t", "y", "vy"), point: int | None = None
+           ) -> dict[str, np.ndarray]:
+    """Post-collision fields at frequency ``f`` (Hz, nearest stored) of one family; on a
+    grid store at the point of store index ``point`` (f is then that point's).
 
     Returns {field: float64 array (particle, collision)} for the particles of done chunks,
     NaN-padded; units: t s, x and y mm, vx and vy mm/s, phase in floor periods.
@@ -75,7 +77,12 @@ def states(store: str | os.PathLike | StudyStore, f: float, family: str,
     fields = field_names(st)
     if not fields:
         raise KeyError(f"{st.path}: the store records no collisions")
-    fi = int(np.argmin(np.abs(np.asarray(study.frequencies) - f)))
+    if point is not None:
+        fi = point
+    elif study.grid:
+        raise KeyError(f"{st.path}: a grid store: name the point (point=index)")
+    else:
+        fi = int(np.argmin(np.abs(np.asarray(study.frequencies) - f)))
     fams = [fam.name for fam in study.families]
     if family not in fams:
         raise KeyError(f"{st.path}: no family {family!r}; has {', '.join(fams)}")
@@ -94,18 +101,19 @@ def locking_table(store: str | os.PathLike | StudyStore) -> pd.DataFrame:
     st = as_store(store)
     study = st.study
     rows = []
-    for f in study.frequencies:
-        p = study.params(f)
+    for fi, point in enumerate(study.points):
+        p, f = point.params, point.f
         for fam in study.families:
-            s = states(st, f, fam.name)
+            s = states(st, f, fam.name, point=fi)
             fl = flight_times(s["t"], s["y"], s["vy"], p.g) if s["t"].size else np.zeros(0)
             est = locking_estimate(s["vy"], p.A, f, p.g, flights=fl)
             seed = table_seed(study, f, fam, "locking")
             ci = bootstrap_locking(s["vy"], p.A, f, p.g, n_resamples=LOCK_RESAMPLES, seed=seed)
             rows.append({
-                "f": f, "family": fam.name, "initial": fam.initial, "n_states": est.n,
+                **point.columns(), "family": fam.name, "initial": fam.initial, "n_states": est.n,
                 "frac_creep": est.frac_creep, "v_creep": est.v_creep, "v_max": est.v_max,
                 "k_max": est.k_max, "v_peak": est.v_peak, "k_peak": est.k_peak, "t_max": est.t_max,
                 "n_flights": est.n_flights, "loops": f * est.t_max, **vars(ci),
             })
-    return pd.DataFrame(rows, columns=list(LOCKING_COLUMNS))
+    axes = [a for a, _ in study.grid]
+    return pd.DataFrame(rows, columns=["f", *axes, *LOCKING_COLUMNS[1:]])

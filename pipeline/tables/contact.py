@@ -52,13 +52,14 @@ def bootstrap_mean(x: np.ndarray, n_resamples: int, ci: float,
 
 
 def contact_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
-    """One row per (frequency, family) (columns in the module docstring)."""
+    """One row per (point, family) (columns in the module docstring)."""
     study = store.study
     acc, an = study.accuracy, study.analysis
     rows = []
-    for fi, f in enumerate(study.frequencies):
+    for fi, point in enumerate(study.points):
+        f = point.f
         for mi, fam in enumerate(study.families):
-            row: dict = {"f": f, "family": fam.name, "initial": fam.initial}
+            row: dict = {**point.columns(), "family": fam.name, "initial": fam.initial}
             times = {col: store.read_done(arr, fi, mi, done[fi, mi])
                      for col, arr in FRACTIONS.items()}
             row["n_particles"] = len(times["held_frac"])

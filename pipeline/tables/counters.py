@@ -21,16 +21,16 @@ __all__ = ["counters_table"]
 
 
 def counters_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
-    """One row per (frequency, family): counters per particle per second, task wall time."""
+    """One row per (point, family): counters per particle per second, task wall time."""
     study = store.study
     seconds = store.group()["chunk_seconds"]
     rows = []
-    for fi, f in enumerate(study.frequencies):
+    for fi, point in enumerate(study.points):
         for mi, fam in enumerate(study.families):
             counts = {name: store.read_done(f"n_{name}", fi, mi, done[fi, mi])
                       for name in COUNTERS}
             n = len(counts[COUNTERS[0]])
-            row = {"f": f, "family": fam.name, "initial": fam.initial, "n_particles": n,
+            row = {**point.columns(), "family": fam.name, "initial": fam.initial, "n_particles": n,
                    "t_max": study.accuracy.t_max}
             for name, arr in counts.items():
                 per = arr / study.accuracy.t_max

@@ -93,7 +93,7 @@ __all__ = ["diffusion_table"]
 
 
 def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
-    """One row per frequency (columns in the module docstring)."""
+    """One row per point (columns in the module docstring; a grid's axes follow f)."""
     from bbb.analysis import stats
 
     study = store.study
@@ -104,17 +104,19 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
     fit = dict(fit_from=fit_from, fit_to=fit_to, discard=an.discard)
     stops = store.stops()
     rows = []
-    for fi, f in enumerate(study.frequencies):
+    conveyor = bool({"tilt", "throw"} & (study.overrides.keys() | {a for a, _ in study.grid}))
+    for fi, point in enumerate(study.points):
+        f = point.f
         parts = {mi: (store.read_done("positions", fi, mi, done[fi, mi]),  # (particle, time)
                       int(done[fi, mi].sum())) for mi in range(len(study.families))}
         fam_ci, pooled = row_intervals(study, fi, parts)
         fams = {study.families[mi].name: parts[mi][0] for mi in fam_ci}
-        row: dict = {"f": f, "Gamma": study.params(f).gamma}
+        row: dict = {**point.columns(), "Gamma": point.params.gamma}
         if not fams:
             rows.append(row)
             continue
         x = np.concatenate(list(fams.values()))
-        pairing, units = _pairing(study, fams)
+        pairing, units = _pairing(study, fams, point if study.grid else None)
         seed = reduce_seed(study, f)
         est = stats.diffusion_coefficient(x, times, **fit)
         named = {study.families[mi].name: r for mi, r in fam_ci.items()}
@@ -151,8 +153,9 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
         if stops is not None:
             row["stop"] = _stop_text(study, stops[1][fi])
         row.update(_stationarity_columns(x, times, an, acc, seed, units))
-        if {"tilt", "throw"} & study.overrides.keys():  # a conveyor (even at tilt = 0)
-            row.update(_transport_columns(x, times, study, seed, fit, pairing, units))
+        if conveyor:  # a conveyor (even at tilt = 0), at every point of a grid
+            row.update(_transport_columns(x, times, point.params.S, study, seed, fit, pairing,
+                                          units))
         rows.append(row)
     df = pd.DataFrame(rows)
     for col in ("ergodic", "families_agree", "eb_ok", "stationary", "steady", "diffusive"):
@@ -188,7 +191,8 @@ def _stop_text(study: Study, reasons: np.ndarray) -> str:
     return "; ".join(f"{fam.name}: {t}" for fam, t in zip(study.families, texts, strict=True))
 
 
-def _pairing(study: Study, fams: dict[str, np.ndarray]) -> tuple[str, np.ndarray | None]:
+def _pairing(study: Study, fams: dict[str, np.ndarray], point=None
+             ) -> tuple[str, np.ndarray | None]:
     """How the pooled particles of one frequency count (bbb.analysis.transport.PAIRING) and, with mirror
     pairs, the pair labels of the pooled rows (:func:`pipeline.execute.waves.pair_units`).  Images
     count by symmetry only when every family is mirrored; pairs are all or none on a conveyor
@@ -196,10 +200,11 @@ def _pairing(study: Study, fams: dict[str, np.ndarray]) -> tuple[str, np.ndarray
     from ..execute.waves import pair_units
 
     by_name = {fam.name: fam for fam in study.families}
-    kinds = {study.pairing(by_name[name]) for name in fams}
+    kinds = {study.pairing(by_name[name], point) for name in fams}
     if kinds != {"pairs"}:
         return ("mirror symmetry" if kinds == {"mirror symmetry"} else "independent"), None
-    return "pairs", pair_units(study, [(by_name[name], pos.shape[0]) for name, pos in fams.items()])
+    return "pairs", pair_units(study, [(by_name[name], pos.shape[0]) for name, pos in fams.items()],
+                               point)
 
 
 def _stationarity_columns(x: np.ndarray, times: np.ndarray, an, acc,
@@ -217,13 +222,14 @@ def _stationarity_columns(x: np.ndarray, times: np.ndarray, an, acc,
             "dD_hi": s.dD_hi, "dD_tol": s.tolerance, "stationary": s.stationary}
 
 
-def _transport_columns(x: np.ndarray, times: np.ndarray, study: Study,
+def _transport_columns(x: np.ndarray, times: np.ndarray, S: float, study: Study,
                        seed: np.random.SeedSequence, fit: dict, pairing: str = "independent",
                        units: np.ndarray | None = None) -> dict:
+    """The transport columns of one point, whose scatterer spacing is S (mm)."""
     from bbb.analysis.transport import transport
 
     an = study.analysis
-    t = transport(x, times, study.base_params["S"], n_resamples=study.accuracy.n_resamples,
+    t = transport(x, times, S, n_resamples=study.accuracy.n_resamples,
                   ci=an.ci, method=an.ci_method, seed=child_seed(seed, "transport"),
                   pairing=pairing, units=units, **fit)
     return {"v": t.v, "v_lo": t.v_lo, "v_hi": t.v_hi, "v_by": t.v_by, "D_drift": t.D,

@@ -73,12 +73,15 @@ _SIDES = (("dn", -1), ("up", 1))
 
 
 def mechanisms_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
-    """One row per frequency (columns in the module docstring)."""
+    """One row per point (columns in the module docstring; a grid's axes follow f); the
+    contrasts with the neighbours are along f within each grid line."""
     study = store.study
     obs = study.observables
-    rows, gks = [], {"": {}, "_coll": {}}
-    for fi, f in enumerate(study.frequencies):
-        row: dict = {"f": f, "Gamma": study.params(f).gamma}
+    lines: dict[tuple, tuple[list, dict]] = {}
+    for fi, point in enumerate(study.points):
+        f = point.f
+        rows, gks = lines.setdefault(point.grid, ([], {"": {}, "_coll": {}}))
+        row: dict = {**point.columns(), "Gamma": point.params.gamma}
         seed = mechanisms_seed(study, f)
         if obs.jumps:
             cols, gks[""][f] = _expansion_columns(store, fi, f, done, seed)
@@ -89,11 +92,15 @@ def mechanisms_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
         if obs.lyapunov:
             row.update(_lyapunov_columns(store, fi, done, seed))
         if obs.collisions:
-            row["frac_creep"] = _frac_creep(store, f)
+            row["frac_creep"] = _frac_creep(store, fi)
         rows.append(row)
-    df = pd.DataFrame(rows).sort_values("f", kind="stable").reset_index(drop=True)
-    if obs.jumps or obs.collisions_x_jumps:
-        df = _with_contrasts(df, gks)
+    frames = []
+    for rows, gks in lines.values():
+        line = pd.DataFrame(rows).sort_values("f", kind="stable").reset_index(drop=True)
+        if obs.jumps or obs.collisions_x_jumps:
+            line = _with_contrasts(line, gks)
+        frames.append(line)
+    df = pd.concat(frames, ignore_index=True) if len(frames) > 1 else frames[0]
     if "n_left_cell" in df or "frac_creep" in df:
         still = pd.Series(False, index=df.index)
         if "n_left_cell" in df:
@@ -201,8 +208,7 @@ def _lyapunov_columns(store: StudyStore, fi: int, done: np.ndarray,
     out = {"n_lyapunov": int(measured.sum()), "n_collapsed": int((measured & ~ok).sum())}
     groups = {"lam": ok, "lam_coll": ok}
     if "lyapunov_x_range" in store.group():
-        moves = _pooled(store, "lyapunov_x_range", fi, done) >= study.params(
-            study.frequencies[fi]).S
+        moves = _pooled(store, "lyapunov_x_range", fi, done) >= study.points[fi].params.S
         groups.update(lam_move=ok & moves, lam_conf=ok & ~moves)
         out.update(n_lam_move=int((ok & moves).sum()), n_lam_conf=int((ok & ~moves).sum()))
     for name, sel in groups.items():
@@ -250,13 +256,14 @@ def _mean_ci(v: np.ndarray, n_resamples: int, ci: float, seed: int) -> tuple[flo
     return float(v.mean()), float(lo), float(hi)
 
 
-def _frac_creep(store: StudyStore, f: float) -> float:
+def _frac_creep(store: StudyStore, fi: int) -> float:
     from bbb.analysis.locking import creep_speed
 
     from .collisions import states
 
-    p = store.study.params(f)
-    v = np.concatenate([states(store, f, fam.name, ("vy",))["vy"].ravel()
+    p = store.study.points[fi].params
+    f = p.f
+    v = np.concatenate([states(store, f, fam.name, ("vy",), point=fi)["vy"].ravel()
                         for fam in store.study.families])
     v = v[np.isfinite(v)]
     return float(np.mean(v <= creep_speed(p.A, f))) if v.size else math.nan

@@ -21,6 +21,8 @@ from __future__ import annotations
 import re
 from collections.abc import Iterable, Mapping
 
+from ..workflow.keys import PARAM_UNITS
+
 __all__ = ["DIMENSIONLESS", "NOT_A_QUANTITY", "UNKNOWN", "D_UNIT", "V_UNIT", "UNITS",
            "FAMILIES", "CI_SUFFIXES", "unit", "column_unit", "units"]
 
@@ -62,6 +64,8 @@ UNITS: dict[str, str] = {
     # locking (pipeline.tables.collisions)
     "n_states": _1, "v_creep": V_UNIT, "v_max": V_UNIT, "k_max": _1, "v_peak": V_UNIT,
     "k_peak": _1, "n_flights": _1, "loops": _1,
+    # a grid's axis columns: the [params] keys, in the workflow's own map
+    **{k: u for k, u in PARAM_UNITS.items() if k != "Gamma"},
 }
 
 #: (pattern of the whole name, unit) for column families, first match wins

@@ -16,8 +16,8 @@ import itertools
 import re
 
 from .keys import GRID_AXES, GridTable, ParamsTable
+from .point import Grid, Point, resolve_params
 from .schema import Key, Reader, declared, tname
-from .study import Grid, Point, resolve_params
 
 __all__ = ["Grid", "read_grid", "check_points"]
 

@@ -37,7 +37,8 @@ from .schema import REQUIRED, declared, key, reference
 
 __all__ = ["Family", "Accuracy", "RefineTable", "GridTable", "GRID_AXES", "INVALID_POLICIES",
            "Observables", "Analysis", "SECTIONS", "DEFAULT_ANALYSIS",
-           "INITIAL_KINDS", "CI_METHODS", "PARAM_FIELDS", "reference_markdown",
+           "INITIAL_KINDS", "CI_METHODS", "PARAM_FIELDS", "PARAM_UNITS", "PARAM_LONG_NAMES",
+           "reference_markdown",
            "readme_with_reference", "README"]
 
 INITIAL_KINDS = ("rest", "dropped", "launched")
@@ -323,6 +324,14 @@ DEFAULT_ANALYSIS: dict[str, Any] = {k.name: k.default for k in declared(Analysis
 PARAM_FIELDS = tuple(k.name for k in declared(ParamsTable) if k.kind == "float" and k.name != "Gamma")
 #: the keys a [grid] axis may sweep: every [params] key but the preset, in their declared order
 GRID_AXES = tuple(k.name for k in declared(ParamsTable) if k.name != "preset")
+#: the unit of every [params] key (UDUNITS/CF: "1" dimensionless, "" not a quantity): the
+#: store's axis coordinates and the tables' axis columns (pipeline.tables.units) read it here
+PARAM_UNITS: dict[str, str] = {"g": "mm/s^2", "A": "mm", "Gamma": "1", "R": "mm", "S": "mm",
+                               "alpha": "1", "beta": "1", "tilt": "degree", "throw": "degree",
+                               "contact": "", "mu": "1"}
+#: the long name of every [params] key: its one-line doc in the declaration
+PARAM_LONG_NAMES: dict[str, str] = {k.name: k.doc for k in declared(ParamsTable)
+                                    if k.name != "preset"}
 # The tables of a workflow, as in the reference: (header, declarations, note).
 SECTIONS: list[tuple[str, type, str]] = [
     ("[study]", StudyTable, ""),

@@ -19,7 +19,6 @@ from __future__ import annotations
 import hashlib
 import itertools
 import json
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
 from functools import cached_property
@@ -27,16 +26,15 @@ from typing import Any
 
 import numpy as np
 
-from bbb.params import PRESETS, Params
+from bbb.params import Params
 
 from .identity import chunk_seed, f_key, point_key
 from .keys import Accuracy, Analysis, Family, Observables, RefineTable
+from .point import Grid, Point, fmt_value, resolve_params
 from .schema import InputError, as_dict, line_of
 
 __all__ = ["Study", "Point", "resolve_params", "WorkflowError", "GridNotRunnable"]
 
-#: a grid: (axis, values) per [grid] axis, in the workflow's order
-Grid = tuple[tuple[str, tuple[Any, ...]], ...]
 
 
 class WorkflowError(InputError):
@@ -44,46 +42,15 @@ class WorkflowError(InputError):
 
 
 class GridNotRunnable(WorkflowError):
-    """A grid scene asked for something that runs one point per frequency (the store, the
-    tasks, the tables, the plan): not built yet, so refused in one line."""
+    """A grid scene asked for something that knows one point per frequency only: refused in
+    one line."""
 
     def __init__(self, study: Study, what: str):
         axes = ", ".join(a for a, _ in study.grid)
-        super().__init__(study.source, "grid", f"grid scenes cannot run yet: {what} knows one "
-                         f"point per frequency, and this scene also sweeps {axes}",
-                         "a workflow without [grid] (meanwhile one scene per grid value, e.g. "
+        super().__init__(study.source, "grid", f"{what} knows one point per frequency, and this "
+                         f"scene also sweeps {axes}",
+                         "a workflow without [grid], or one grid line of it (Study.line, e.g. "
                          "[params] alpha = 0.5)", line_of(study.text, ("grid",)))
-
-
-def resolve_params(preset: str, f: float, values: Mapping[str, Any]) -> Params:
-    """The Params of ``preset`` at f (Hz) with ``values`` (overrides and grid values); a
-    ``Gamma`` among them (peak floor acceleration in g) becomes A = Gamma g / (2 pi f)^2 at
-    this f.  Raises ValueError as bbb.Params does."""
-    v = dict(values)
-    gamma = v.pop("Gamma", None)
-    if gamma is not None:
-        g = float(v.get("g", PRESETS[preset]["g"] if preset in PRESETS else 1.0))
-        v["A"] = float(gamma) * g / (2.0 * math.pi * float(f)) ** 2
-    return Params.preset(preset, f=float(f), **v)
-
-
-@dataclass(frozen=True)
-class Point:
-    """One point of a study: its frequency f (Hz), its grid values as (axis, value) pairs in
-    the study's axis order (empty without a grid), and its Params."""
-
-    f: float
-    grid: tuple[tuple[str, Any], ...]
-    params: Params
-
-    @property
-    def key(self) -> int | tuple:
-        """:func:`pipeline.workflow.identity.point_key`: f_key(f) without a grid."""
-        return point_key(self.f, self.grid)
-
-    def label(self) -> str:
-        """The point as a person reads it: ``f = 60 Hz, alpha = 0.5, contact = "slide"``."""
-        return ", ".join([f"f = {self.f:g} Hz"] + [f"{a} = {_fmt_value(v)}" for a, v in self.grid])
 
 
 @dataclass(frozen=True)
@@ -109,6 +76,10 @@ class Study:
     grid: Grid = ()
     #: what a point bbb.Params refuses does: "refuse" (the workflow is refused) or "skip"
     invalid: str = "refuse"
+    #: a grid store's points in store order, (f, grid values) each, as its store holds them
+    #: (a store grows along points: a widened grid's new points follow the old ones); () for a
+    #: workflow not yet stored, whose points are then in axis order
+    stored_points: tuple[tuple[float, tuple[tuple[str, Any], ...]], ...] = ()
     text: str = field(default="", compare=False, repr=False)
 
     # -- derived quantities -------------------------------------------------------------------
@@ -119,8 +90,8 @@ class Study:
         return resolve_params(self.preset, f, self.overrides)
 
     def refuse_grid(self, what: str) -> None:
-        """Refuse (GridNotRunnable, one line) ``what`` on a scene with a [grid]: the store,
-        the tasks, the tables and the plan know one point per frequency only, so far."""
+        """Refuse (GridNotRunnable, one line) ``what`` on a scene with a [grid]: ``what``
+        knows one point per frequency only."""
         if self.grid:
             raise GridNotRunnable(self, what)
 
@@ -132,20 +103,51 @@ class Study:
 
     @cached_property
     def points(self) -> tuple[Point, ...]:
-        """Every point, in axis order (:attr:`axes`; frequency innermost), each with its
-        Params; with ``invalid = "skip"`` the points bbb.Params refuses are left out.  Without
-        a grid: one point per frequency, in the order of ``frequencies``."""
-        out = []
+        """Every point, each with its Params, in store order: a grid store's points as it
+        holds them (:attr:`stored_points`), then the grid's other points in axis order
+        (:attr:`axes`; frequency innermost); with ``invalid = "skip"`` the points bbb.Params
+        refuses are left out.  Without a grid: one point per frequency, in the order of
+        ``frequencies``."""
+        out, seen = [], set()
+        for f, grid in self.stored_points:
+            out.append(Point(f, grid, self._resolve(f, grid)))
+            seen.add(point_key(f, grid))
         for grid in self._grid_values():
             for f in self.frequencies:
+                if point_key(f, grid) in seen:
+                    continue
                 try:
-                    p = resolve_params(self.preset, f, {**self.overrides, **dict(grid)})
+                    p = self._resolve(f, grid)
                 except ValueError:
                     if self.invalid == "skip":
                         continue
                     raise
                 out.append(Point(f, grid, p))
         return tuple(out)
+
+    def _resolve(self, f: float, grid: tuple[tuple[str, Any], ...]) -> Params:
+        return resolve_params(self.preset, f, {**self.overrides, **dict(grid)})
+
+    @property
+    def point_dim(self) -> str:
+        """The store's first dimension: "frequency" without a grid (one point per frequency,
+        as every store before grids), "point" with one (coordinates: frequency and each
+        axis along it)."""
+        return "point" if self.grid else "frequency"
+
+    def with_stored_points(self, points: tuple[tuple[float, tuple], ...]) -> Study:
+        """This workflow on a grid store holding ``points`` ((f, grid values) in store order):
+        the store's points first, then this workflow's points it lacks.  Points in the
+        grid's own order are no news: the study is then this one (``stored_points`` ())."""
+        stored = tuple((float(f), tuple(g)) for f, g in points)
+        natural = replace(self, stored_points=())
+        if [point_key(f, g) for f, g in stored] == [p.key for p in natural.points][:len(stored)]:
+            return natural
+        return replace(self, stored_points=stored)
+
+    def point_at(self, pi: int) -> Point:
+        """The point of store index ``pi``."""
+        return self.points[pi]
 
     def line(self, values: Mapping[str, Any]) -> Study:
         """The scene without a grid at one value of every grid axis (``values``: axis ->
@@ -160,21 +162,22 @@ class Study:
         for a, axis in self.grid:
             v = values[a]
             if v not in axis:
-                raise ValueError(f"{a} = {_fmt_value(v)} is not on the grid; allowed: "
-                                 + ", ".join(_fmt_value(x) for x in axis))
+                raise ValueError(f"{a} = {fmt_value(v)} is not on the grid; allowed: "
+                                 + ", ".join(fmt_value(x) for x in axis))
             if a == "contact" and v == "stick":
                 overrides.pop(a, None)
             else:
                 overrides[a] = v
         grid = tuple((a, values[a]) for a in names)
-        freqs = tuple(p.f for p in self.points if p.grid == grid)
-        label = ", ".join(f"{a} = {_fmt_value(v)}" for a, v in grid)
+        freqs = tuple(sorted(p.f for p in self.points if p.grid == grid))
+        label = ", ".join(f"{a} = {fmt_value(v)}" for a, v in grid)
         if not freqs:
             raise ValueError(f"every point of the line {label} is skipped as invalid")
         # the TOML a store keeps says which line of which grid it holds
         text = f"# the grid line {label} of this workflow\n{self.text}" if self.text else ""
         return replace(self, overrides=overrides, frequencies=freqs, grid=(), invalid="refuse",
-                       refined=tuple(f for f in self.refined if f in freqs), text=text)
+                       refined=tuple(f for f in self.refined if f in freqs), stored_points=(),
+                       text=text)
 
     def skipped(self) -> tuple:
         """The keys (:func:`pipeline.workflow.identity.point_key`) of the grid's combinations
@@ -241,19 +244,24 @@ class Study:
     @property
     def mirror_symmetric(self) -> bool:
         """Whether the floor is mirror-symmetric (level, vibrated vertically: no tilt, throw
-        90°), under any contact model: a particle's mirror image then moves as its reflection."""
+        90°) at every point, under any contact model: a particle's mirror image then moves as
+        its reflection."""
         if self.grid:  # every point's floor (tilt and throw may be axes)
             return not any(p.params.transport for p in self.points)
         return not resolve_params(self.preset, 1.0, self.overrides).transport
 
-    def pairing(self, family: Family) -> str:
-        """How ``family``'s particles enter the estimates (bbb.analysis.transport.PAIRING): "mirror
-        symmetry" (images counted, not simulated), "pairs" (each chunk's second half are the
-        mirror partners of its first half, bbb.ensemble.mirror_pairs) or "independent"."""
+    def pairing(self, family: Family, point: Point | None = None) -> str:
+        """How ``family``'s particles enter the estimates (bbb.analysis.transport.PAIRING) at
+        ``point`` (None: at every point, as without a grid): "mirror symmetry" (images counted,
+        not simulated), "pairs" (each chunk's second half are the mirror partners of its
+        first half, bbb.ensemble.mirror_pairs) or "independent".  A grid line's points pair
+        as the scene of that line does."""
         from bbb.analysis.transport import INDEPENDENT, PAIRS, SYMMETRY
 
-        mirror = self.mirror_symmetric if family.mirror is None else family.mirror
-        return INDEPENDENT if not mirror else SYMMETRY if self.mirror_symmetric else PAIRS
+        # the floor (tilt, throw) is the same along f: a point pairs as its grid line's scene
+        symmetric = self.mirror_symmetric if point is None else not point.params.transport
+        mirror = symmetric if family.mirror is None else family.mirror
+        return INDEPENDENT if not mirror else SYMMETRY if symmetric else PAIRS
 
     def with_frequencies(self, frequencies: tuple[float, ...]) -> Study:
         """The same study at some of its frequencies (Hz): every chunk keeps its seed, so it
@@ -285,6 +293,8 @@ class Study:
         if self.grid:
             d["grid"] = _grid_list(self.grid)
             d["invalid"] = self.invalid
+            if self.stored_points:  # else the grid's own order
+                d["points"] = [[p.f, [list(av) for av in p.grid]] for p in self.points]
         return d
 
     @classmethod
@@ -318,6 +328,9 @@ class Study:
             grid=tuple((a, tuple(v if isinstance(v, str) else float(v) for v in values))
                        for a, values in d.get("grid", ())),
             invalid=d.get("invalid", "refuse"),
+            stored_points=tuple((float(f), tuple((a, v if isinstance(v, str) else float(v))
+                                                 for a, v in grid))
+                                for f, grid in d.get("points", ())),
             text=text,
         )
 
@@ -328,7 +341,9 @@ class Study:
         d = {
             "seed": self.seed,
             "params": self.base_params,
-            "f_mhz": [f_key(f) for f in self.base_frequencies],
+            # a grid store's points are its coordinates, not its identity: it grows along
+            # them (a widened grid, refinement) without rewriting what is done
+            **({} if self.grid else {"f_mhz": [f_key(f) for f in self.base_frequencies]}),
             "families": [self._family_identity(fam) for fam in self.families],
             "accuracy": acc,
             "observables": as_dict(self.observables, identity=True),
@@ -343,10 +358,7 @@ class Study:
         if self.refine is not None:
             d["refine"] = as_dict(self.refine)
         if self.grid:  # absent without a grid: every older store keeps its fingerprint
-            d["grid"] = _grid_list(self.grid)
-            skipped = self.skipped()
-            if skipped:  # which points exist, not the policy: skip with none left out is refuse
-                d["skipped"] = list(skipped)
+            d["axes"] = [a for a, _ in self.grid]
         return d
 
     def _family_identity(self, fam: Family) -> dict[str, Any]:
@@ -354,7 +366,10 @@ class Study:
         # images counted by symmetry, or none, leave the store (and its fingerprint) as before
         d = _drop_none(as_dict(fam, identity=True))
         d.pop("mirror", None)
-        if self.pairing(fam) == "pairs":
+        if self.grid:  # the points (so where partners are simulated) are not the identity
+            if fam.mirror is not None:
+                d["mirror"] = fam.mirror
+        elif self.pairing(fam) == "pairs":
             d["mirror"] = True
         return d
 
@@ -365,10 +380,6 @@ class Study:
 
 def _grid_list(grid: Grid) -> list:
     return [[a, list(values)] for a, values in grid]
-
-
-def _fmt_value(v: Any) -> str:
-    return f'"{v}"' if isinstance(v, str) else f"{v:g}"
 
 
 def _drop_none(d: dict) -> dict:

@@ -112,8 +112,9 @@ WORKFLOWS = {
                         "allowed: a non-empty list of distinct values"),
     "grid invalid point": (lambda t: t + '[grid]\nR = [1.0]\ncontact = ["slide"]\n', 33,
                            "grid.contact", 'or invalid = "skip" in [grid]'),
-    "grid scene": (lambda t: t + "[grid]\nalpha = [0.5, 0.7]\n", 31, "grid",
-                   "grid scenes cannot run yet: bbb run knows one point per frequency"),
+    "grid point": (lambda t: t + "[grid]\nalpha = [0.5, 2.0]\n", 32, "grid.alpha",
+                   "invalid parameters at the point f = 54 Hz, alpha = 2: Params.alpha = 2.0 is "
+                   "out of range"),
 }
 
 
@@ -194,14 +195,6 @@ def test_a_store_of_another_workflow_exits_2_naming_the_difference(
     assert_one_line_usage_error(rc, out, err, f"{existing}: made by a different workflow (families",
                                 "allowed: the same workflow, or another --store")
     assert snapshot(existing) == pristine
-
-
-def test_bbb_plan_refuses_a_grid_scene_in_one_line(tmp_path, capsys):
-    grid = tmp_path / "grid.toml"
-    grid.write_text(TINY + "[grid]\nalpha = [0.5, 0.7]\n")
-    rc, out, err = run_main(["plan", str(grid)], capsys)
-    assert_one_line_usage_error(rc, out, err, f"bbb: error: {grid}:31: grid: grid scenes cannot "
-                                "run yet: bbb plan knows one point per frequency")
 
 
 # -- malformed command lines ----------------------------------------------------------------------

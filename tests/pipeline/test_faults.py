@@ -25,8 +25,8 @@ import zarr
 
 from bbb.provenance import kernel_hash
 from pipeline.cli import main
-from pipeline.execute.run import RunFailed, run_study
-from pipeline.store.study_store import COUNTERS, KERNEL_ATTRS, StoreError, StudyStore, store_fingerprint
+from pipeline.execute.run import run_study
+from pipeline.store.study_store import COUNTERS, KERNEL_ATTRS, StoreError, store_fingerprint
 from pipeline.workflow.load import load_workflow
 
 from .helpers import QUIET, assert_same_store
@@ -243,23 +243,15 @@ def test_two_runs_taking_over_one_stale_lock_do_not_both_get_it(tmp_path, monkey
 
 
 # -- a task that raises ---------------------------------------------------------------------------
-def test_invalid_parameters_in_a_task_stop_the_run_naming_the_chunk_and_finished_chunks_stay_done(
-        reference, tiny_workflow, tmp_path):
-    """A Study that slipped past validation (f = -60 Hz, impossible from a workflow file)
-    reaches bbb.Params inside a worker: the run stops with f, family, chunk, the cause and where
-    it was raised; the 54 Hz chunks, which one worker runs first, stay done and intact."""
+def test_invalid_parameters_stop_the_run_before_anything_is_written(tiny_workflow, tmp_path):
+    """A Study that slipped past validation (f = -60 Hz, impossible from a workflow file):
+    every point's bbb.Params is made before the store is, so the run stops on the client,
+    naming the cause, and leaves no store behind."""
     study = dataclasses.replace(load_workflow(tiny_workflow), frequencies=(54.0, -60.0))
     store = tmp_path / "bad.zarr"
-    with pytest.raises(RunFailed) as e:
+    with pytest.raises(ValueError, match=r"Params\.f = -60\.0 is out of range; allowed: f > 0"):
         run_study(study, store, workers=1, **QUIET)
-    assert "f = -60 Hz, family rest, chunk 0 failed: ValueError: Params.f = -60.0 is out of " \
-           "range; allowed: f > 0 (at params.py:" in str(e.value)
-    done = StudyStore.open(store).done()
-    assert done[0].all() and not done[1].any()
-    for mi in range(2):
-        for ci in range(2):
-            got, want = chunk_of(store, 0, mi, ci, 4), chunk_of(reference[0], 0, mi, ci, 4)
-            assert all(same_bits(got[n], want[n]) for n in CHUNK_ARRAYS), (mi, ci)
+    assert not store.exists()
 
 
 # -- bbb status ----------------------------------------------------------------------------------

@@ -78,7 +78,7 @@ def test_dimensionless_is_1_and_nothing_reads_as_dimensionless_by_a_blank():
     assert blank == sorted(["family", "initial", "D_status", "ergodic", "families_agree",
                             "eb_ok", "rule", "level_ok", "decay_ok", "spread_ok", "verdict",
                             "stop", "stationary", "v_by", "D_drift_status", "steady",
-                            "diffusive", "converged", "converged_coll", "still"])
+                            "diffusive", "converged", "converged_coll", "still", "contact"])
 
 
 @pytest.fixture(scope="module")
@@ -127,10 +127,14 @@ def test_the_api_attaches_every_table_with_the_units_of_the_parquet_metadata(eve
     for name in table_names(StudyStore.open(path).study):
         parquet = table_metadata(out / f"{name}.parquet")["units"]
         assert "?" not in parquet.values(), name
+        families = [str(f) for f in ds["family"].values]
         for var in ds.data_vars.values():
             if var.attrs.get("source") == f"bbb reduce: {name} table":
-                attached[(name, var.attrs["column"])] = var.attrs["units"]
-                assert var.attrs["units"] == parquet[var.attrs["column"]], (name, var.name)
+                # a per-family variable (D_family: column D_<family>) stands for each family's
+                columns = [var.attrs["column"].replace("<family>", f) for f in families]
+                for column in dict.fromkeys(columns):
+                    attached[(name, column)] = var.attrs["units"]
+                    assert var.attrs["units"] == parquet[column], (name, var.name, column)
         # every column is attached, or left out where an earlier table holds the same values
         index = {"f", "family", "initial"}
         left_out = {c for c in parquet if c not in index and (name, c) not in attached}

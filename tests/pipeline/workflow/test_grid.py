@@ -7,7 +7,6 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from pipeline.store.study_store import StudyStore
 from pipeline.workflow.identity import f_key
 from pipeline.workflow.load import GridNotRunnable, WorkflowError, parse_workflow
 
@@ -150,19 +149,20 @@ def test_grid_study_round_trips_through_its_dict():
     assert type(s).from_dict(s.to_dict()) == s
 
 
-def test_the_fingerprint_holds_the_grid_values():
-    assert parse(GRID).fingerprint() != parse(GRID.replace("0.7]", "0.8]")).fingerprint()
+def test_the_fingerprint_holds_the_grid_axes_not_their_values():
+    """A grid store grows along its points (a widened grid opens the same store)."""
+    assert parse(GRID).fingerprint() == parse(GRID.replace("0.7]", "0.8]")).fingerprint()
+    assert parse(GRID).fingerprint() != parse(GRID.replace("alpha", "beta")).fingerprint()
+
+
+def test_a_grid_of_one_value_is_not_the_scene_without_a_grid():
+    one = parse(GRID.replace("[0.5, 0.7]", "[0.5]"))
+    assert one.fingerprint() != parse(with_param("alpha = 0.5")).fingerprint()
 
 
 def test_invalid_skip_that_leaves_nothing_out_keeps_the_fingerprint():
     skip = GRID + 'invalid = "skip"\n'
     assert parse(GRID).fingerprint() == parse(skip).fingerprint()
-
-
-def test_the_data_identity_lists_the_skipped_points():
-    s = parse(with_grid('R = [1.0, 15.0]\ncontact = ["stick", "slide"]\ninvalid = "skip"'))
-    assert s.data_identity()["skipped"] == [
-        (f_key(f), ("R", 1.0), ("contact", "slide")) for f in (54.0, 60.0)]
 
 
 def test_a_workflow_without_grid_stores_no_grid_keys():
@@ -185,16 +185,10 @@ def test_a_grid_points_key_is_its_frequency_key_and_grid_values():
 
 
 def test_the_per_frequency_params_refuse_a_grid_scene_in_one_line():
-    with pytest.raises(GridNotRunnable, match=r"^wf\.toml:31: grid: grid scenes cannot run yet: "
+    with pytest.raises(GridNotRunnable, match=r"^wf\.toml:31: grid: "
                        r"Study\.params\(f\) knows one point per frequency, and this scene also "
                        r"sweeps alpha; allowed: a workflow without \[grid\]"):
         parse(GRID).params(60.0)
-
-
-def test_a_grid_scene_lays_out_no_store(tmp_path):
-    with pytest.raises(GridNotRunnable, match="grid scenes cannot run yet: a study store"):
-        StudyStore.create_or_open(tmp_path / "g.zarr", parse(GRID))
-    assert not (tmp_path / "g.zarr").exists()
 
 
 def test_a_tilt_axis_with_a_tilted_value_makes_the_floor_not_mirror_symmetric():

@@ -1,0 +1,61 @@
+"""One point of a study -- a frequency and a value of every grid axis -- and its Params.
+
+:func:`resolve_params` turns a preset, a frequency and the [params]/[grid] values into
+bbb.Params (``Gamma``, the peak floor acceleration in g, becomes the amplitude A at each
+point's f); :class:`Point` is what the store, the tasks and the tables index by.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+from bbb.params import PRESETS, Params
+
+from .identity import point_key
+
+__all__ = ["Grid", "Point", "resolve_params", "fmt_value"]
+
+#: a grid: (axis, values) per [grid] axis, in the workflow's order
+Grid = tuple[tuple[str, tuple[Any, ...]], ...]
+
+
+def resolve_params(preset: str, f: float, values: Mapping[str, Any]) -> Params:
+    """The Params of ``preset`` at f (Hz) with ``values`` (overrides and grid values); a
+    ``Gamma`` among them (peak floor acceleration in g) becomes A = Gamma g / (2 pi f)^2 at
+    this f.  Raises ValueError as bbb.Params does."""
+    v = dict(values)
+    gamma = v.pop("Gamma", None)
+    if gamma is not None:
+        g = float(v.get("g", PRESETS[preset]["g"] if preset in PRESETS else 1.0))
+        v["A"] = float(gamma) * g / (2.0 * math.pi * float(f)) ** 2
+    return Params.preset(preset, f=float(f), **v)
+
+
+@dataclass(frozen=True)
+class Point:
+    """One point of a study: its frequency f (Hz), its grid values as (axis, value) pairs in
+    the study's axis order (empty without a grid), and its Params."""
+
+    f: float
+    grid: tuple[tuple[str, Any], ...]
+    params: Params
+
+    @property
+    def key(self) -> int | tuple:
+        """:func:`pipeline.workflow.identity.point_key`: f_key(f) without a grid."""
+        return point_key(self.f, self.grid)
+
+    def columns(self) -> dict[str, Any]:
+        """The point as a table row's leading columns: {"f": Hz, axis: value, ...}."""
+        return {"f": self.f, **dict(self.grid)}
+
+    def label(self) -> str:
+        """The point as a person reads it: ``f = 60 Hz, alpha = 0.5, contact = "slide"``."""
+        return ", ".join([f"f = {self.f:g} Hz"] + [f"{a} = {fmt_value(v)}" for a, v in self.grid])
+
+
+def fmt_value(v: Any) -> str:
+    return f'"{v}"' if isinstance(v, str) else f"{v:g}"
