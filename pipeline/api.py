@@ -33,7 +33,8 @@ if TYPE_CHECKING:
 
 from .tables.units import UNITS
 
-__all__ = ["open_study", "reduced", "run_study", "load_study", "attach_tables", "TABLE_UNITS"]
+__all__ = ["open_study", "reduced", "run_study", "load_study", "attach_tables", "plot_store",
+           "TABLE_UNITS"]
 
 #: the units of the tables' columns by exact name: now the one map of every table,
 #: :data:`pipeline.tables.units.UNITS` (families of columns and CI bounds:
@@ -198,6 +199,18 @@ def attach_tables(ds: xr.Dataset, tables: dict[str, pd.DataFrame]) -> xr.Dataset
                 col = f"{name}_{col}"
             out[col] = var
     return out
+
+
+def plot_store(path: str | os.PathLike, out_dir: str | os.PathLike, *,
+               formats: tuple[str, ...] = ("png", "pdf")) -> list[Path]:
+    """Write the talk figures of the store at ``path`` to ``out_dir``: D(f) curves with their
+    CIs and flags, per family, and heat maps over frequency x each grid axis
+    (:func:`pipeline.plot.figures.plot_dataset` on ``open_study(path, reduced=True)``, whose
+    docstring names the files); returns the files written.  Here, above the engine's layers,
+    because the reduced Dataset is built here; the plot layer itself takes a Dataset."""
+    from .plot.figures import plot_dataset
+
+    return plot_dataset(open_study(path, reduced=True), out_dir, formats=formats)
 
 
 def _same_values(a, b) -> bool:
