@@ -34,7 +34,7 @@ if TYPE_CHECKING:
 from .tables.units import UNITS
 
 __all__ = ["open_study", "reduced", "reduced_dataset", "run_study", "load_study",
-           "attach_tables", "TABLE_UNITS"]
+           "attach_tables", "plot_store", "TABLE_UNITS"]
 
 #: the units of the tables' columns by exact name: now the one map of every table,
 #: :data:`pipeline.tables.units.UNITS` (families of columns and CI bounds:
@@ -234,6 +234,18 @@ def _grid_axes(ds: xr.Dataset) -> list[str]:
         return []
     wf = json.loads(wf) if isinstance(wf, str) else wf
     return [a for a, _ in wf.get("grid", ())]
+
+
+def plot_store(path: str | os.PathLike, out_dir: str | os.PathLike, *,
+               formats: tuple[str, ...] = ("png", "pdf")) -> list[Path]:
+    """Write the talk figures of the store at ``path`` to ``out_dir``: D(f) curves with their
+    CIs and flags, per family, and heat maps over frequency x each grid axis
+    (:func:`pipeline.plot.figures.plot_dataset` on :func:`reduced_dataset`, whose
+    docstring names the files); returns the files written.  Here, above the engine's layers,
+    because the reduced Dataset is built here; the plot layer itself takes a Dataset."""
+    from .plot.figures import plot_dataset
+
+    return plot_dataset(reduced_dataset(path), out_dir, formats=formats)
 
 
 def _same_values(a, b) -> bool:

@@ -1,0 +1,72 @@
+"""The verdicts a point can be flagged by, and how each is drawn: a flag variable holds True
+(passed), False (flagged) or NaN / None (unknown: not flagged).
+
+=============  ===================  =========================  ===========
+flag variable  said in the legend   marker on a curve (open)   map hatch
+=============  ===================  =========================  ===========
+ergodic        non-ergodic          circle ``o``               ``////``
+stationary     non-stationary       square ``s``               ``\\\\``
+diffusive      not diffusive        diamond ``D``              ``..``
+=============  ===================  =========================  ===========
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+__all__ = ["Flag", "FLAGS", "flagged", "failed", "present"]
+
+
+@dataclass(frozen=True)
+class Flag:
+    """One verdict: its variable, what a False means in words, its marker and its hatch."""
+    var: str
+    meaning: str
+    marker: str
+    hatch: str
+
+
+FLAGS = (Flag("ergodic", "non-ergodic", "o", "////"),
+         Flag("stationary", "non-stationary", "s", "\\\\\\\\"),
+         Flag("diffusive", "not diffusive", "D", ".."))
+
+
+def _is_false(x) -> bool:
+    if x is None or (isinstance(x, float | np.floating) and math.isnan(x)):
+        return False
+    return not bool(x)
+
+
+def flagged(ds: xr.Dataset, flag: Flag, like: xr.DataArray) -> xr.DataArray:
+    """Booleans over ``like``'s dims: True where ``ds[flag.var]`` is False (broadcast over
+    the dims the flag lacks, e.g. ``family``); all False if ``ds`` has no such variable."""
+    if flag.var not in ds.data_vars:
+        return xr.zeros_like(like, dtype=bool)
+    v = ds[flag.var]
+    out = xr.DataArray(np.vectorize(_is_false, otypes=[bool])(v.values), dims=v.dims,
+                       coords=v.coords)
+    return out.broadcast_like(like).transpose(*like.dims)
+
+
+def present(ds: xr.Dataset, like: xr.DataArray) -> xr.DataArray:
+    """True over ``like``'s dims where the point has a row: some variable of ``ds`` over
+    those dims (any family) is not NaN; an absent point is NaN in every one."""
+    found = xr.zeros_like(like, dtype=bool)
+    for v in ds.data_vars.values():
+        if not set(v.dims) <= set(like.dims) | {"family"} or not v.dims:
+            continue
+        known = v.notnull() if v.dtype.kind in "fcmMO" else xr.ones_like(v, dtype=bool)
+        if "family" in known.dims and "family" not in like.dims:
+            known = known.any("family")
+        found = found | known.broadcast_like(like)
+    return found.transpose(*like.dims)
+
+
+def failed(ds: xr.Dataset, var: str) -> xr.DataArray:
+    """True where the point has a row but ``ds[var]`` is NaN: its estimator failed."""
+    like = ds[var]
+    return present(ds, like) & like.isnull()
