@@ -47,7 +47,7 @@ from ..store.layout import CAP, OPEN, STOP_LEGEND, TARGET, ZERO
 from ..workflow.identity import f_key
 
 __all__ = ["OPEN", "TARGET", "ZERO", "CAP", "STOP_LEGEND", "StoppingRule", "UnitState",
-           "advance", "decide", "chunks_needed", "remaining", "refine_frequencies"]
+           "advance", "decide", "chunks_needed", "remaining", "refine_frequencies", "split_gaps"]
 
 #: the stop_reason codes and their legend are stored values: defined with the store's layout
 #: (pipeline.store.layout) and importable from here as before
@@ -167,21 +167,33 @@ def refine_frequencies(f_mhz: Sequence[int], D: Sequence[float], lo: Sequence[fl
     to every significant extremum (and, with ``jumps``, between significantly different
     neighbours).  NaN rows (no data) are left out.  Empty: the grid is fine enough."""
     f = np.asarray(f_mhz, dtype=np.int64)
+    gaps = split_gaps(f / 1000.0, D, lo, hi, ci=ci, extrema=extrema, jumps=jumps, alpha=alpha)
+    to_mhz = f_key(to)
+    return sorted({int((a + b) // 2) for a, b in ((f_key(x), f_key(y)) for x, y in gaps)
+                   if b - a > to_mhz})
+
+
+def split_gaps(x: Sequence[float], D: Sequence[float], lo: Sequence[float],
+               hi: Sequence[float], *, ci: float = 0.95, extrema: bool = True,
+               jumps: bool = False, alpha: float = 0.05) -> list[tuple[float, float]]:
+    """The gaps (x_i, x_i+1) between neighbours along one axis x that refinement splits: next
+    to every significant extremum of D along x (bbb.analysis.extrema) and, with ``jumps``,
+    between neighbours whose D differ beyond their CIs (Bonferroni over the neighbours).  NaN
+    rows (no data) are left out; sorted by x."""
+    x = np.asarray(x, dtype=np.float64)
     D, lo, hi = (np.asarray(a, dtype=np.float64) for a in (D, lo, hi))
     ok = np.isfinite(D) & np.isfinite(lo) & np.isfinite(hi)
-    f, D, lo, hi = f[ok], D[ok], lo[ok], hi[ok]
-    order = np.argsort(f, kind="stable")
-    f, D, lo, hi = f[order], D[order], lo[order], hi[order]
-    to_mhz = f_key(to)
+    x, D, lo, hi = x[ok], D[ok], lo[ok], hi[ok]
+    order = np.argsort(x, kind="stable")
+    x, D, lo, hi = x[order], D[order], lo[order], hi[order]
     gaps: set[int] = set()  # index i: the gap between points i and i + 1
-    if extrema and f.size >= 3:
-        for e in find_extrema(f / 1000.0, D, lo, hi, ci=ci, alpha=alpha):
+    if extrema and x.size >= 3:
+        for e in find_extrema(x, D, lo, hi, ci=ci, alpha=alpha):
             gaps.update({e.index - 1, e.index})
-    if jumps and f.size >= 2:
+    if jumps and x.size >= 2:
         sig = Significance(D, lo, hi, ci, critical_z(2, alpha))
-        zc = NormalDist().inv_cdf(1.0 - alpha / (f.size - 1))  # Bonferroni over neighbours
-        for i in range(f.size - 1):
+        zc = NormalDist().inv_cdf(1.0 - alpha / (x.size - 1))  # Bonferroni over neighbours
+        for i in range(x.size - 1):
             if max(sig.z(i, i + 1), sig.z(i + 1, i)) > zc:
                 gaps.add(i)
-    return sorted({int((f[i] + f[i + 1]) // 2) for i in gaps
-                   if 0 <= i < f.size - 1 and f[i + 1] - f[i] > to_mhz})
+    return [(float(x[i]), float(x[i + 1])) for i in sorted(gaps) if 0 <= i < x.size - 1]
