@@ -198,7 +198,9 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
                 report.n_chunks = store.done().size  # refinement may have grown the store
                 echo(f"{study.name}: {waves.summary()}"
                      + (f"; {waves.rounds} refinement rounds, {len(store.study.refined)} "
-                        "frequencies added" if store.study.refine else ""))
+                        "frequencies added" if store.study.refine else "")
+                     + (f"; {waves.rounds} refinement rounds, {len(store.study.points)} points"
+                        if store.study.grid_refine else ""))
         finally:
             report.compute_wall = time.perf_counter() - t_compute
     finally:

@@ -28,6 +28,7 @@ from bbb.analysis.stats.interval import DInterval
 from ..store.layout import OPEN, STOP_LEGEND, ZERO
 from ..store.study_store import StudyStore
 from ..workflow.identity import reduce_seed, stop_seed  # stop_seed: importable from here as before
+from ..workflow.point import Point
 from ..workflow.study import Study
 from .adaptive import (
     StoppingRule,
@@ -130,6 +131,34 @@ def pooled_ci(store: StudyStore, fi: int, done: np.ndarray) -> tuple[float, floa
     return _as_ci(row_intervals(study, fi, parts)[1])
 
 
+def pooled_v(store: StudyStore, fi: int, done: np.ndarray) -> tuple[float, float, float]:
+    """(v, lo, hi), mm/s, of all families pooled at point fi: the drift and its CI as `bbb
+    reduce` computes them (bbb.analysis.transport, seeded by the reduction's key)."""
+    from bbb.analysis.transport import transport
+
+    from ..workflow.identity import child_seed
+
+    study = store.study
+    point = study.points[fi]
+    fams = [(fam, store.read_done("positions", fi, mi, done[fi, mi]))
+            for mi, fam in enumerate(study.families)]
+    fams = [(fam, x) for fam, x in fams if x.shape[0] >= 2]
+    if not fams:
+        return (np.nan, np.nan, np.nan)
+    x = np.concatenate([x for _, x in fams])
+    kinds = {study.pairing(fam, point) for fam, _ in fams}
+    pairing = kinds.pop() if len(kinds) == 1 else "independent"
+    units = pair_units(study, [(fam, x.shape[0]) for fam, x in fams], point)
+    an = study.analysis
+    T = an.duration(study.accuracy.t_max)
+    t = transport(x, study.sample_times(), point.params.S, n_resamples=study.accuracy.n_resamples,
+                  ci=an.ci, method=an.ci_method,
+                  seed=child_seed(reduce_seed(study, point.f), "transport"),
+                  pairing=pairing, units=units if pairing == "pairs" else None,
+                  fit_from=an.fit_from * T, fit_to=an.fit_to * T, discard=an.discard)
+    return (t.v, t.v_lo, t.v_hi)
+
+
 def _prefix(done_fm: np.ndarray) -> int:
     """How many leading chunks are done."""
     return int(np.argmin(done_fm)) if not done_fm.all() else done_fm.size
@@ -211,7 +240,11 @@ class Waves:
         """One refinement round, once every unit has stopped: grow the store by the
         frequencies the rule adds and plan them.  False if the grid is fine enough."""
         study = self.store.study
-        if study.refine is None or study.grid or any(s.reason == OPEN for s in self.states.values()):
+        if any(s.reason == OPEN for s in self.states.values()):
+            return False
+        if study.grid:
+            return self._refine_grid()
+        if study.refine is None:
             return False
         done = self.store.done()
         table = np.array([pooled_ci(self.store, fi, done) for fi in range(len(study.frequencies))])
@@ -228,6 +261,39 @@ class Waves:
                   f"({', '.join(f'{m / 1000:g}' for m in new[:8])}{' ...' if len(new) > 8 else ''} Hz)")
         self.plan(range(old, len(self.store.study.frequencies)))
         return True
+
+    def _refine_grid(self) -> bool:
+        """One refinement round of a map ([grid.refine], pipeline.execute.grid_refine): grow
+        the store by the points the rule adds and plan them.  False if none."""
+        from .grid_refine import refine_grid
+
+        study = self.store.study
+        rule = study.grid_refine
+        if rule is None:
+            return False
+        done = self.store.done()
+        table = np.array([self._refined_quantity(fi, done, rule.quantity)
+                          for fi in range(len(study.points))])
+        new = refine_grid(study.points, table, rule, ci=study.analysis.ci)
+        if not new:
+            return False
+        self.rounds += 1
+        old = len(study.points)
+        grown = study.with_stored_points(tuple((p.f, p.grid) for p in study.points) + tuple(new))
+        self.store = self.store.add_points(grown)
+        shown = ", ".join(Point(f, g, None).label() for f, g in new[:4])
+        self.echo(f"{study.name}: refinement round {self.rounds}: {len(new)} points added "
+                  f"({shown}{' ...' if len(new) > 4 else ''})")
+        self.plan(range(old, len(self.store.study.points)))
+        return True
+
+    def _refined_quantity(self, fi: int, done: np.ndarray, quantity: str
+                          ) -> tuple[float, float, float]:
+        """(value, lo, hi) of ``quantity`` ("D": pooled D as `bbb reduce` reports it; "v":
+        the drift, mm/s) at point fi."""
+        if quantity == "D":
+            return pooled_ci(self.store, fi, done)
+        return pooled_v(self.store, fi, done)
 
     def prepare(self) -> list[tuple[int, int, int]]:
         """Plan every unit, refine while nothing is missing; the chunks to compute."""

@@ -15,19 +15,20 @@ import dataclasses
 import itertools
 import re
 
-from .keys import GRID_AXES, GridTable, ParamsTable
+from .keys import GRID_AXES, GridRefine, GridRefineTable, GridTable, ParamsTable
 from .point import Grid, Point, resolve_params
 from .schema import Key, Reader, declared, tname
 
 __all__ = ["Grid", "read_grid", "check_points"]
 
 
-def read_grid(r: Reader, doc: dict) -> tuple[Grid, str]:
-    """The [grid] axes, (axis, values) in the workflow's order, and its ``invalid`` policy."""
+def read_grid(r: Reader, doc: dict) -> tuple[Grid, str, GridRefine | None]:
+    """The [grid] axes, (axis, values) in the workflow's order, its ``invalid`` policy and
+    its refinement rule ([grid.refine], None without)."""
     raw = doc.get("grid")
     if raw is None:
-        return (), "refuse"
-    settings = {k.name for k in declared(GridTable)}
+        return (), "refuse", None
+    settings = {k.name for k in declared(GridTable)} | {"refine"}
     if not isinstance(raw, dict):
         r.fail(("grid",), f"must be a table, got {tname(raw)}",
                "[grid] with axes such as alpha = [0.5, 0.7]")
@@ -51,8 +52,40 @@ def read_grid(r: Reader, doc: dict) -> tuple[Grid, str]:
         axes.append((name, _axis_values(r, path, decl, values)))
     if not axes:
         r.fail(("grid",), "no axis", "one or more axes such as alpha = [0.5, 0.7]")
-    tbl = r.table({k: v for k, v in raw.items() if k in settings}, ("grid",), GridTable)
-    return tuple(axes), tbl["invalid"]
+    tbl = r.table({k: v for k, v in raw.items() if k in settings - {"refine"}}, ("grid",),
+                  GridTable)
+    refine = _read_refine(r, raw["refine"], axes) if "refine" in raw else None
+    return tuple(axes), tbl["invalid"], refine
+
+
+def _read_refine(r: Reader, raw, axes: list) -> GridRefine:
+    """[grid.refine]: its settings and a resolution (> 0) per refined axis: f (Hz, >= 2 mHz:
+    new frequencies sit on the 1 mHz grid) or a numeric grid axis."""
+    path = ("grid", "refine")
+    settings = {k.name for k in declared(GridRefineTable)}
+    numeric = [a for a, v in axes if not isinstance(v[0], str)]
+    allowed = ("a resolution > 0 per refined axis: f (Hz, >= 0.002)"
+               + (", " + ", ".join(numeric) if numeric else "") + "; and "
+               + ", ".join(sorted(settings)))
+    if not isinstance(raw, dict):
+        r.fail(path, f"must be a table, got {tname(raw)}", allowed)
+    to = []
+    for name, value in raw.items():
+        if name in settings:
+            continue
+        if name != "f" and name not in numeric:
+            why = ("a string axis is not refined" if name in dict(axes)
+                   else "not an axis of this grid")
+            r.fail(path + (name,), f"unknown key ({why})", allowed)
+        least = 0.002 if name == "f" else 0.0
+        if isinstance(value, bool) or not isinstance(value, int | float) or not (
+                value > least or (name == "f" and value == least)):
+            r.fail(path + (name,), f"must be a resolution, got {value!r}", allowed)
+        to.append((name, float(value)))
+    if not to:
+        r.fail(path, "no axis to refine", allowed)
+    tbl = r.table({k: v for k, v in raw.items() if k in settings}, path, GridRefineTable)
+    return GridRefine(tuple(to), tbl["extrema"], tbl["jumps"], tbl["quantity"])
 
 
 def _axis_values(r: Reader, path: tuple[str, ...], k: Key, values) -> tuple:

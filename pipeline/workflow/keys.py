@@ -35,7 +35,8 @@ from .accuracy import ACCURACY_PRESETS, DEFAULT_ACCURACY, NUMERICS_KNOBS
 from .identity import family_key
 from .schema import REQUIRED, declared, key, reference
 
-__all__ = ["Family", "Accuracy", "RefineTable", "GridTable", "GRID_AXES", "INVALID_POLICIES",
+__all__ = ["Family", "Accuracy", "RefineTable", "GridTable", "GridRefineTable", "GridRefine",
+           "REFINE_QUANTITIES", "GRID_AXES", "INVALID_POLICIES",
            "Observables", "Analysis", "SECTIONS", "DEFAULT_ANALYSIS",
            "INITIAL_KINDS", "CI_METHODS", "PARAM_FIELDS", "PARAM_UNITS", "PARAM_LONG_NAMES",
            "reference_markdown",
@@ -104,6 +105,34 @@ class GridTable:
     invalid: str = key("refuse", "a point whose parameters bbb.Params refuses (e.g. slide on "
                        "near-vertical cusps): refuse the workflow, naming the point, or skip "
                        "the point", choices=INVALID_POLICIES)
+
+
+REFINE_QUANTITIES = ("D", "v")
+
+
+@dataclass(frozen=True)
+class GridRefineTable:
+    """The settings of ``[grid.refine]``; its other keys are resolutions, one per axis
+    refined (``f = 0.5``, ``alpha = 0.05``), read by pipeline.workflow.grid."""
+
+    extrema: bool = key(True, "split the gaps next to every significant extremum along a "
+                        "refined axis (bbb.analysis.extrema)")
+    jumps: bool = key(True, "split the gaps between neighbours whose values differ beyond "
+                      "their CIs")
+    quantity: str = key("D", "what is compared: D (all families pooled) or the drift v",
+                        choices=REFINE_QUANTITIES)
+
+
+@dataclass(frozen=True)
+class GridRefine:
+    """A map's refinement rule (``[grid.refine]``, pipeline.execute.grid_refine): the
+    resolution of every refined axis, (axis, finest gap) in the workflow's order (f in Hz,
+    another axis in its own unit), and the settings of :class:`GridRefineTable`."""
+
+    to: tuple[tuple[str, float], ...]
+    extrema: bool = True
+    jumps: bool = True
+    quantity: str = "D"
 
 
 @dataclass(frozen=True)
@@ -342,6 +371,10 @@ SECTIONS: list[tuple[str, type, str]] = [
      "(" + ", ".join(GRID_AXES) + "), distinct values of its type, not also in [params]; "
      "the points are every combination of the axes, in their order, with [frequencies] "
      "innermost"),
+    ("[grid.refine]", GridRefineTable, "refinement of a map in every direction: a "
+     "resolution per refined axis, `f = 0.5` (Hz, on the 1 mHz grid), `alpha = 0.05` (any "
+     "numeric grid axis, in its unit); gaps wider than that are split while they border a "
+     "significant extremum or jump"),
     ("[frequencies.refine]", RefineTable, "an inline table, e.g. `refine = { extrema = true, "
      "to = 0.1 }`"),
     ("[families.NAME]", Family, "NAME: a letter, then letters, digits, _ -; default: one "

@@ -121,7 +121,7 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
     if name is None:  # the file name, which must then be a valid name too
         stem = Path(source).stem if source and not source.startswith("<") else "study"
         name = r.check(stem, ("study", "name"), _key(StudyTable, "name"), {})
-    grid, invalid = read_grid(r, doc)
+    grid, invalid, grid_refine = read_grid(r, doc)
     preset, overrides = _params(r, doc, grid)
     freqs, refine = _frequencies(r, doc)
     if grid:
@@ -140,7 +140,18 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
     study = Study(name=name, source=source, seed=st["seed"], preset=preset, overrides=overrides,
                   frequencies=freqs, families=_families(r, doc), accuracy=acc,
                   observables=obs, analysis=_analysis(r, doc), refine=refine, grid=grid,
-                  invalid=invalid, text=text)
+                  invalid=invalid, grid_refine=grid_refine, text=text)
+    if grid and refine is not None:
+        r.fail(("frequencies", "refine"), "frequency refinement of a map",
+               "[grid.refine] with a resolution f = ... (it refines along f at every grid "
+               "line, and along the grid's axes)")
+    if grid_refine is not None and grid_refine.quantity == "v" and not {"tilt", "throw"} & (
+            set(overrides) | {a for a, _ in grid}):
+        r.fail(("grid", "refine", "quantity"), "v on a level floor vibrated vertically (v = 0 "
+               "by symmetry)", 'quantity = "D", or a tilt or throw in [params] or [grid]')
+    if grid_refine is not None and not obs.positions:
+        r.fail(("grid", "refine"), "refinement without positions (D and v need them)",
+               "[observables.positions] in the workflow")
     _mirror_pairs(r, study)
     return study
 

@@ -29,7 +29,7 @@ import numpy as np
 from bbb.params import Params
 
 from .identity import chunk_seed, f_key, point_key
-from .keys import Accuracy, Analysis, Family, Observables, RefineTable
+from .keys import Accuracy, Analysis, Family, GridRefine, Observables, RefineTable
 from .point import Grid, Point, fmt_value, resolve_params
 from .schema import InputError, as_dict, line_of
 
@@ -80,6 +80,8 @@ class Study:
     #: (a store grows along points: a widened grid's new points follow the old ones); () for a
     #: workflow not yet stored, whose points are then in axis order
     stored_points: tuple[tuple[float, tuple[tuple[str, Any], ...]], ...] = ()
+    #: a map's refinement rule ([grid.refine]), or None
+    grid_refine: GridRefine | None = None
     text: str = field(default="", compare=False, repr=False)
 
     # -- derived quantities -------------------------------------------------------------------
@@ -223,7 +225,8 @@ class Study:
     @property
     def adaptive(self) -> bool:
         """Whether chunks are computed in waves (target_ci) or frequencies added (refine)."""
-        return self.accuracy.adaptive or self.refine is not None
+        return (self.accuracy.adaptive or self.refine is not None
+                or self.grid_refine is not None)
 
     def with_refined(self, added: tuple[float, ...]) -> Study:
         """The study whose store also holds the refined frequencies ``added`` (Hz, in store
@@ -293,6 +296,8 @@ class Study:
         if self.grid:
             d["grid"] = _grid_list(self.grid)
             d["invalid"] = self.invalid
+            if self.grid_refine is not None:
+                d["grid_refine"] = as_dict(self.grid_refine)
             if self.stored_points:  # else the grid's own order
                 d["points"] = [[p.f, [list(av) for av in p.grid]] for p in self.points]
         return d
@@ -328,6 +333,9 @@ class Study:
             grid=tuple((a, tuple(v if isinstance(v, str) else float(v) for v in values))
                        for a, values in d.get("grid", ())),
             invalid=d.get("invalid", "refuse"),
+            grid_refine=(GridRefine(**{**d["grid_refine"], "to": tuple(
+                (a, float(v)) for a, v in d["grid_refine"]["to"])})
+                if d.get("grid_refine") else None),
             stored_points=tuple((float(f), tuple((a, v if isinstance(v, str) else float(v))
                                                  for a, v in grid))
                                 for f, grid in d.get("points", ())),

@@ -219,3 +219,42 @@ def test_a_grid_line_whose_points_are_all_skipped_is_refused():
 def test_a_grid_line_off_the_grid_is_refused():
     with pytest.raises(ValueError, match=r"^alpha = 0.6 is not on the grid; allowed: 0.5, 0.7$"):
         parse(GRID).line({"alpha": 0.6})
+
+
+# -- [grid.refine] --------------------------------------------------------------------------------
+def test_grid_refine_reads_a_resolution_per_axis_and_its_settings():
+    s = parse(GRID + "[grid.refine]\nf = 0.5\nalpha = 0.05\njumps = false\n")
+    assert s.grid_refine.to == (("f", 0.5), ("alpha", 0.05))
+    assert (s.grid_refine.extrema, s.grid_refine.jumps, s.grid_refine.quantity) == (
+        True, False, "D")
+    assert s.adaptive
+
+
+def test_grid_refine_round_trips_through_the_stored_workflow():
+    from pipeline.workflow.study import Study
+
+    s = parse(GRID + "[grid.refine]\nalpha = 0.05\n")
+    assert Study.from_dict(s.to_dict()).grid_refine == s.grid_refine
+
+
+@pytest.mark.parametrize("body, needle", [
+    ("beta = 0.1", "grid.refine.beta: unknown key (not an axis of this grid)"),
+    ("alpha = 0", "grid.refine.alpha: must be a resolution, got 0"),
+    ("f = 0.001", "grid.refine.f: must be a resolution, got 0.001"),
+    ("alpha = true", "grid.refine.alpha: must be a resolution, got True"),
+    ("extrema = true", "grid.refine: no axis to refine"),
+    ('alpha = 0.1\nquantity = "v"', "grid.refine.quantity: v on a level floor"),
+])
+def test_a_bad_grid_refine_is_refused_in_one_line(body, needle):
+    assert needle in error_of(GRID + "[grid.refine]\n" + body + "\n")
+
+
+def test_a_string_axis_is_not_refined():
+    text = with_grid('contact = ["stick", "slide"]') + "[grid.refine]\ncontact = 1\n"
+    assert "unknown key (a string axis is not refined)" in error_of(text)
+
+
+def test_frequency_refinement_of_a_map_points_to_grid_refine():
+    text = GRID.replace("values = [54.0, 60.0]",
+                        "values = [54.0, 57.0, 60.0]\nrefine = { to = 0.5 }")
+    assert "allowed: [grid.refine] with a resolution f = ..." in error_of(text)
