@@ -12,11 +12,10 @@ file, the line, the key and what is allowed (:class:`pipeline.workflow.schema.Re
 from __future__ import annotations
 
 import dataclasses
-import itertools
 import re
 
 from .keys import GRID_AXES, GridRefine, GridRefineTable, GridTable, ParamsTable
-from .point import Grid, Point, resolve_params
+from .point import Grid, Point, combinations, resolve_params
 from .schema import Key, Reader, declared, tname
 
 __all__ = ["Grid", "read_grid", "check_points"]
@@ -112,8 +111,7 @@ def check_points(r: Reader, preset: str, overrides: dict, grid: Grid, invalid: s
     """Every point's Params, before anything runs: a point bbb.Params refuses is refused here,
     in one line naming it (``invalid = "refuse"``), or left out (``"skip"``), but not all."""
     n_ok, first = 0, None
-    for combo in itertools.product(*(values for _, values in grid)):
-        pairs = tuple(zip((a for a, _ in grid), combo, strict=True))
+    for pairs in combinations(grid, overrides):
         for f in freqs:
             try:
                 resolve_params(preset, f, {**overrides, **dict(pairs)})

@@ -16,10 +16,34 @@ from bbb.params import PRESETS, Params
 
 from .identity import point_key
 
-__all__ = ["Grid", "Point", "resolve_params", "fmt_value"]
+__all__ = ["Grid", "Point", "resolve_params", "fmt_value", "combinations", "CONDITIONAL_AXES"]
 
 #: a grid: (axis, values) per [grid] axis, in the workflow's order
 Grid = tuple[tuple[str, tuple[Any, ...]], ...]
+
+#: axes that apply only where another key has a value, {axis: (key, value, the axis's value
+#: elsewhere)}: mu, the Coulomb friction, is 0 under every other contact model (bbb.Params)
+CONDITIONAL_AXES: dict[str, tuple[str, Any, Any]] = {"mu": ("contact", "coulomb", 0.0)}
+
+
+def combinations(grid: Grid, overrides: Mapping[str, Any]):
+    """Every combination of the grid's axis values as (axis, value) pairs, in axis order
+    (one empty combination without a grid), each once: a conditional axis
+    (:data:`CONDITIONAL_AXES`) takes its value only where its condition holds, elsewhere the
+    value it has there (a map of contact x mu has one stick line, not one per mu)."""
+    import itertools
+
+    names = [a for a, _ in grid]
+    seen = set()
+    for combo in itertools.product(*(values for _, values in grid)):
+        pairs = dict(zip(names, combo, strict=True))
+        for a, (other, value, elsewhere) in CONDITIONAL_AXES.items():
+            if a in pairs and pairs.get(other, overrides.get(other, "stick")) != value:
+                pairs[a] = elsewhere
+        out = tuple(pairs.items())
+        if out not in seen:
+            seen.add(out)
+            yield out
 
 
 def resolve_params(preset: str, f: float, values: Mapping[str, Any]) -> Params:

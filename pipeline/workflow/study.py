@@ -17,7 +17,6 @@ times in s, lengths in mm.
 from __future__ import annotations
 
 import hashlib
-import itertools
 import json
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
@@ -30,7 +29,7 @@ from bbb.params import Params
 
 from .identity import chunk_seed, f_key, point_key
 from .keys import Accuracy, Analysis, Family, GridRefine, Observables, RefineTable
-from .point import Grid, Point, fmt_value, resolve_params
+from .point import Grid, Point, combinations, fmt_value, resolve_params
 from .schema import InputError, as_dict, line_of
 
 __all__ = ["Study", "Point", "resolve_params", "WorkflowError", "GridNotRunnable"]
@@ -163,7 +162,7 @@ class Study:
         overrides = dict(self.overrides)
         for a, axis in self.grid:
             v = values[a]
-            if v not in axis:
+            if v not in axis and not _elsewhere(a, v, {**self.overrides, **values}):
                 raise ValueError(f"{a} = {fmt_value(v)} is not on the grid; allowed: "
                                  + ", ".join(fmt_value(x) for x in axis))
             if a == "contact" and v == "stick":
@@ -190,10 +189,8 @@ class Study:
 
     def _grid_values(self):
         """Every combination of the grid axes' values as (axis, value) pairs, in axis order
-        (one empty combination without a grid)."""
-        names = [a for a, _ in self.grid]
-        for combo in itertools.product(*(values for _, values in self.grid)):
-            yield tuple(zip(names, combo, strict=True))
+        (:func:`pipeline.workflow.point.combinations`)."""
+        return combinations(self.grid, self.overrides)
 
     @property
     def base_params(self) -> dict[str, float]:
@@ -384,6 +381,16 @@ class Study:
     def fingerprint(self) -> str:
         blob = json.dumps(self.data_identity(), sort_keys=True, default=_json_default)
         return hashlib.sha256(blob.encode()).hexdigest()
+
+
+def _elsewhere(axis: str, value: Any, values: Mapping[str, Any]) -> bool:
+    """Whether ``value`` is the value a conditional axis takes where its condition fails."""
+    from .point import CONDITIONAL_AXES
+
+    if axis not in CONDITIONAL_AXES:
+        return False
+    other, when, elsewhere = CONDITIONAL_AXES[axis]
+    return value == elsewhere and values.get(other, "stick") != when
 
 
 def _grid_list(grid: Grid) -> list:

@@ -258,3 +258,19 @@ def test_frequency_refinement_of_a_map_points_to_grid_refine():
     text = GRID.replace("values = [54.0, 60.0]",
                         "values = [54.0, 57.0, 60.0]\nrefine = { to = 0.5 }")
     assert "allowed: [grid.refine] with a resolution f = ..." in error_of(text)
+
+
+def test_mu_is_an_axis_of_the_coulomb_points_only():
+    """contact x mu: one line per model without friction, one per mu under Coulomb."""
+    s = parse(with_grid('contact = ["stick", "slide", "coulomb"]\nmu = [0.05, 0.3]'))
+    lines = list(dict.fromkeys(p.grid for p in s.points))
+    assert lines == [(("contact", "stick"), ("mu", 0.0)), (("contact", "slide"), ("mu", 0.0)),
+                     (("contact", "coulomb"), ("mu", 0.05)), (("contact", "coulomb"), ("mu", 0.3))]
+    assert [p.params.mu for p in s.points if p.grid == lines[3]] == [0.3, 0.3]
+
+
+def test_the_frictionless_line_of_a_contact_mu_map_is_its_scene():
+    s = parse(with_grid('contact = ["stick", "coulomb"]\nmu = [0.3]'))
+    line = s.line({"contact": "stick", "mu": 0.0})
+    assert [p.params for p in line.points] == [p.params for p in s.points
+                                               if dict(p.grid)["contact"] == "stick"]
