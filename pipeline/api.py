@@ -18,7 +18,9 @@ line, so a store made here is the one ``bbb run`` makes, bit for bit, and resume
 from __future__ import annotations
 
 import json
+import math
 import os
+import warnings
 from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -132,12 +134,21 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
 
     st = StudyStore.open(path)  # checks that it is a complete bbb store
     study = st.study
-    ds = xr.open_zarr(normalize_path(path), consolidated=None)
+    # a grid's points are one Zarr chunk each: in dask, whole grid lines of them at once
+    # (tens of points), or a map of 10^4 points makes graphs of 10^4 tasks a variable
+    chunks = {"point": _line_chunk(study)} if study.grid else None
+    with warnings.catch_warnings():  # the 1-D coordinates of points: read whole anyway
+        warnings.filterwarnings("ignore", "The specified chunks separate", UserWarning)
+        ds = xr.open_zarr(normalize_path(path), consolidated=None,
+                          **({"chunks": chunks} if chunks else {}))
     ds.attrs = {k: json.dumps(v) if isinstance(v, dict | list) else v for k, v in ds.attrs.items()}
-    # the per-particle mask in memory (F x M x N booleans): as a dask array indexed from
-    # `done`'s one-element chunks it would split every variable into one chunk per particle
+    # the per-particle mask
     chunk_of = np.arange(ds.sizes["particle"]) // study.accuracy.chunk_size
-    done_p = np.asarray(ds["done"].values, dtype=bool)[:, :, chunk_of]
+    if study.grid:  # lazily, in the dask chunks of the data (a map's done flags are many)
+        done_p = ds["done"].data.astype(bool)[:, :, chunk_of]
+    else:  # in memory (F x M x N booleans): as a dask array indexed from `done`'s
+        # one-element chunks it would split every variable into one chunk per particle
+        done_p = st.done()[:, :, chunk_of]
     ds = ds.assign_coords(particle_done=((study.point_dim, "family", "particle"), done_p, {
         "long_name": "the particle's chunk is marked done", "units": ""}))
     if mask:
@@ -145,7 +156,7 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
             if "particle" in var.dims:
                 ds[name] = var.where(ds["particle_done"]).assign_attrs(var.attrs)
     if study.grid and unstack:
-        ds = _unstack(ds, dict(study.grid))
+        ds = _unstack(ds, study)
     if reduced:
         from .tables.catalog import tables
 
@@ -153,9 +164,23 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     return ds
 
 
-def _unstack(ds: xr.Dataset, axes: dict) -> xr.Dataset:
+def _line_chunk(study: Study, points: int = 64) -> int:
+    """Points per dask chunk of a grid store: whole grid lines (len(frequencies) points
+    each), about ``points`` of them."""
+    F = max(1, len(study.frequencies))
+    return F * max(1, round(points / F))
+
+
+def _unstack(ds: xr.Dataset, study: Study) -> xr.Dataset:
     """A grid store's ``point`` dimension as one dimension per axis and ``frequency``, each
-    axis with all its values ({axis: values}: NaN where no point has one)."""
+    axis with all its values (NaN where no point has one).  A store whose points are the
+    whole product in the workflow's order (no point skipped, none added) is reshaped, lazily
+    and at once (its coordinates in the workflow's order); any other is unstacked by value
+    (coordinates sorted)."""
+    axes = dict(study.grid)
+    if not study.stored_points and len(study.points) == math.prod(
+            len(v) for v in (*axes.values(), study.frequencies)):
+        return _reshape(ds, study)
     attrs = {c: dict(ds[c].attrs) for c in ("frequency", *axes)}
     out = ds.drop_vars("point").set_index(point=["frequency", *axes]).unstack("point")
     out = out.reindex({a: sorted(set(out[a].values.tolist()) | set(v)) for a, v in axes.items()})
@@ -176,6 +201,30 @@ def reduced(path: str | os.PathLike, names: list[str] | None = None
     from .tables.catalog import tables
 
     return tables(StudyStore.open(path), names)
+
+
+def _reshape(ds: xr.Dataset, study: Study) -> xr.Dataset:
+    """:func:`_unstack` of a store holding the grid's whole product in axis order: every
+    variable along ``point`` reshaped to (axes..., frequency), then frequency first."""
+    import xarray as xr
+
+    axes = [a for a, _ in study.grid]
+    shape = [len(v) for _, v in study.grid] + [len(study.frequencies)]
+    dims = [*axes, "frequency"]
+    coords = {a: (a, list(v), dict(ds[a].attrs)) for a, v in study.grid}
+    coords["frequency"] = ("frequency", list(study.frequencies), dict(ds["frequency"].attrs))
+    out = ds.drop_vars(["point", "frequency", *axes])
+    for name in list(out.variables):
+        var = out.variables[name]
+        if var.dims[:1] == ("point",):
+            new = xr.Variable(dims + list(var.dims[1:]), var.data.reshape(*shape, *var.shape[1:]),
+                              var.attrs)
+            if name in out.coords:
+                out = out.assign_coords({name: new})
+            else:
+                out[name] = new
+    out = out.assign_coords(coords)
+    return out.transpose("frequency", *axes, ...)
 
 
 def reduced_dataset(path: str | os.PathLike, names: list[str] | None = None) -> xr.Dataset:

@@ -99,3 +99,16 @@ def test_a_widened_grid_grows_the_store_without_rewriting_a_done_chunk(map_refer
     for name, arr in before.items():
         if name not in NON_REPRODUCIBLE and g[name].metadata.dimension_names[0] == "point":
             assert np.array_equal(after[name][:n_old], arr, equal_nan=arr.dtype.kind == "f"), name
+
+
+def test_open_study_gives_each_point_of_a_whole_map_at_its_axis_values(map_reference):
+    from pipeline.api import open_study
+
+    ds = open_study(map_reference)
+    assert ds["positions"].dims[:4] == ("frequency", "alpha", "contact", "family")
+    g = zarr.open_group(str(map_reference), mode="r")
+    for pi in range(g["point"].shape[0]):
+        at = dict(frequency=float(g["frequency"][pi]), alpha=float(g["alpha"][pi]),
+                  contact=str(g["contact"][pi]))
+        assert np.array_equal(ds["positions"].sel(**at).values, g["positions"][pi],
+                              equal_nan=True), at

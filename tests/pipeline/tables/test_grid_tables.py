@@ -112,3 +112,22 @@ def test_open_study_unstacks_the_store_with_every_grid_value(grid_store):
     assert list(ds["R"].values) == [1.0, 15.0] and ds["R"].attrs["units"] == "mm"
     assert np.isnan(ds["positions"].sel(R=1.0).values).all()
     assert np.isfinite(ds["positions"].sel(R=15.0, alpha=0.7, frequency=60.0).values).all()
+
+
+def test_open_study_masks_the_particles_of_a_chunk_not_done_at_its_point(grid_store, tmp_path):
+    import shutil
+
+    import zarr
+
+    from pipeline.api import open_study
+
+    path = tmp_path / "partial.zarr"
+    shutil.copytree(grid_store.path, path)
+    study = grid_store.study
+    pi = next(i for i, p in enumerate(study.points) if p.f == 60.0 and dict(p.grid)["alpha"] == 0.7)
+    zarr.open_group(str(path), mode="r+")["done"][pi, 1, 0] = False  # launched, chunk 0
+    x = open_study(path)["positions"].sel(frequency=60.0, alpha=0.7, R=15.0)
+    cs = study.accuracy.chunk_size
+    assert np.isnan(x.sel(family="launched").values[:cs]).all()
+    assert np.isfinite(x.sel(family="launched").values[cs:]).all()
+    assert np.isfinite(x.sel(family="rest").values).all()
