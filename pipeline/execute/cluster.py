@@ -32,14 +32,15 @@ import subprocess
 import sys
 import tempfile
 import threading
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
 from typing import Any
 
 from distributed.diagnostics.plugin import SchedulerPlugin, WorkerPlugin
 
 __all__ = ["CLUSTERS", "ClusterConfigError", "slurm_settings", "check_slurm", "job_script",
-           "make_slurm_cluster", "work_left", "slurm_cluster", "JobKeeper", "WarmNumba"]
+           "make_slurm_cluster", "work_left", "slurm_cluster", "replace_ended_job", "JobKeeper",
+           "WarmNumba"]
 
 CLUSTERS = ("slurm",)
 SECTION = "jobqueue.slurm"
@@ -211,15 +212,16 @@ def slurm_cluster(jobs: int, study=None, echo: Callable[[str], None] = print) ->
     import dask.config
     from distributed import Client
 
+    processes = slurm_settings()["processes"]  # what make_slurm_cluster passes to SLURMCluster
     cluster = make_slurm_cluster()
     try:
-        cluster.scheduler.add_plugin(JobKeeper(cluster, echo))
+        cluster.scheduler.add_plugin(JobKeeper(cluster, jobs, echo))
         with Client(cluster) as client:
             if study is not None:
                 client.register_plugin(WarmNumba(study), name=WarmNumba.name)
             cluster.scale(jobs=jobs)
             echo(f"SLURM: {jobs} jobs of {dask.config.get(f'{SECTION}.cores')} cores "
-                 f"({cluster._job_kwargs['processes']} workers each) submitted; scheduler "
+                 f"({processes} workers each) submitted; scheduler "
                  f"{cluster.scheduler_address}, dashboard {_dashboard(cluster)}; waiting for the "
                  "first to start (squeue --me)")
             client.wait_for_workers(1)
@@ -228,48 +230,73 @@ def slurm_cluster(jobs: int, study=None, echo: Callable[[str], None] = print) ->
         cluster.close()  # cancels every job still queued or running (scancel)
 
 
+def replace_ended_job(cluster, left: str, present: Iterable[str], jobs: int) -> str | None:
+    """The worker named ``left`` has left the cluster: if it was the last of its job's workers
+    (none of them is among the worker names ``present``), forget that job and submit a new one
+    in its place.  Returns the ended job's name, or None if nothing was done.
+
+    The one function of bbb that touches a cluster's internal state.  dask-jobqueue has no API
+    to replace a job whose workers all left (its issues #122 and #611; the documented answer,
+    worker ``--lifetime`` with ``adapt()``, covers walltimes only, and adapt() too keeps an ended
+    job in its plan, its issue #691): the job stays in ``worker_spec``, so neither ``scale()``
+    nor ``adapt()`` submits another.  Internals used, all of ``distributed.deploy.SpecCluster``
+    (described in its docstring, not in the API documentation):
+
+    - ``worker_spec``: dict job name -> spec, the jobs the cluster keeps submitted; a spec's
+      ``"group"`` lists the suffixes of its workers' names (``-0``, ``-1``, ... when a job runs
+      several worker processes; none when it runs one, whose worker is named as the job);
+    - ``new_worker_spec()``: ``{name: spec}`` of one more job, under a name not in ``worker_spec``
+      (taken before the ended job leaves it, so the new job never reuses that name: SpecCluster
+      cancels a single-process job whose name no worker holds ``lost-worker-timeout`` after
+      such a worker left -- the new job, while still queued, if it had the same name).
+
+    Then the public ``scale(jobs=N)`` brings the running jobs in line with ``worker_spec``: it
+    closes the ended job (``scancel``, harmless for an ended job) and submits the new one.
+    Checked with distributed 2024.8.0 and 2026.8.0, dask-jobqueue 0.9.0 (pyproject.toml bounds
+    distributed to these): tests/pipeline/execute/test_cluster.py checks these attributes,
+    tests/cluster/test_job_keeper.py the replacement on a real SLURM cluster.
+    """
+    spec = cluster.worker_spec
+
+    def workers_of(job) -> set[str]:
+        return {f"{job}{suffix}" for suffix in spec[job].get("group", [""])}
+
+    job = next((j for j in spec if left in workers_of(j)), None)
+    if job is None or workers_of(job) & set(present):
+        return None  # not a job of this cluster (any more), or some of its workers remain
+    replacement = cluster.new_worker_spec()
+    del spec[job]
+    spec.update(replacement)
+    cluster.scale(jobs=jobs)
+    return job
+
+
 class JobKeeper(SchedulerPlugin):
     """Scheduler plugin: when every worker of a job has left (walltime, node failure, scancel
-    by hand), submit the job anew.
+    by hand), submit a job anew, so that ``jobs`` jobs stay requested (replace_ended_job).
 
-    dask-jobqueue does not do it by itself (dask-jobqueue issues #122, #611): a job whose
-    workers left stays in the cluster's plan, so neither scale() nor adapt() submits another,
-    and a run whose every job ended would wait forever.  Runs in the scheduler, which
-    dask-jobqueue starts in this process, on the cluster's event loop.  (Uses SpecCluster
-    internals: ``worker_spec``, ``workers``, ``_correct_state``, as of distributed 2026.8 and
-    dask-jobqueue 0.9.)
+    Runs in the scheduler, which dask-jobqueue starts in this process, on the cluster's event
+    loop; it only tracks worker names (the scheduler's public ``workers``).
     """
 
     name = "bbb-job-keeper"
 
-    def __init__(self, cluster, echo: Callable[[str], None] = print):
-        self.cluster, self.echo = cluster, echo
+    def __init__(self, cluster, jobs: int, echo: Callable[[str], None] = print):
+        self.cluster, self.jobs, self.echo = cluster, jobs, echo
         self.names: dict[str, str] = {}  # worker address -> worker name
-
-    def _job_of(self, worker_name: str) -> str | None:
-        # a job's workers are named JOB (1 process) or JOB-0, JOB-1, ... (several)
-        return next((job for job in self.cluster.worker_spec
-                     if worker_name == job or worker_name.startswith(f"{job}-")), None)
 
     def add_worker(self, scheduler=None, worker=None, **kwargs) -> None:
         self.names[worker] = str(scheduler.workers[worker].name)
 
     def remove_worker(self, scheduler=None, worker=None, **kwargs) -> None:
-        import asyncio
-
         from distributed.core import Status
 
         name = self.names.pop(worker, None)
-        job = self._job_of(name) if name is not None else None
-        if job is None or any(self._job_of(n) == job for n in self.names.values()):
-            return  # not a job of ours, or some of its workers are still there
-        if self.cluster.status in (Status.closing, Status.closed) or job not in self.cluster.workers:
+        if name is None or self.cluster.status in (Status.closing, Status.closed):
             return
-        self.echo(f"SLURM: job {job} ended (all its workers left); submitting it anew")
-        # forget its Job (closing it runs scancel, harmless for an ended job): the cluster
-        # then starts the job of that spec anew, a new submission under the same name
-        asyncio.ensure_future(self.cluster.workers.pop(job).close())
-        self.cluster._correct_state()
+        job = replace_ended_job(self.cluster, name, self.names.values(), self.jobs)
+        if job is not None:
+            self.echo(f"SLURM: job {job} ended (all its workers left); submitting it anew")
 
 
 def _dashboard(cluster) -> str:

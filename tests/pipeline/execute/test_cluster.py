@@ -4,6 +4,7 @@ and a whole run through dask-jobqueue with stand-ins for `sbatch` and `scancel`.
 from __future__ import annotations
 
 import importlib.util
+import inspect
 import json
 import os
 import shutil
@@ -18,7 +19,14 @@ import dask
 import pytest
 import zarr
 
-from pipeline.execute.cluster import ClusterConfigError, check_slurm, job_script, slurm_settings
+from pipeline.execute.cluster import (
+    ClusterConfigError,
+    check_slurm,
+    job_script,
+    make_slurm_cluster,
+    replace_ended_job,
+    slurm_settings,
+)
 
 from ..helpers import TINY, assert_same_store
 
@@ -145,6 +153,63 @@ def test_a_job_slurm_rejects_is_refused_before_anything_runs(fake_slurm, monkeyp
         check_slurm()
     assert "SLURM rejects the job (sbatch: error: invalid partition specified: nope)" in str(e.value)
     assert not (fake_slurm / "jobs").exists()  # nothing submitted
+
+
+@pytest.fixture
+def unsubmitted_cluster():
+    """A SLURMCluster of two worker processes per job (cores 2) with no job submitted: its
+    scheduler runs, its ``scale`` only records the calls (nothing reaches sbatch)."""
+    with dask.config.set(SLURM):
+        cluster = make_slurm_cluster()
+        calls = []
+        cluster.scale = lambda **kw: calls.append(kw)
+        cluster.scale_calls = calls
+        try:
+            yield cluster
+        finally:
+            cluster.worker_spec.clear()
+            del cluster.scale
+            cluster.close()
+
+
+@jobqueue
+def test_the_spec_cluster_internals_replace_ended_job_uses_are_there(unsubmitted_cluster):
+    """replace_ended_job relies on SpecCluster's worker_spec (job name -> spec whose "group"
+    holds its workers' name suffixes) and new_worker_spec() (one more job under a name not in
+    worker_spec), and on scale(jobs=...): a new distributed or dask-jobqueue that changes
+    them fails here first (the behaviour: tests/cluster/test_job_keeper.py)."""
+    from dask_jobqueue import SLURMCluster
+
+    spec = unsubmitted_cluster.worker_spec
+    assert isinstance(spec, dict) and spec == {}
+    new = unsubmitted_cluster.new_worker_spec()
+    assert isinstance(new, dict) and len(new) == 1
+    ((name, job),) = new.items()
+    assert isinstance(name, str) and job["group"] == ["-0", "-1"]
+    spec.update(new)
+    assert set(unsubmitted_cluster.new_worker_spec()) != {name}  # a name not yet in worker_spec
+    assert "jobs" in inspect.signature(SLURMCluster.scale).parameters
+
+
+@jobqueue
+def test_a_job_with_a_worker_left_is_not_replaced(unsubmitted_cluster):
+    spec = unsubmitted_cluster.worker_spec
+    spec.update(unsubmitted_cluster.new_worker_spec())
+    (job,) = spec
+    assert replace_ended_job(unsubmitted_cluster, f"{job}-0", [f"{job}-1"], jobs=1) is None
+    assert list(spec) == [job] and unsubmitted_cluster.scale_calls == []
+
+
+@jobqueue
+def test_a_job_whose_last_worker_left_is_replaced_under_a_new_name(unsubmitted_cluster):
+    spec = unsubmitted_cluster.worker_spec
+    spec.update(unsubmitted_cluster.new_worker_spec())
+    (job,) = spec
+    assert replace_ended_job(unsubmitted_cluster, f"{job}-1", ["other-0"], jobs=1) == job
+    (new,) = spec
+    assert new != job and spec[new]["group"] == ["-0", "-1"]
+    assert unsubmitted_cluster.scale_calls == [{"jobs": 1}]
+    assert replace_ended_job(unsubmitted_cluster, f"{job}-0", [], jobs=1) is None  # once only
 
 
 @jobqueue
