@@ -1,6 +1,9 @@
 """The keys of a workflow TOML, each declared once: type, units, range or choices, default and
 a one-line doc, as fields of one frozen dataclass per TOML table (:func:`pipeline.workflow.schema.key`).
 
+Size: the whole schema as data, one small dataclass per TOML table and the maps read off
+them (parameter units, grid axes); split, the declarations of one file would be in two.
+
 :mod:`pipeline.workflow.load` reads a file against these declarations (plus the rules that involve
 several keys) into a Study; :func:`reference_markdown` writes them as the reference table in
 pipeline/README.md, so the docs say exactly what is checked.

@@ -31,6 +31,7 @@ from .identity import chunk_seed, f_key, point_key
 from .keys import Accuracy, Analysis, Family, GridRefine, Observables, RefineTable
 from .point import Grid, Point, combinations, fmt_value, resolve_params
 from .schema import InputError, as_dict, line_of
+from .serial import drop_none
 
 __all__ = ["Study", "Point", "resolve_params", "WorkflowError", "GridNotRunnable"]
 
@@ -145,10 +146,6 @@ class Study:
         if [point_key(f, g) for f, g in stored] == [p.key for p in natural.points][:len(stored)]:
             return natural
         return replace(self, stored_points=stored)
-
-    def point_at(self, pi: int) -> Point:
-        """The point of store index ``pi``."""
-        return self.points[pi]
 
     def line(self, values: Mapping[str, Any]) -> Study:
         """The scene without a grid at one value of every grid axis (``values``: axis ->
@@ -270,74 +267,19 @@ class Study:
         return replace(self, frequencies=tuple(f for f in self.base_frequencies
                                                if f_key(f) in mhz), refined=())
 
-    # -- serialisation ------------------------------------------------------------------------
+    # -- serialisation (pipeline.workflow.serial) ------------------------------------------
     def to_dict(self) -> dict[str, Any]:
         """Everything resolved (preset numbers written out), JSON-able."""
-        d = {
-            "name": self.name,
-            "source": self.source,
-            "seed": self.seed,
-            "params": {"preset": self.preset, **self.overrides},
-            "resolved_params": self.base_params,
-            "frequencies": list(self.frequencies),
-            "families": [_drop_none(as_dict(fam)) for fam in self.families],
-            "accuracy": as_dict(self.accuracy),
-            "observables": as_dict(self.observables),
-            "analysis": as_dict(self.analysis),
-        }
-        # only when used, so that the stored workflow of every older scene stays as it was
-        if self.refine is not None:
-            d["refine"] = as_dict(self.refine)
-        if self.refined:
-            d["refined"] = list(self.refined)
-        if self.grid:
-            d["grid"] = _grid_list(self.grid)
-            d["invalid"] = self.invalid
-            if self.grid_refine is not None:
-                d["grid_refine"] = as_dict(self.grid_refine)
-            if self.stored_points:  # else the grid's own order
-                d["points"] = [[p.f, [list(av) for av in p.grid]] for p in self.points]
-        return d
+        from .serial import study_to_dict
+
+        return study_to_dict(self)
 
     @classmethod
     def from_dict(cls, d: dict[str, Any], text: str = "") -> Study:
-        params = dict(d["params"])
-        preset = params.pop("preset")
-        fams = tuple(
-            Family(
-                name=fd["name"],
-                initial=fd["initial"],
-                drop_height=_tuple_or_none(fd.get("drop_height")),
-                launch_speed=_tuple_or_none(fd.get("launch_speed")),
-                mirror=fd.get("mirror"),
-                description=fd.get("description", ""),
-            )
-            for fd in d["families"]
-        )
-        return cls(
-            name=d["name"],
-            source=d["source"],
-            seed=int(d["seed"]),
-            preset=preset,
-            overrides={k: v if k == "contact" else float(v) for k, v in params.items()},
-            frequencies=tuple(float(f) for f in d["frequencies"]),
-            families=fams,
-            accuracy=Accuracy(**d["accuracy"]),
-            observables=Observables(**d["observables"]),
-            analysis=Analysis(**d["analysis"]),
-            refine=RefineTable(**d["refine"]) if d.get("refine") is not None else None,
-            refined=tuple(float(f) for f in d.get("refined", ())),
-            grid=tuple((a, tuple(v if isinstance(v, str) else float(v) for v in values))
-                       for a, values in d.get("grid", ())),
-            invalid=d.get("invalid", "refuse"),
-            grid_refine=(GridRefine(**{**d["grid_refine"], "to": tuple(
-                (a, float(v)) for a, v in d["grid_refine"]["to"])})
-                if d.get("grid_refine") else None),
-            stored_points=tuple((float(f), tuple((a, v if isinstance(v, str) else float(v))
-                                                 for a, v in grid))
-                                for f, grid in d.get("points", ())),
-            text=text,
-        )
+        """The Study of a stored :meth:`to_dict`, its TOML source ``text``."""
+        from .serial import study_from_dict
+
+        return study_from_dict(cls, d, text)
 
     def data_identity(self) -> dict[str, Any]:
         """The parts that determine the stored numbers (not the name, not reduce settings)."""
@@ -369,7 +311,7 @@ class Study:
     def _family_identity(self, fam: Family) -> dict[str, Any]:
         # mirror changes the stored numbers only where the partners are simulated ("pairs");
         # images counted by symmetry, or none, leave the store (and its fingerprint) as before
-        d = _drop_none(as_dict(fam, identity=True))
+        d = drop_none(as_dict(fam, identity=True))
         d.pop("mirror", None)
         if self.grid:  # the points (so where partners are simulated) are not the identity
             if fam.mirror is not None:
@@ -391,18 +333,6 @@ def _elsewhere(axis: str, value: Any, values: Mapping[str, Any]) -> bool:
         return False
     other, when, elsewhere = CONDITIONAL_AXES[axis]
     return value == elsewhere and values.get(other, "stick") != when
-
-
-def _grid_list(grid: Grid) -> list:
-    return [[a, list(values)] for a, values in grid]
-
-
-def _drop_none(d: dict) -> dict:
-    return {k: (list(v) if isinstance(v, tuple) else v) for k, v in d.items() if v is not None}
-
-
-def _tuple_or_none(v):
-    return None if v is None else tuple(float(x) for x in v)
 
 
 def _json_default(o):
