@@ -13,8 +13,7 @@ __all__ = ["study_to_dict", "study_from_dict", "grid_list", "drop_none"]
 
 
 def study_to_dict(self) -> dict[str, Any]:
-    """:meth:`pipeline.workflow.study.Study.to_dict` of the Study ``self``."""
-    """Everything resolved (preset numbers written out), JSON-able."""
+    """The Study ``self`` with everything resolved (preset numbers written out), JSON-able."""
     d = {
         "name": self.name,
         "source": self.source,
