@@ -65,7 +65,9 @@ class RunReport:
 
     wall: the whole run, s; compute_wall: from the first task submitted to the last result, s
     (wall minus cluster start-up and numba warm-up); task_seconds: summed simulation times of
-    the tasks, s; write_seconds: summed time the tasks spent writing to the store, s.
+    the tasks, s; write_seconds: summed time the tasks spent writing to the store, s;
+    submit_seconds: from the start of computing until the first wave's tasks were all
+    submitted (the task graph built: every chunk of a fixed-N scene), s.
     """
 
     name: str
@@ -81,6 +83,7 @@ class RunReport:
     workers: int = 0
     dashboard: str | None = None
     adaptive: bool = False  # n_chunks is then the store's capacity, not a plan
+    submit_seconds: float = 0.0
 
     @property
     def collisions_per_s(self) -> float:
@@ -295,11 +298,13 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
     study = store.study
     token = uuid.uuid4().hex[:8]
     futures = {}
+    t0 = time.perf_counter()
     for i, (fi, mi, ci) in enumerate(todo):
         fut = client.submit(compute_chunk, store, fi, mi, ci, is_failing(study, fi, mi, ci, fails),
                             key=task_key(study, fi, mi, ci, token),
                             priority=len(todo) - i, retries=0, pure=False)
         futures[fut] = (fi, mi, ci)
+    report.submit_seconds = time.perf_counter() - t0
     bar = tqdm(total=len(todo), unit="chunk", disable=not progress, file=sys.stderr,
                desc=study.name, smoothing=0.1)
     try:

@@ -18,6 +18,7 @@ table the very half-width that met the target.
 from __future__ import annotations
 
 import sys
+import time
 import uuid
 from collections.abc import Callable
 
@@ -345,8 +346,10 @@ class Waves:
             bar.refresh()
 
         try:
+            t0 = time.perf_counter()
             count_done()
             submit(self.missing())
+            report.submit_seconds = time.perf_counter() - t0
             while True:
                 for fut in ac:
                     fi, mi, ci = pending.pop(fut)
