@@ -1,5 +1,5 @@
 """The ``bbb`` command line: ``bbb run``, ``bbb reduce``, ``bbb status``, ``bbb verify``,
-``bbb accuracy``, ``bbb plan``, ``bbb --version``.
+``bbb plot``, ``bbb accuracy``, ``bbb plan``, ``bbb --version``.
 
 ``bbb run WORKFLOW --frequencies 60,72`` runs only those frequencies of the workflow, into a
 store of their own (default ``runs/<name>-60Hz-72Hz.zarr``); chunk seeds are keyed by the
@@ -104,6 +104,14 @@ def _build_parser() -> argparse.ArgumentParser:
     v = sub.add_parser("verify", help="re-check every done chunk and the attributes of a store; "
                                       "exit 1 listing each inconsistency")
     v.add_argument("store", metavar="STORE")
+
+    g = sub.add_parser("plot", help="figures of a store: D(f) (v, D_drift) with CIs and flags "
+                                    "per family, heat maps over frequency x each grid axis")
+    g.add_argument("store", metavar="STORE")
+    g.add_argument("--out", metavar="DIR", help="where the figures go (default: STORE's name "
+                                                "without .zarr, beside it, as bbb reduce)")
+    g.add_argument("--format", dest="formats", action="append", choices=("png", "pdf", "svg"),
+                   help="file format, repeatable (default: png and pdf)")
     return p
 
 
@@ -173,6 +181,8 @@ def _main(argv: list[str] | None) -> int:
             return _cmd_verify(args)
         if args.command == "plan":
             return _cmd_plan(args)
+        if args.command == "plot":
+            return _cmd_plot(args)
         return _cmd_status(args)
     except (WorkflowError, StoreError) as e:
         raise UsageError(str(e)) from None
@@ -319,11 +329,28 @@ def _cmd_plan(args) -> int:
     return 0
 
 
+def _cmd_plot(args) -> int:
+    from .api import plot_store
+    from .store.study_store import StudyStore
+
+    store = StudyStore.open(args.store)  # a clear error for a path that is not a store
+    out = args.out or str(Path(store.path).with_suffix(""))
+    files = plot_store(store.path, out, formats=tuple(args.formats or ("png", "pdf")))
+    if not files:
+        print(f"{store.study.name}: nothing to plot (no diffusion table: the store records no "
+              "positions)")
+        return 0
+    print(f"{store.study.name}: wrote {len(files)} figures to {out}: "
+          + ", ".join(p.name for p in files[:6]) + (" ..." if len(files) > 6 else ""))
+    return 0
+
+
 def _cmd_status(args) -> int:
+    from .store.status import status_text
     from .store.study_store import StudyStore
 
     store = StudyStore.open(args.store)
-    print(_status_text(store))
+    print(status_text(store))
     return 0
 
 
@@ -338,45 +365,6 @@ def _cmd_verify(args) -> int:
         _error(f"{report.path}: {len(report.problems)} inconsistencies (listed above)")
         return EXIT_FAILED
     return 0
-
-
-def _status_text(store) -> str:
-    study = store.study
-    done = store.done()
-    where = (f"{len(study.points)} points ({' x '.join(a for a, _ in study.axes)})"
-             if study.grid else f"{len(study.frequencies)} frequencies")
-    lines = [f"{study.name}: {int(done.sum())}/{done.size} chunks done in {store.path} "
-             f"({where} x {len(study.families)} families x "
-             f"{study.accuracy.n_chunks} chunks of {study.accuracy.chunk_size} particles)"]
-    names = [fam.name for fam in study.families]
-    width = max(len(n) for n in names)
-    stops = store.stops()  # target_ci: chunks used and why each (f, family) stopped
-    if stops is not None:
-        from .store.layout import STOP_LEGEND
-
-        width = max(width, 22)
-        lines[0] += f"; target CI half-width {study.accuracy.target_ci:g} of D"
-    refined = {f_key(f) for f in study.refined}
-    axes = [a for a, _ in study.grid]
-    aw = {a: max(len(a), *(len(_cell(dict(p.grid)[a])) for p in study.points)) for a in axes}
-    lines.append("f (Hz)    " + "".join(f"{a:<{aw[a]}}  " for a in axes)
-                 + "  ".join(n.rjust(max(width, 5)) for n in names))
-    for fi, point in enumerate(study.points):
-        f = point.f
-        cells = [f"{int(done[fi, mi].sum())}/{done.shape[2]}" for mi in range(len(names))]
-        if stops is not None:
-            cells = [c + f" {STOP_LEGEND[int(stops[1][fi, mi])]}" for mi, c in enumerate(cells)]
-        mark = "*" if f_key(f) in refined else " "
-        values = "".join(f"{_cell(v):<{aw[a]}}  " for a, v in point.grid)
-        lines.append(f"{f:<8g}{mark} " + values + "  ".join(c.rjust(max(width, 5)) for c in cells))
-    if refined:
-        lines.append(f"* added by refinement ({len(refined)} frequencies, to "
-                     f"{study.refine.to:g} Hz)")
-    return "\n".join(lines)
-
-
-def _cell(v) -> str:
-    return v if isinstance(v, str) else f"{v:g}"
 
 
 def _error(message: str) -> None:

@@ -224,3 +224,18 @@ def test_reduce_refuses_a_workflow_of_other_simulation_settings(edit, needle, re
 def test_reduce_with_a_missing_workflow_exits_2(reference, tmp_path, capsys):
     assert main(["reduce", str(reference[0]), "--workflow", str(tmp_path / "no.toml")]) == 2
     assert "no such workflow file" in capsys.readouterr().err
+
+
+def test_bbb_plot_writes_the_d_of_f_figures_of_a_store_beside_it(reference, tmp_path):
+    import shutil
+
+    store = Path(shutil.copytree(reference[0], tmp_path / "tiny.zarr"))
+    assert main(["plot", str(store), "--format", "png"]) == 0
+    files = sorted(p.name for p in (tmp_path / "tiny").glob("*"))
+    assert files == ["curve_D_family_vs_frequency.png", "curve_D_vs_frequency.png"]
+
+
+def test_bbb_plot_of_a_path_that_is_no_store_is_one_usage_line(tmp_path, capsys):
+    assert main(["plot", str(tmp_path / "nothing.zarr")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "no such store" in err
