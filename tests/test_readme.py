@@ -32,11 +32,13 @@ def test_the_readme_own_study_example_runs_as_written(tmp_path):
     bbb = str(Path(sys.executable).with_name("bbb"))
     commands = [c.split("#")[0].split() for c in sh.strip().splitlines()]
     assert [c[:2] for c in commands] == [[".venv/bin/bbb", "plan"], [".venv/bin/bbb", "run"],
-                                         [".venv/bin/bbb", "reduce"]]
+                                         [".venv/bin/bbb", "reduce"], [".venv/bin/bbb", "plot"]]
     for cmd in commands:
         subprocess.run([bbb, *cmd[1:]], cwd=tmp_path, check=True, capture_output=True, timeout=300)
     table = pd.read_csv(tmp_path / "runs" / "my" / "diffusion.csv")
-    assert list(table["f"]) == [60.0, 72.0] and (table["D"] > 0).all()
+    assert list(table["f"]) == [60.0, 72.0] * 2 and list(table["alpha"]) == [0.5] * 2 + [0.7] * 2
+    assert (table["D"] > 0).all()
+    assert (tmp_path / "runs" / "my" / "map_D_frequency-alpha.png").stat().st_size > 1000
     out = subprocess.run([sys.executable, "-c", py], cwd=tmp_path, check=True,
                          capture_output=True, text=True, timeout=300).stdout
-    assert "D_lo" in out and "60.0" in out and "72.0" in out
+    assert "D_lo" in out and "60.0" in out and "72.0" in out and "0.7" in out
