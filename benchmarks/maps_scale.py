@@ -116,7 +116,7 @@ def overhead(n_lines: int, n_f: int, work: Path, echo) -> list[str]:
 
     alphas = [0.5 + 0.4 * i / max(1, n_lines - 1) for i in range(n_lines)]
     freqs = [60.0 + 2.0 * i for i in range(n_f)]
-    study = parse_workflow(scene(alphas, freqs, 8, 10.0), source="overhead.toml")
+    study = parse_workflow(scene(alphas, freqs, 32, 50.0), source="overhead.toml")
     rows = []
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                       dashboard_address=":0", env={"NUMBA_NUM_THREADS": "1"}) as cluster, \
@@ -136,7 +136,7 @@ def overhead(n_lines: int, n_f: int, work: Path, echo) -> list[str]:
     m_t, l_t = t_map.task_seconds, sum(r.task_seconds for r in lines)
     n = len(study.points)
     return [
-        f"## 2. per-point overhead: {n} points ({n_lines} alpha x {n_f} f, 8 particles x 10 s) "
+        f"## 2. per-point overhead: {n} points ({n_lines} alpha x {n_f} f, 32 particles x 50 s) "
         "as one map and as one scene per line, one LocalCluster of 2 workers (second of two "
         "rounds)",
         "",
