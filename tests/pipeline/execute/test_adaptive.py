@@ -12,7 +12,7 @@ import pytest
 import zarr
 
 from bbb.analysis import stats
-from pipeline.cli import _status_text
+from pipeline.store.status import status_text
 from pipeline.execute.adaptive import (
     CAP,
     OPEN,
@@ -125,7 +125,7 @@ def test_a_run_failing_mid_wave_resumes_to_the_same_store(scene, two_workers, tm
 
 
 def test_status_shows_the_chunks_used_and_why_each_stopped(two_workers):
-    text = _status_text(StudyStore.open(two_workers))
+    text = status_text(StudyStore.open(two_workers))
     used, reason = _stops(two_workers)
     row54 = next(line for line in text.splitlines() if line.startswith("54 "))
     assert f"{used[0, 0]}/8 {STOP_LEGEND[reason[0, 0]]}" in row54
@@ -183,7 +183,7 @@ def test_an_unreachable_target_stops_at_the_cap_and_says_so(tmp_path):
     run_study(parse_workflow(text, "cap.toml"), store, workers=1, **QUIET)
     used, reason = _stops(store)
     assert used.tolist() == [[4]] and reason.tolist() == [[CAP]]
-    assert "4/4 cap" in _status_text(StudyStore.open(store))
+    assert "4/4 cap" in status_text(StudyStore.open(store))
 
 
 def test_the_run_summary_counts_the_chunks_used_against_the_cap(tmp_path):
