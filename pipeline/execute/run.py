@@ -34,6 +34,7 @@ from .task import (  # the task and what it reports, importable from here as bef
     KernelMismatch,
     compute_chunk,
     is_failing,
+    point_arg,
     store_argument,
     task_key,
     warm_numba,
@@ -300,10 +301,10 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
     token = uuid.uuid4().hex[:8]
     futures = {}
     t0 = time.perf_counter()
-    handle = store_argument(client, store)
+    handle = store_argument(store)
     for i, (fi, mi, ci) in enumerate(todo):
         fut = client.submit(compute_chunk, handle, fi, mi, ci, is_failing(study, fi, mi, ci, fails),
-                            key=task_key(study, fi, mi, ci, token),
+                            point_arg(study, fi), key=task_key(study, fi, mi, ci, token),
                             priority=len(todo) - i, retries=0, pure=False)
         futures[fut] = (fi, mi, ci)
     report.submit_seconds = time.perf_counter() - t0

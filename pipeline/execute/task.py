@@ -23,7 +23,7 @@ from ..workflow.identity import f_key
 from ..workflow.study import Study
 
 __all__ = ["ChunkResult", "InjectedFailure", "KernelMismatch", "compute_chunk", "warm_numba",
-           "task_key", "is_failing", "store_argument",
+           "task_key", "is_failing", "store_argument", "point_arg",
            "FAIL_ENV"]
 
 #: the environment variable of fault injection (read by the client, :mod:`pipeline.execute.run`)
@@ -47,16 +47,19 @@ class ChunkResult:
 
 
 
-def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = False
-                  ) -> ChunkResult:
+def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = False,
+                  point=None) -> ChunkResult:
     """The Dask task: simulate one chunk of particles of the point of store index fi (the
     frequency index without a grid) and write it to its own store chunk.  The chunk's seed is
-    (study seed, f, family, chunk): the same at every point of f whatever its grid values."""
+    (study seed, f, family, chunk): the same at every point of f whatever its grid values.
+    point: the point itself (:class:`pipeline.workflow.point.Point`), given by the client so
+    that a worker never computes a map's every point (None: ``store.study.points[fi]``)."""
     from bbb.simulate import simulate
 
     t0 = time.perf_counter()
     study = store.study
-    point, fam = study.points[fi], study.families[mi]
+    point = study.points[fi] if point is None else point
+    fam = study.families[mi]
     f = point.f
     _check_kernel(store)
     acc, obs = study.accuracy, study.observables
@@ -157,14 +160,22 @@ def _lyapunov_chunk(study: Study, point, fam, ci: int) -> dict[str, np.ndarray]:
             "lyapunov_x_range": lam.x_range}
 
 
-def store_argument(client, store: StudyStore):
-    """What the tasks get as their store: the StudyStore itself for a scene without a grid
-    (a few kB, sent with each task), a future of it scattered once to every worker for a map
-    (whose Study holds every point's Params: 1.5 MB at 10^4 points, which sent with each of
-    10^4 tasks made the scheduler the bottleneck)."""
+def store_argument(store: StudyStore) -> StudyStore:
+    """What the tasks get as their store, sent with each task: the StudyStore itself for a
+    scene without a grid; for a map the same store with a Study that has not computed its
+    points (each task is given its own point, :func:`compute_chunk`): the Params of every
+    point, 1.5 MB at 10^4 points, sent with each of 10^4 tasks made the scheduler the
+    bottleneck (811 tasks in 9 min).  Not scattered: data scattered to workers is lost with
+    them, and a run must survive losing any worker (a SLURM job cancelled)."""
     if not store.study.grid:
         return store
-    return client.scatter(store, broadcast=True, hash=False)
+    return StudyStore(store.path, dataclasses.replace(store.study))  # no cached points
+
+
+def point_arg(study: Study, fi: int):
+    """The point compute_chunk is given for store index fi: a map's Point, None without a
+    grid (the worker's Study has it at hand)."""
+    return study.points[fi] if study.grid else None
 
 
 def task_key(study: Study, fi: int, mi: int, ci: int, token: str) -> str:

@@ -39,7 +39,7 @@ from .adaptive import (
     refine_frequencies,
     remaining,
 )
-from .task import is_failing, store_argument, task_key
+from .task import is_failing, point_arg, store_argument, task_key
 
 __all__ = ["Waves", "rule_of", "stop_seed", "interval_of", "pair_units", "row_intervals",
            "unit_ci", "pooled_ci"]
@@ -331,15 +331,15 @@ class Waves:
             done_counts.clear()
             done_counts.update({(fi, mi): int(done[fi, mi].sum()) for fi, mi in self.states})
 
-        handle = {}  # the store as the tasks get it, scattered anew when refinement grows it
+        handle = {}  # the store as the tasks get it, anew when refinement grows it
 
         def submit(chunks) -> None:
             study = self.store.study
             if handle.get("of") is not self.store:
-                handle.update({"of": self.store, "arg": store_argument(client, self.store)})
+                handle.update({"of": self.store, "arg": store_argument(self.store)})
             for fi, mi, ci in chunks:
                 fut = client.submit(compute_chunk, handle["arg"], fi, mi, ci,
-                                    is_failing(study, fi, mi, ci, fails),
+                                    is_failing(study, fi, mi, ci, fails), point_arg(study, fi),
                                     key=task_key(study, fi, mi, ci, token),
                                     priority=-fi, retries=0, pure=False)
                 pending[fut] = (fi, mi, ci)
