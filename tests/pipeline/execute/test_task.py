@@ -66,3 +66,22 @@ def test_a_chunk_of_a_gamma_scene_is_bbb_simulate_at_the_amplitude_of_that_gamma
                    sample_times=np.arange(21) * 0.5, record_collisions=40, record_from=2.0,
                    numerics=study.accuracy.numerics())
     assert np.array_equal(store_arrays(tmp_path / "gamma.zarr")["positions"][1, 0, :4], run.positions)
+
+
+def test_a_maps_tasks_do_not_carry_every_points_params(tmp_path):
+    """Sent with each of a map's tasks: its store with a Study that has not computed its
+    points (each task gets its own point), a tenth of the store whose Study has them."""
+    import pickle
+
+    from pipeline.execute.task import point_arg, store_argument
+    from pipeline.store.study_store import StudyStore
+    from pipeline.workflow.load import parse_workflow
+
+    from ..helpers import TINY
+
+    alphas = ", ".join(f"{0.3 + 0.6 * i / 400:.4f}" for i in range(400))
+    study = parse_workflow(TINY + f"[grid]\nalpha = [{alphas}]\n", source="m.toml")
+    store = StudyStore(str(tmp_path / "m.zarr"), study)
+    _ = study.points  # computed on the client
+    sent = len(pickle.dumps((store_argument(store), point_arg(study, 1))))
+    assert sent < len(pickle.dumps(store)) / 10
