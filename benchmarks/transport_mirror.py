@@ -21,13 +21,17 @@ variance   At every frequency of each conveyor scene (its parameters, t_max, sam
            the partners is measured separately (equal cost: same particle count, same CPU).
            Rule, fixed before the runs: mirror = true in a scene when the CI of its v ratio
            lies below 1 and its D ratio is not significantly above 1 (CI reaching ≤ 1).
+           The scenes are the lines of the transport maps (claims.LINES), each run as the
+           scene without a grid named after its line; a map sets mirror once for all its
+           lines (docs/statistics.md says what the transport map keeps).
 false alarm  T1's rule (no frequency with a significant v, Bonferroni α = 0.05 over the curve;
            pipeline/studies/transport/claims.py) on the level floor with independent
-           particles: at each of transport_t0's frequencies ``--pool`` independent particles are
-           simulated; a null curve draws the scene's 256 per frequency from that pool (without
-           replacement) and gives each a random sign -- on a mirror-symmetric floor a particle
-           and its image are equally likely draws, so this is an exact draw from the
-           current-free ensemble's v_i up to the pool's finiteness -- then the bootstrap CI of
+           particles: at each frequency of the level floor (the transport map's line tilt 0,
+           throw 90) ``--pool`` independent particles are simulated; a null curve draws the
+           scene's 256 per frequency from that pool (without replacement) and gives each a
+           random sign -- on a mirror-symmetric floor a particle and its image are equally
+           likely draws, so this is an exact draw from the current-free ensemble's v_i up to
+           the pool's finiteness -- then the bootstrap CI of
            `bbb reduce` (percentile, 1000 resamples) and the rule.  ``--curves`` curves; the
            fraction with any significant frequency is the design's false-alarm rate (Wilson
            95 % interval).
@@ -36,6 +40,7 @@ false alarm  T1's rule (no frequency with a significant v, Bonferroni α = 0.05 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import datetime
 import json
 import math
@@ -60,7 +65,10 @@ from pipeline.studies.transport.claims import (  # noqa: E402
     CONVEYORS,
     D_MIN,
     HOPPING,
+    LINES,
+    MAP,
     SLIDING,
+    SLIDING_MAP,
     V_MIN,
     significant_signs,
 )
@@ -69,6 +77,13 @@ from pipeline.workflow.scenes import load_scene  # noqa: E402
 SCENES = CONVEYORS + tuple(s for s, _, _ in SLIDING)
 OUT = Path(__file__).resolve().parents[1] / "pipeline" / "studies" / "transport" / "mirror.json"
 N_BOOT = 2000
+
+
+def line_study(name: str):
+    """The transport line ``name`` (claims.LINES) of its map scene as a Study without a grid,
+    named after the line (the benchmark's seeds are keyed by that name)."""
+    scene = SLIDING_MAP if name in {s for s, _, _ in SLIDING} else MAP
+    return dataclasses.replace(load_scene(scene).line(LINES[name]), name=name)
 
 
 def _fit(study) -> dict:
@@ -126,7 +141,7 @@ def ratio_boot(vals: np.ndarray, rng: np.random.Generator, floor: float
 def variance(scenes, n_pairs: int) -> dict:
     out = {}
     for name in scenes:
-        study = load_scene(name)
+        study = line_study(name)
         rows, logs = [], {"v": [], "D": []}
         for f in study.frequencies:
             t0 = time.time()
@@ -162,7 +177,7 @@ def variance(scenes, n_pairs: int) -> dict:
 
 
 def false_alarm(pool: int, curves: int, n: int = 256) -> dict:
-    study = load_scene(HOPPING[0])
+    study = line_study(HOPPING[0])
     times, fit, acc = study.sample_times(), _fit(study), study.accuracy
     pools = []
     for f in study.frequencies:

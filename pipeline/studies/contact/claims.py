@@ -2,9 +2,11 @@
 the model beyond its CIs.
 
 Per model the klages2004 claim records and rules are reused unchanged (not re-tuned): the
-model's near-onset scene ``contact_<model>`` plays both the Fig. 2 scene (its ``rest`` family
-is the main curve) and the ergodicity scene (families rest and launched); the 54 Hz
-projection scene ``contact_proj_<model>`` gives the locking table of claim 3.
+model's line of the near-onset map ``contact`` (contact × μ, one grid line per model) plays
+both the Fig. 2 scene (its ``rest`` family is the main curve) and the ergodicity scene
+(families rest and launched); its line of the 54 Hz projection map ``contact_proj`` gives the
+locking table of claim 3.  :func:`line_tables` slices the maps' long tables into one table
+per model, keyed as ``contact_<model>_<table>`` and ``contact_proj_<model>_<table>``.
 
 Model dependence (:func:`model_differences`), a rule fixed before any contact scene ran and
 calibrated on synthetic tables (tests/pipeline/studies/contact/test_claims.py): at a frequency
@@ -33,15 +35,22 @@ from bbb.params import Params
 from ...claims.record import Row
 from ..klages2004.claims import CLAIMS as PAPER_CLAIMS
 from ..klages2004.claims import evaluate
+from ..map_lines import split_lines
 
-__all__ = ["MODELS", "LABELS", "SCENES", "CLAIM_PREFIXES", "CLAIMS", "FWER", "Difference",
-           "model_tables", "model_rows", "model_differences", "report_lines"]
+__all__ = ["MODELS", "LABELS", "LINES", "SCENES", "CLAIM_PREFIXES", "CLAIMS", "FWER",
+           "Difference", "line_tables", "model_tables", "model_rows", "model_differences",
+           "report_lines"]
 
 #: contact models of the study, in order: scene suffix -> label
 LABELS = {"stick": "stick", "slide": "slide", "coulomb005": "Coulomb μ = 0.05",
           "coulomb03": "Coulomb μ = 0.3"}
 MODELS = tuple(LABELS)
-SCENES = tuple(f"contact_{m}" for m in MODELS) + tuple(f"contact_proj_{m}" for m in MODELS)
+#: each model's grid values in the maps
+LINES = {"stick": {"contact": "stick", "mu": 0.0}, "slide": {"contact": "slide", "mu": 0.0},
+         "coulomb005": {"contact": "coulomb", "mu": 0.05},
+         "coulomb03": {"contact": "coulomb", "mu": 0.3}}
+#: the map scenes: near onset (46–99 Hz) and the 54 Hz projection, each contact × μ
+SCENES = ("contact", "contact_proj")
 ONSET_RANGE = (46.0, 62.0)  # Hz: the onset claims' range; above it, Fig. 2's (from rest)
 FAMILIES = ("rest", "launched")
 PROJ_F = 54.0  # Hz, the projection scenes' frequency
@@ -56,6 +65,17 @@ SHORT = ("the onset near 50 Hz", "the maximum near 54 Hz", "the 1/1 spot at 54 H
 FWER = 0.05  # family-wise error rate of the model-dependence rule
 _Z95 = NormalDist().inv_cdf(0.975)
 _POSITIVE = ("agrees", "agrees within the CI")
+
+
+def line_tables(tables: Mapping[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
+    """The maps' tables (``contact_diffusion``, ``contact`` (the contact table),
+    ``contact_proj_locking``, ...) as one table per model, keyed ``contact_<model>_<table>``
+    and ``contact_proj_<model>_<table>``: that model's rows without the axis columns, exactly
+    what the scene with its contact and μ in [params] gives."""
+    return {**split_lines(tables, "contact", {f"contact_{m}": LINES[m] for m in MODELS},
+                          ("diffusion", "contact", "counters")),
+            **split_lines(tables, "contact_proj", {f"contact_proj_{m}": LINES[m] for m in MODELS},
+                          ("locking", "contact", "counters"))}
 
 
 def model_tables(tables: Mapping[str, pd.DataFrame], model: str) -> dict[str, pd.DataFrame]:
@@ -191,10 +211,12 @@ def _measured(text: str) -> str:
 
 def report_lines(tables: Mapping[str, pd.DataFrame]) -> list[str]:
     """The REPORT.md section: a verdict column per contact model for claims 1–4 and 16, the
-    measured values, and the generated paragraph."""
+    measured values, and the generated paragraph, from the maps' tables."""
+    tables = line_tables(tables)
     rows = model_rows(tables)
     L = ["", "## Contact models: the onset claims under stick, slide and Coulomb friction", "",
-         "Scenes `pipeline/studies/contact/scenes/` (docs/contact.md): D(f) at 46–99 Hz from "
+         "Scenes `pipeline/studies/contact/scenes/` (docs/contact.md), maps with one line per "
+         "contact model: D(f) at 46–99 Hz from "
          "rest and launched, and post-collision states at 54 Hz from rest, under each contact "
          "model; verdicts by the rules of the claims above, evaluated on each model's tables "
          "(the rest family is the main curve).", "",

@@ -17,7 +17,8 @@ from bbb.analysis.locking import CREEP_MARGIN, creep_speed
 
 from ...tables.collisions import as_store, states
 from ..figure_style import PAGE, STYLE, figure_files, new_figure, save_figure
-from .claims import LABELS, MODELS, ONSET_RANGE, PROJ_F
+from ..map_lines import point_index
+from .claims import LABELS, LINES, MODELS, ONSET_RANGE, PROJ_F, line_tables
 
 __all__ = ["CAPTIONS", "draw", "figure_contact", "figure_contact_high"]
 
@@ -38,12 +39,12 @@ CAPTIONS = {
         f"flight; (c) post-collision states (y, v_y⁺) at {PROJ_F:g} Hz from rest, one panel per "
         f"model (Fig. 3a style), dotted: the upper edge of the creeping band "
         f"(1 + {CREEP_MARGIN:g}) A 2πf, green: v_y⁺ = {SPOT[0]:g}–{SPOT[1]:g} mm/s, where the "
-        "paper's 1/1 spot lies. Scenes contact_<model> (a, b; each (f, family) to its target "
-        "CI, the TOMLs say which) and contact_proj_<model> (c); claims 1–4 and 16 per model in "
-        "the contact section below."),
+        "paper's 1/1 spot lies. Scenes contact (a, b; each (f, family) to its target CI, the "
+        "TOML says which) and contact_proj (c), maps with one line per model; claims 1–4 and "
+        "16 per model in the contact section below."),
     "fig_contact_high": (
-        f"D(f) from rest under each contact model over the whole grid of the contact_<model> "
-        f"scenes, {_MODELS}, {_CI}: above {ONSET_RANGE[1]:g} Hz the models' D part where the "
+        f"D(f) from rest under each contact model over the whole grid of the scene contact, "
+        f"{_MODELS}, {_CI}: above {ONSET_RANGE[1]:g} Hz the models' D part where the "
         "contact section below says they differ beyond their CIs (family-wise 5 %)."),
 }
 
@@ -140,30 +141,32 @@ def figure_contact_high(tables: Mapping[str, pd.DataFrame | None],
         return save_figure(fig, out_dir)
 
 
-def projection(store) -> dict[str, np.ndarray] | None:
-    """Post-collision y, v_y⁺ of the rest family at 54 Hz of a projection store, or None."""
+def projection(store, model: str) -> dict[str, np.ndarray] | None:
+    """Post-collision y, v_y⁺ of the rest family at 54 Hz on ``model``'s line of the
+    projection map's store, or None."""
     if store is None:
         return None
     st = as_store(store)
-    if not np.any(np.abs(np.asarray(st.study.frequencies) - PROJ_F) < 1e-3):
+    pi = point_index(st.study, PROJ_F, LINES[model])
+    if pi is None:
         return None
-    return states(st, PROJ_F, "rest", ("y", "vy"))
+    return states(st, PROJ_F, "rest", ("y", "vy"), point=pi)
 
 
 def draw(tables: dict[str, pd.DataFrame], stores: Mapping[str, str],
          out_dir: str | os.PathLike) -> list[Path]:
-    """make_figures' hook: both figures from ``tables["<scene>_<table>"]`` and the projection
-    stores; adds each projection scene's locking table to ``tables`` (as
-    ``contact_proj_<model>_locking``) for :func:`~.claims.report_lines`, claim 3.  Returns
-    the files written."""
+    """make_figures' hook: both figures from the maps' tables (``tables["contact_diffusion"]``,
+    ``tables["contact"]``, ..., one curve per model: :func:`~.claims.line_tables`) and the
+    projection map's store; adds its locking table to ``tables`` (as ``contact_proj_locking``,
+    one row per model) for :func:`~.claims.report_lines`, claim 3.  Returns the files
+    written."""
     from ...tables.collisions import locking_table
 
-    proj = {}
-    for m in MODELS:
-        path = stores.get(f"contact_proj_{m}")
-        proj[m] = projection(path)
-        if path is not None:
-            tables[f"contact_proj_{m}_locking"] = locking_table(path)
+    path = stores.get("contact_proj")
+    proj = {m: projection(path, m) for m in MODELS}
+    if path is not None:
+        tables["contact_proj_locking"] = locking_table(path)
+    tables = line_tables(tables)
     near = {m: (tables.get(f"contact_{m}_diffusion"), tables.get(f"contact_{m}_contact"))
             for m in MODELS}
     f1 = figure_contact(near, proj, out_dir)

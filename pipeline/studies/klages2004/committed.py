@@ -12,7 +12,7 @@ File names:
 * this study: :data:`TABLE_FILES` (``diffusion_figure2.csv``, ``locking.csv``, ...);
 * a further study (``pipeline.studies.<name>``): ``<scene>_<table>.csv`` per reduce table of
   each of its scenes, and ``<key>.csv`` for a table its ``draw`` hook adds (keyed
-  ``<scene>_<table>`` already, e.g. ``contact_proj_stick_locking``).  In memory the table is
+  ``<scene>_<table>`` already, e.g. ``contact_proj_locking``).  In memory the table is
   keyed ``<table>`` when the table is named after its scene (``mechanisms``), else
   ``<scene>_<table>``: :func:`study_file` and :func:`read_study_tables` are each other's
   inverse.

@@ -1,9 +1,10 @@
-"""Transport on a vibro-conveyor (issue 14): drift v(f) and D(f) about the drift at the
-paper's parameters for a tilted floor (φ = 0°, 2°, 5°, vertical throw) and an oblique throw
-(ψ = 60°, 30°, level floor), from the scenes ``scenes/transport_*.toml`` (one per (φ, ψ)),
-and the sliding regime below lift-off on one floor under the stick and Coulomb contact models
-(``scenes/transport_sliding_*.toml``, issue 13): the figures (``figures``) and the claims as
-data (``claims``).
+"""Transport on a vibro-conveyor: drift v(f) and D(f) about the drift at the paper's
+parameters for a tilted floor (φ = 0°, 2°, 5°, vertical throw), an oblique throw (ψ = 60°,
+30°, level floor) and both at once, from the map scene ``scenes/transport.toml`` (tilt ×
+throw, one grid line per floor), and the sliding regime below lift-off on one floor under the
+stick and Coulomb contact models (the map ``scenes/transport_sliding.toml``, one line per
+model): the figures (``figures``) and the claims as data (``claims``), which read each line's
+table (``claims.line_tables``).
 
 The interface make_figures uses: :data:`SCENES`, :func:`draw`, :func:`report_lines`.
 """

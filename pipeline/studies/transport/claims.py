@@ -1,5 +1,8 @@
-"""The transport claims as data (judged by :mod:`pipeline.claims.record` from each scene's diffusion
-table with its v, D_drift columns; :mod:`bbb.analysis.transport`).
+"""The transport claims as data (judged by :mod:`pipeline.claims.record` from the diffusion table
+of each line of the map scenes, with its v, D_drift columns; :mod:`bbb.analysis.transport`).
+The claims are judged on five floors of the map ``transport`` (the level floor vibrated
+vertically, two tilts, two throws: :data:`HOPPING`); its four floors both tilted and thrown
+(:data:`COMBINED`) are drawn, not judged.
 
 Rules, fixed before the data (calibrated on synthetic curves in
 tests/pipeline/studies/transport/test_claims.py):
@@ -63,26 +66,37 @@ from bbb.analysis.transport import SYMMETRY
 
 from ...claims.markdown import markdown_table
 from ...claims.record import Band, Claim, Measured, Part, Quantity, evaluate, measure
+from ..map_lines import split_lines
 
-__all__ = ["SCENES", "HOPPING", "CONVEYORS", "LABELS", "SLIDING", "SLIDING_LABELS",
-           "SLIDING_GEOMETRY", "sliding_liftoff", "CLAIMS", "significant_signs", "reversals",
-           "report_lines"]
+__all__ = ["SCENES", "MAP", "SLIDING_MAP", "LINES", "HOPPING", "COMBINED", "CONVEYORS",
+           "LABELS", "SLIDING", "SLIDING_LABELS", "SLIDING_GEOMETRY", "line_tables",
+           "sliding_liftoff", "CLAIMS", "significant_signs", "reversals", "report_lines"]
 
-#: (scene, tilt φ °, throw ψ °); the first one is the paper's symmetric floor
+#: the map scenes: tilt x throw (hopping), and the sliding floor's contact x mu
+MAP, SLIDING_MAP = "transport", "transport_sliding"
+SCENES = (MAP, SLIDING_MAP)
+#: (line, tilt φ °, throw ψ °) of the map judged by the claims; the first one is the paper's
+#: symmetric floor.  A line's name keys its tables (``<line>_diffusion``, :func:`line_tables`)
 GEOMETRY = (("transport_t0", 0.0, 90.0), ("transport_t2", 2.0, 90.0),
             ("transport_t5", 5.0, 90.0), ("transport_p60", 0.0, 60.0),
             ("transport_p30", 0.0, 30.0))
+#: the map's other lines, floors both tilted and thrown: drawn, not judged
+COMBINED_GEOMETRY = (("transport_t2_p60", 2.0, 60.0), ("transport_t2_p30", 2.0, 30.0),
+                     ("transport_t5_p60", 5.0, 60.0), ("transport_t5_p30", 5.0, 30.0))
 HOPPING = tuple(s for s, _, _ in GEOMETRY)
+COMBINED = tuple(s for s, _, _ in COMBINED_GEOMETRY)
 CONVEYORS = HOPPING[1:]
-LABELS = {s: f"φ = {t:g}°, ψ = {p:g}°" for s, t, p in GEOMETRY}
-#: the sliding regime (issue 13): one floor (level, thrown at ψ = 30°, the paper's arcs) from
-#: low Γ to above lift-off, under (scene, contact model, μ)
+LABELS = {s: f"φ = {t:g}°, ψ = {p:g}°" for s, t, p in GEOMETRY + COMBINED_GEOMETRY}
+#: the sliding regime: one floor (level, thrown at ψ = 30°, the paper's arcs) from low Γ to
+#: above lift-off, under (line, contact model, μ)
 SLIDING_GEOMETRY = {"tilt": 0.0, "throw": 30.0}
 SLIDING = (("transport_sliding_stick", "stick", 0.0),
            ("transport_sliding_coulomb", "coulomb", 0.3))
 SLIDING_LABELS = {"transport_sliding_stick": "stick",
                   "transport_sliding_coulomb": "Coulomb, μ = 0.3"}
-SCENES = HOPPING + tuple(s for s, _, _ in SLIDING)
+#: {line: its grid values} of both maps
+LINES = {**{s: {"tilt": t, "throw": p} for s, t, p in GEOMETRY + COMBINED_GEOMETRY},
+         **{s: {"contact": c, "mu": mu} for s, c, mu in SLIDING}}
 ALPHA = 0.05
 V_MIN = 1e-6  # mm/s
 D_MIN = 1e-6  # mm²/s
@@ -292,11 +306,23 @@ CLAIMS = [
 ]
 
 
+def line_tables(tables) -> dict[str, pd.DataFrame]:
+    """The maps' tables (keyed ``transport_<table>``, ``transport_sliding_<table>``) as one
+    table per line, keyed ``<line>_<table>`` (:data:`LINES`): the rows of that line without
+    the axis columns, exactly what the scene with those values in [params] gives."""
+    return {**split_lines(tables, MAP, {s: LINES[s] for s in HOPPING + COMBINED},
+                          ("diffusion", "counters")),
+            **split_lines(tables, SLIDING_MAP, {s: LINES[s] for s, _, _ in SLIDING},
+                          ("diffusion", "contact", "counters"))}
+
+
 def report_lines(tables) -> list[str]:
-    """The REPORT.md section: the claim rows judged from each scene's diffusion table."""
-    ctx = {"tables": {sc: tables.get(f"{sc}_diffusion") for sc in SCENES}}
+    """The REPORT.md section: the claim rows judged from each line's diffusion table."""
+    lines = line_tables(tables)
+    ctx = {"tables": {sc: lines.get(f"{sc}_diffusion") for sc in HOPPING + tuple(
+        s for s, _, _ in SLIDING)}}
     rows = evaluate(CLAIMS, ctx)
-    L = ["", "## Transport on a vibro-conveyor (scenes transport_*)", "",
+    L = ["", "## Transport on a vibro-conveyor (scenes transport, transport_sliding)", "",
          "Drift v with its bootstrap CI and D about the drift (bbb.analysis.transport) along f per "
          "(tilt φ, throw ψ), and on one floor (φ = 0°, ψ = 30°) per contact model from low Γ "
          f"to above lift-off ({sliding_liftoff():.1f} Hz, bbb.analysis.liftoff); "

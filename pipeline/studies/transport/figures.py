@@ -16,7 +16,16 @@ import pandas as pd
 from matplotlib import rc_context
 
 from ..figure_style import STYLE, figure_files, new_figure, save_figure
-from .claims import HOPPING, LABELS, SLIDING, SLIDING_GEOMETRY, SLIDING_LABELS, sliding_liftoff
+from .claims import (
+    COMBINED,
+    HOPPING,
+    LABELS,
+    SLIDING,
+    SLIDING_GEOMETRY,
+    SLIDING_LABELS,
+    line_tables,
+    sliding_liftoff,
+)
 
 __all__ = ["CAPTIONS", "draw", "figure_transport", "figure_sliding"]
 
@@ -29,21 +38,24 @@ CAPTIONS = {
         "is not diffusive (its MSD still steepens over the fit lags: particles running at "
         "different speeds, some stuck, or velocity memory as long as the lags; bbb.analysis.transport). "
         "On the level floor (φ = 0°, ψ = 90°) every particle's mirror image counts: v = 0 "
-        "exactly, by construction, without a CI. Scenes transport_t0, _t2, _t5, _p60, _p30."),
+        "exactly, by construction, without a CI. Dashed, without CIs: the floors both tilted "
+        "and thrown (φ = 2°, 5° with ψ = 60°, 30°), drawn, not judged by the claims. Scene "
+        "transport, a map of tilt φ × throw ψ (one line per floor)."),
     "fig_transport_sliding": (
         "The sliding regime: drift v(f) on a level floor of the paper's arcs thrown at ψ = 30°, "
         "under the stick model and Coulomb friction μ = 0.3, bootstrap 95 % CIs; dashed: the "
         "lowest lift-off frequency of this floor (bbb.analysis.liftoff), shaded below it; (b) the "
         "fraction of the run each model spends held at rest on the floor (dashed) and sliding "
-        "(solid), bootstrap 95 % CIs over particles, the rest in flight. Scenes "
-        "transport_sliding_stick and transport_sliding_coulomb (claim T5)."),
+        "(solid), bootstrap 95 % CIs over particles, the rest in flight. Scene "
+        "transport_sliding, a map with one line per contact model (claim T5)."),
 }
 
 
 def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLike | None = None,
                      name: str = "fig_transport"):
-    """Two panels from ``tables[scene]`` (diffusion tables with v, D_drift); returns the Figure
-    (writes PNG + PDF given ``out_dir``)."""
+    """Two panels from ``tables[line]`` (each line's diffusion table with v, D_drift: the five
+    judged floors with CIs, the combined ones dashed); returns the Figure (writes PNG + PDF
+    given ``out_dir``)."""
     with rc_context(STYLE):
         fig = new_figure(name, (7.0, 5.6))
         ax_v, ax_d = fig.subplots(2, 1, sharex=True)
@@ -67,6 +79,14 @@ def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathL
                 bad = t[~t["diffusive"].fillna(True).astype(bool)]
                 for ax, col in ((ax_v, "v"), (ax_d, "D_drift")):
                     ax.plot(bad["f"], bad[col], "x", ms=7, mew=1.2, color=c, zorder=5)
+        for i, sc in enumerate(COMBINED, start=len(HOPPING)):  # drawn, not judged: no CIs
+            t = tables.get(sc)
+            if t is None or "v" not in t:
+                continue
+            t = t.sort_values("f")
+            kw = dict(ls="--", lw=0.8, marker=".", ms=2.5, color=f"C{i}")
+            ax_v.plot(t["f"], t["v"], label=LABELS[sc], **kw)
+            ax_d.plot(t["f"], t["D_drift"], **kw)
         ax_v.axhline(0.0, color="0.6", lw=0.8, zorder=0)
         ax_v.set_yscale("symlog", linthresh=1.0)
         ax_v.set_ylabel("drift v (mm/s)")
@@ -143,9 +163,12 @@ def figure_sliding(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLik
 
 def draw(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str],
          out_dir: str | os.PathLike) -> list[Path]:
-    """make_figures' hook: the figures from ``tables["<scene>_diffusion"]``; the files
-    written."""
-    figs = [figure_transport({sc: tables.get(f"{sc}_diffusion") for sc in HOPPING}, out_dir),
-            figure_sliding({sc: tables.get(f"{sc}_diffusion") for sc, _, _ in SLIDING}, out_dir,
-                           contact={sc: tables.get(f"{sc}_contact") for sc, _, _ in SLIDING})]
+    """make_figures' hook: the figures from the maps' tables ``tables["transport_diffusion"]``,
+    ``tables["transport_sliding_<table>"]``, one curve per line (:func:`~.claims.line_tables`);
+    the files written."""
+    lines = line_tables(tables)
+    figs = [figure_transport({sc: lines.get(f"{sc}_diffusion") for sc in HOPPING + COMBINED},
+                             out_dir),
+            figure_sliding({sc: lines.get(f"{sc}_diffusion") for sc, _, _ in SLIDING}, out_dir,
+                           contact={sc: lines.get(f"{sc}_contact") for sc, _, _ in SLIDING})]
     return [p for fig in figs for p in figure_files(out_dir, fig.get_label())]

@@ -9,7 +9,14 @@ import math
 import numpy as np
 import pandas as pd
 
-from pipeline.studies.contact.claims import CLAIMS, MODELS, model_differences, model_rows, report_lines
+from pipeline.studies.contact.claims import (
+    CLAIMS,
+    LINES,
+    MODELS,
+    model_differences,
+    model_rows,
+    report_lines,
+)
 
 F = np.array([46.0, 47.0] + [48.0 + 0.5 * i for i in range(21)] + [59.0, 60.0, 61.0, 62.0])
 HALF = 0.15  # relative 95 % CI half-width, as the scenes' target_ci
@@ -78,6 +85,7 @@ def _lock(k: float) -> pd.DataFrame:
 
 
 def _tables() -> dict[str, pd.DataFrame]:
+    """One table per model, keyed as claims.line_tables gives them."""
     late = np.where(F < 58, 0.0, 30.0 * (F - 57.0))  # from rest: moves from 58 Hz only
     t = {}
     for m in MODELS:
@@ -85,6 +93,24 @@ def _tables() -> dict[str, pd.DataFrame]:
         t[f"contact_{m}_diffusion"] = _table(rest, _paper_like(F) + 1.0)
         t[f"contact_proj_{m}_locking"] = _lock(1.0 if m == "slide" else 0.5)
     return t
+
+
+def _maps(lines: dict[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
+    """The map tables (``contact_diffusion``, ``contact_proj_locking``) holding ``lines``: each
+    model's rows with its contact and mu columns after f, as bbb reduce writes them."""
+    out = {}
+    for scene, table in (("contact", "diffusion"), ("contact_proj", "locking")):
+        parts = []
+        for m in MODELS:
+            t = lines.get(f"{scene}_{m}_{table}")
+            if t is not None:
+                t = t.copy()
+                for i, (a, v) in enumerate(LINES[m].items()):
+                    t.insert(1 + i, a, v)
+                parts.append(t)
+        if parts:
+            out[f"{scene}_{table}"] = pd.concat(parts, ignore_index=True)
+    return out
 
 
 def test_the_paper_like_model_agrees_with_claims_1_to_4_and_the_late_ones_do_not():
@@ -98,7 +124,7 @@ def test_the_paper_like_model_agrees_with_claims_1_to_4_and_the_late_ones_do_not
 
 
 def test_the_paragraph_names_the_model_that_reproduces_onset_and_maximum():
-    text = "\n".join(report_lines(_tables()))
+    text = "\n".join(report_lines(_maps(_tables())))
     assert "From rest, slide reproduces both the onset near 50 Hz and the maximum" in text
     assert "stick vs slide at f = 50–61 Hz" in text  # D from rest differs beyond the CIs
     # slide's rest curve is paper-like, the others' are not: every verdict depends on it
@@ -108,7 +134,7 @@ def test_the_paragraph_names_the_model_that_reproduces_onset_and_maximum():
 def test_identical_models_get_the_same_verdicts_and_no_model_dependence():
     t = {k: v for k, v in _tables().items() if k.startswith("contact_slide")}
     t = {k.replace("slide", m): v for m in MODELS for k, v in t.items()}
-    text = "\n".join(report_lines(t))
+    text = "\n".join(report_lines(_maps(t)))
     assert ("same under every contact model for the onset near 50 Hz, the maximum near 54 Hz, "
             "the 1/1 spot at 54 Hz, the minimum near 58 Hz, non-ergodicity only near 55 Hz; "
             "it depends on the model for none.") in text

@@ -51,11 +51,12 @@ def test_the_full_range_figure_draws_without_overlapping_text(tmp_path):
     assert len(fig.axes[0].lines) > 0
 
 
-def test_draw_writes_both_figures_from_reduce_tables_without_stores(tmp_path):
+def test_draw_writes_both_figures_from_the_maps_reduce_tables_without_stores(tmp_path):
+    from pipeline.studies.contact.claims import LINES
+
     tables, _ = _inputs()
-    t = {}
-    for m, (d, c) in tables.items():
-        t[f"contact_{m}_diffusion"], t[f"contact_{m}_contact"] = d, c
+    t = {"contact_diffusion": pd.concat([d.assign(**LINES[m]) for m, (d, _c) in tables.items()]),
+         "contact": pd.concat([c.assign(**LINES[m]) for m, (_d, c) in tables.items()])}
     paths = draw(t, {}, tmp_path)
     assert sorted(p.name for p in paths) == ["fig_contact.pdf", "fig_contact.png",
                                              "fig_contact_high.pdf", "fig_contact_high.png"]

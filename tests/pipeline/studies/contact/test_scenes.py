@@ -1,5 +1,5 @@
-"""The contact scenes: one per model that differ only in the contact model, each with a shipped
-draft of the same model and families; the drafts and scenes ship in the wheel."""
+"""The contact scenes: maps of contact x mu with one line per model, each with a shipped draft
+of the same lines and families; the drafts and scenes ship in the wheel."""
 
 from __future__ import annotations
 
@@ -9,34 +9,31 @@ import pytest
 
 from pipeline.make_figures import SCENES as PAPER_SCENES
 from pipeline.studies.contact import SCENES
-from pipeline.studies.contact.claims import MODELS
+from pipeline.studies.contact.claims import LINES
 from pipeline.workflow.scenes import load_scene, scene_label, shipped_draft
 
 from ..klages2004.test_make_figures import _run_outside, installed  # noqa: F401 (fixture)
 
 
-def _model(study) -> tuple:
-    return study.overrides.get("contact", "stick"), study.overrides.get("mu")
-
-
 @pytest.mark.parametrize("name", SCENES)
-def test_the_draft_has_the_scenes_model_families_and_observables(name):
+def test_the_draft_has_the_maps_lines_families_and_observables(name):
     full, draft = load_scene(name), load_scene(name, fast=True)
     assert draft.source.startswith("pipeline/studies/contact/scenes/draft/")
-    assert _model(draft) == _model(full)
+    assert (draft.grid, draft.overrides) == (full.grid, full.overrides)
     assert draft.families == full.families and draft.name == full.name
     assert draft.observables == full.observables
     assert set(draft.frequencies) <= set(full.frequencies)
     assert draft.fingerprint() != full.fingerprint()  # a store of its own
 
 
-def test_the_model_scenes_differ_only_in_the_contact_model():
-    scenes = [load_scene(f"contact_{m}") for m in MODELS]
-    assert len({_model(s) for s in scenes}) == len(MODELS)
-    for s in scenes[1:]:
-        assert (s.frequencies, s.families, s.accuracy, s.observables) == (
-            scenes[0].frequencies, scenes[0].families, scenes[0].accuracy, scenes[0].observables)
-    f = scenes[0].frequencies
+@pytest.mark.parametrize("name", SCENES)
+def test_the_maps_lines_are_the_contact_models(name):
+    study = load_scene(name)
+    assert {tuple(p.grid) for p in study.points} == {tuple(v.items()) for v in LINES.values()}
+    for m, values in LINES.items():
+        p = study.line(values).params(54.0)
+        assert (p.contact, p.mu) == (values["contact"], values["mu"]), m
+    f = load_scene("contact").frequencies
     assert min(f) == 46.0 and max(f) == 99.0
     assert {48.0 + 0.5 * i for i in range(21)} <= set(f)  # 0.5 Hz steps through 48-58
 

@@ -23,9 +23,9 @@ def test_a_further_studys_scenes_are_summed_into_its_row_and_earlier_runs_marked
     invocation), Fig. 2 alone (100 s and a 7 s reduce), a 2 s cluster, 200 s in all."""
     log = {"scenes": {"figure2": {"wall_s": 100.0, "computed": 40, "chunks": 124, "workers": 2,
                                   "reduce_s": 7.0},
-                      "transport_t0": {"wall_s": 60.0, "computed": 10, "chunks": 10, "workers": 2},
-                      "transport_t2": {"wall_s": 30.4, "computed": 5, "chunks": 8, "workers": 2,
-                                       "earlier_invocation": True}},
+                      "transport": {"wall_s": 60.0, "computed": 10, "chunks": 10, "workers": 2},
+                      "transport_sliding": {"wall_s": 30.4, "computed": 5, "chunks": 8,
+                                            "workers": 2, "earlier_invocation": True}},
            "cluster_s": 2.0, "wall_s": 200.0, "this_invocation_s": 150.0}
     rows = table(log)
     assert "| `figure2` | 1.7 min (100 s) | 40 of 124 | 2 | 7 s |" in rows

@@ -9,9 +9,10 @@ import pandas as pd
 from pipeline.claims.record import evaluate
 from pipeline.studies.transport.claims import (
     CLAIMS,
+    COMBINED,
     CONVEYORS,
     HOPPING,
-    SCENES,
+    LINES,
     SLIDING,
     SLIDING_GEOMETRY,
     reversals,
@@ -92,7 +93,7 @@ def test_unsteady_frequencies_are_left_out_of_every_rule():
     up = np.linspace(-20.0, 20.0, F.size)  # a significant reversal, but only where unsteady
     t = _table(up, up - 0.3, up + 0.3)
     t["steady"] = F < 70.0
-    tables = {s: t for s in SCENES}
+    tables = {s: t for s in HOPPING}
     row = evaluate(CLAIMS, {"tables": tables})[2]
     assert row.verdict == "disagrees" and "left out" in row.measured
     t["steady"] = True
@@ -137,11 +138,26 @@ def test_noise_alone_below_lift_off_is_not_a_sliding_current():
     assert moved / 500 <= 0.07
 
 
-def test_the_sliding_scenes_are_the_floor_and_contact_models_the_claim_assumes():
-    for scene, contact, mu in SLIDING:
-        p = load_scene(scene).params(50.0)
+def test_the_sliding_lines_are_the_floor_and_contact_models_the_claim_assumes():
+    study = load_scene("transport_sliding")
+    assert {tuple(p.grid) for p in study.points} == {
+        (("contact", c), ("mu", mu)) for _, c, mu in SLIDING}
+    for line, contact, mu in SLIDING:
+        p = study.line(LINES[line]).params(50.0)
         assert (p.tilt, p.throw) == (SLIDING_GEOMETRY["tilt"], SLIDING_GEOMETRY["throw"])
         assert (p.contact, p.mu) == (contact, mu)
+
+
+def test_the_transport_map_holds_the_judged_floors_and_the_combined_ones():
+    study = load_scene("transport")
+    lines = {tuple(p.grid) for p in study.points}
+    assert lines == {(("tilt", LINES[s]["tilt"]), ("throw", LINES[s]["throw"]))
+                     for s in HOPPING + COMBINED}
+    assert len(lines) == 9 and not set(HOPPING) & set(COMBINED)
+    for s in HOPPING + COMBINED:
+        p = study.line(LINES[s]).params(50.0)
+        assert (p.tilt, p.throw) == (LINES[s]["tilt"], LINES[s]["throw"])
+        assert list(study.line(LINES[s]).frequencies) == list(F)
 
 
 def test_the_no_current_claim_holds_by_construction_with_mirror_images_and_says_so():
