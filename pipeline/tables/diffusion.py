@@ -7,7 +7,7 @@ f            floor frequency, Hz
 Gamma        peak floor acceleration A (2 pi f)^2 / g
 D, D_lo, D_hi  D of all families pooled, mm^2/s, from the fit MSD(lag) = 2 D lag + c to the
              time-and-ensemble averaged MSD (bbb.analysis.stats), with its bootstrap CI over particles
-             (pipeline.execute.waves.row_intervals: with one family the very CI its stopping rule read);
+             (pipeline.execute.intervals.row_intervals: with one family the very CI its stopping rule read);
              D_hi NaN where no particle moved (the data bound the share of movers, not D); all
              three NaN where the estimator failed (CI below 0)
 D_status     what the CI means (bbb.analysis.stats.interval): "ok", or per pooled/family the notes
@@ -83,7 +83,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from ..execute.waves import row_intervals
+from ..execute.intervals import row_intervals
 from ..store.layout import STOP_LEGEND
 from ..store.study_store import StudyStore
 from ..workflow.identity import child_seed, reduce_seed
@@ -194,10 +194,10 @@ def _stop_text(study: Study, reasons: np.ndarray) -> str:
 def _pairing(study: Study, fams: dict[str, np.ndarray], point=None
              ) -> tuple[str, np.ndarray | None]:
     """How the pooled particles of one frequency count (bbb.analysis.transport.PAIRING) and, with mirror
-    pairs, the pair labels of the pooled rows (:func:`pipeline.execute.waves.pair_units`).  Images
+    pairs, the pair labels of the pooled rows (:func:`pipeline.execute.intervals.pair_units`).  Images
     count by symmetry only when every family is mirrored; pairs are all or none on a conveyor
     (pipeline.workflow.load)."""
-    from ..execute.waves import pair_units
+    from ..execute.intervals import pair_units
 
     by_name = {fam.name: fam for fam in study.families}
     kinds = {study.pairing(by_name[name], point) for name in fams}
