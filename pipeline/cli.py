@@ -92,6 +92,10 @@ def _build_parser() -> argparse.ArgumentParser:
     pl.add_argument("workflow", metavar="WORKFLOW", help="workflow TOML file")
     pl.add_argument("--workers", metavar="N", type=_positive_int,
                     help="worker processes to plan for (default: number of cores)")
+    pl.add_argument("--pilot-lines", choices=("probes", "all"), default="probes",
+                    help="a map: pilot its corner and centre lines and cost the others from "
+                         "them (probes, default), or pilot every line (all: costs the pilot's "
+                         "share of each line, ~pilot particles / the line's particles)")
     pl.add_argument("--pilot-particles", metavar="N", type=_positive_int, default=8,
                     help="pilot particles per (frequency, family) (default: 8)")
     pl.add_argument("--kernel-rate", metavar="FILE",
@@ -321,7 +325,7 @@ def _cmd_plan(args) -> int:
                              "kernel benchmark table, e.g. benchmarks/results/kernel-*.txt") from None
         except ValueError as e:
             raise UsageError(f"--kernel-rate {e}") from None
-    rates = pilot_rates(study, particles=args.pilot_particles,
+    rates = pilot_rates(study, particles=args.pilot_particles, lines=args.pilot_lines,
                         echo=lambda m: print(m, file=sys.stderr))
     if rate is not None:
         rates = rates.with_rate(rate, Path(args.kernel_rate).name)

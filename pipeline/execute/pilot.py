@@ -54,15 +54,16 @@ CACHE_VERSION = 1
 
 def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
                 cache_dir: str | os.PathLike | None = "runs/plan-cache",
-                echo=None) -> Rates:
+                echo=None, lines: str = "probes") -> Rates:
     """Measure (or read from the cache) a pilot :class:`Cell` at every (frequency, family)
     of ``study``: ``particles`` particles, at most half the study's, over its t_max.  A grid
     is piloted along its probe lines (:func:`probe_lines`: the corners and the centre of its
-    axes), every other point costed as the nearest of them (:meth:`Rates.cell`)."""
+    axes), every other point costed from them (:meth:`Rates.cell`), or with ``lines="all"``
+    along every line."""
     from bbb.provenance import kernel_hash
 
     if study.grid:
-        return _grid_rates(study, particles, cache_dir, echo)
+        return _grid_rates(study, particles, cache_dir, echo, lines)
     acc = study.accuracy
     n = max(1, min(particles, acc.n_particles // 2))
     cells: dict[tuple[int, str], Cell] = {}
@@ -130,18 +131,23 @@ def probe_lines(study: Study) -> list[tuple[tuple[str, object], ...]]:
     return [line for line in dict.fromkeys(tuple(x) for x in lines) if line in have]
 
 
-def _grid_rates(study: Study, particles: int, cache_dir, echo) -> Rates:
-    """The pilot of a grid scene: the 1-D pilot of each probe line (cached as that scene's)."""
+def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str) -> Rates:
+    """The pilot of a grid scene: the 1-D pilot of each probe line, or of every line
+    (``lines="all"``), each cached as that line's scene's."""
     cells, sources = {}, set()
-    for line in probe_lines(study):
+    todo = (probe_lines(study) if lines == "probes"
+            else list(dict.fromkeys(p.grid for p in study.points)))
+    for line in todo:
         rates = pilot_rates(study.line(dict(line)), particles=particles, cache_dir=cache_dir,
                             echo=echo)
         cells.update({(mhz, fam, line): c for (mhz, fam), c in rates.cells.items()})
         sources.add(rates.source)
     scales = tuple((a, float(min(v)), float(max(v))) for a, v in study.grid
                    if not isinstance(v[0], str))
-    src = (f"{'; '.join(sorted(sources))}; {len(probe_lines(study))} probe lines of the grid "
-           "(corners and centre), each point costed as the nearest")
+    src = (f"{'; '.join(sorted(sources))}; " + (
+        f"{len(todo)} probe lines of the grid (corners and centre), the other lines costed "
+        "from them by inverse-square distance" if lines == "probes" else
+        f"every line of the grid ({len(todo)})"))
     return Rates(cells, source=src, scales=scales)
 
 

@@ -102,18 +102,20 @@ class Rates:
 
     def cell(self, f: float, family: str, grid: tuple = ()) -> Cell:
         """The pilot cell for (f, family) at the grid values ``grid`` (() without a grid):
-        the probed line's own, else the nearest probed line's (numeric axes scaled to their
-        range; a string axis must match)."""
+        the probed line's own, else the inverse-square-distance mean of the probed lines'
+        (numeric axes scaled to their range; a string axis must match) -- the collision
+        rate varies irregularly along any axis, as along f, so this is a guess: a plan of
+        every line is ``pilot_rates(lines="all")``."""
         if not grid:
             return self.cells[(f_key(f), family)]
         key = (f_key(f), family, grid)
         if key in self.cells:
             return self.cells[key]
-        lines = {k[2] for k in self.cells if k[0] == key[0] and k[1] == family}
+        lines = sorted({k[2] for k in self.cells if k[0] == key[0] and k[1] == family}, key=repr)
         scale = {a: (hi - lo) or 1.0 for a, lo, hi in self.scales}
         want = dict(grid)
 
-        def distance(line) -> float:
+        def distance2(line) -> float:
             d = 0.0
             for a, v in line:
                 if isinstance(v, str):
@@ -122,8 +124,17 @@ class Rates:
                     d += ((v - want[a]) / scale[a]) ** 2
             return d
 
-        best = min(sorted(lines, key=repr), key=distance)
-        return self.cells[(key[0], family, best)]
+        weights = [(1.0 / distance2(line), self.cells[(key[0], family, line)]) for line in lines
+                   if math.isfinite(distance2(line))]
+        total = sum(w for w, _ in weights)
+
+        def mean(attr: str) -> float:
+            return sum(w * getattr(c, attr) / c.n for w, c in weights) / total
+
+        first = weights[0][1]
+        return Cell(f, family, first.n, first.t_max, round(mean("collisions") * first.n),
+                    mean("cpu_s") * first.n, mean("D") * first.n,
+                    mean("D_hw") * first.n)
 
     @property
     def kernel_rate(self) -> float:

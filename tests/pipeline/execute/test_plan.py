@@ -187,3 +187,21 @@ def test_bad_input_exits_2_in_one_line(args, needle, tmp_path):
     assert run.stderr.count("\n") == 1 and run.stderr.startswith("bbb: error: ")
     assert needle in run.stderr and run.stdout == ""
 
+
+
+def test_a_map_line_between_two_probed_lines_is_costed_as_their_distance_weighted_mean():
+    from pipeline.execute.plan import Cell, Rates
+    from pipeline.workflow.identity import f_key
+
+    def cell(coll):
+        return Cell(60.0, "rest", 8, 10.0, coll, coll / 1e6)
+
+    lines = {(("contact", "stick"), ("alpha", 0.5)): 100, (("contact", "stick"), ("alpha", 0.9)): 300,
+             (("contact", "slide"), ("alpha", 0.7)): 10_000}
+    rates = Rates({(f_key(60.0), "rest", g): cell(c) for g, c in lines.items()},
+                  scales=(("alpha", 0.5, 0.9),))
+    mid = rates.cell(60.0, "rest", (("contact", "stick"), ("alpha", 0.7)))
+    assert mid.collisions == 200  # equidistant: the mean; the slide line never counts
+    near = rates.cell(60.0, "rest", (("contact", "stick"), ("alpha", 0.6)))
+    assert near.collisions == round((100 / 0.25**2 + 300 / 0.75**2) / (1 / 0.25**2 + 1 / 0.75**2))
+    assert rates.cell(60.0, "rest", (("contact", "stick"), ("alpha", 0.9))).collisions == 300
