@@ -12,7 +12,6 @@ import pytest
 import zarr
 
 from bbb.analysis import stats
-from pipeline.store.status import status_text
 from pipeline.execute.adaptive import (
     CAP,
     OPEN,
@@ -26,6 +25,7 @@ from pipeline.execute.adaptive import (
     remaining,
 )
 from pipeline.execute.run import RunFailed, run_study
+from pipeline.store.status import status_text
 from pipeline.store.study_store import StudyStore
 from pipeline.workflow.load import WorkflowError, parse_workflow
 
