@@ -42,3 +42,20 @@ def test_the_readme_own_study_example_runs_as_written(tmp_path):
     out = subprocess.run([sys.executable, "-c", py], cwd=tmp_path, check=True,
                          capture_output=True, text=True, timeout=300).stdout
     assert "D_lo" in out and "60.0" in out and "72.0" in out and "0.7" in out
+
+
+def test_the_readmes_map_numbers_are_the_committed_benchmarks():
+    """The numbers quoted under "Maps at scale" are read off the results files, not typed."""
+    results = ROOT / "benchmarks" / "results"
+    scale = (results / "maps-scale-2026-11-25.txt").read_text(encoding="utf-8")
+    plan = (results / "maps-plan-2026-11-25.txt").read_text(encoding="utf-8")
+    text = README.split("Maps at scale", 1)[1].split("\n\n", 1)[0]
+
+    def cell(table: str, row: str, col: int) -> str:
+        line = next(ln for ln in table.splitlines() if ln.startswith(f"| {row}"))
+        return line.split("|")[col].strip()
+
+    quoted = [cell(scale, "task graph built", 2), cell(scale, "open_study", 2),
+              cell(scale, "compute wall", 4), cell(plan, "CPU in tasks, s (probes)", 4),
+              cell(plan, "CPU in tasks, s (all)", 4)]
+    assert re.findall(r"\d+\.\d+", text) == quoted
