@@ -112,3 +112,20 @@ def test_open_study_gives_each_point_of_a_whole_map_at_its_axis_values(map_refer
                   contact=str(g["contact"][pi]))
         assert np.array_equal(ds["positions"].sel(**at).values, g["positions"][pi],
                               equal_nan=True), at
+
+
+def test_verify_passes_a_map_and_names_the_point_of_a_corrupted_chunk(map_reference, tmp_path):
+    import shutil
+
+    from pipeline.store.verify import verify_store
+
+    assert verify_store(str(map_reference)).ok
+    path = tmp_path / "bad.zarr"
+    shutil.copytree(map_reference, path)
+    g = zarr.open_group(str(path), mode="r+")
+    pi = line_rows(path, {"alpha": 0.7, "contact": "slide"})[1]  # 60 Hz
+    g["n_collisions"][pi, 0, 0:4] = -1
+    report = verify_store(str(path))
+    assert not report.ok
+    assert any("f = 60 Hz, alpha = 0.7, contact = \"slide\", family rest, chunk 0" in str(p)
+               for p in report.problems), report.problems
