@@ -105,7 +105,7 @@ def _ci(r: pd.Series, col: str) -> str:
 
 
 def _scene_rows(stores: Mapping[str, str], run_log: Mapping | None) -> list[str]:
-    lines = ["| scene | workflow | accuracy | particles × t_max | frequencies × families | chunks "
+    lines = ["| scene | workflow | accuracy | particles × t_max | points × families | chunks "
              "done | task time (sum of chunk_seconds) | wall time of the run |",
              "| --- | --- | --- | --- | --- | --- | --- | --- |"]
     total = 0.0
@@ -124,11 +124,21 @@ def _scene_rows(stores: Mapping[str, str], run_log: Mapping | None) -> list[str]
         wall = (f"{log['wall_s']:.0f} s ({log.get('computed', 0)} chunks computed on "
                 f"{log.get('workers', '?')} workers)" if "wall_s" in log else "–")
         lines.append(f"| {name} | `{log.get('workflow', st.study.source)}` | {acc.preset} | "
-                     f"{acc.n_particles} × {acc.t_max:g} s | {len(st.study.frequencies)} × "
+                     f"{acc.n_particles} × {acc.t_max:g} s | {_points(st.study)} × "
                      f"{len(st.study.families)} | {int(done.sum())}/{done.size} | {secs:.0f} s | "
                      f"{wall} |")
     lines.append(f"\nTotal task time over all scenes: {total:.0f} s ≈ {total / 3600:.2f} core-hours.")
     return lines
+
+
+def _points(study) -> str:
+    """A scene's points as the runs table says them: "124" frequencies, or for a map
+    "234 (26 f × 9 lines of tilt, throw)"."""
+    if not study.grid:
+        return f"{len(study.frequencies)}"
+    lines = len({p.grid for p in study.points})
+    axes = ", ".join(a for a, _ in study.grid)
+    return (f"{len(study.points)} ({len(study.frequencies)} f × {lines} lines of {axes})")
 
 
 def _params_lines(stores: Mapping[str, str]) -> list[str]:
