@@ -9,7 +9,9 @@ frequency's value (pipeline/workflow/study.py), so its chunks are those of the w
 
 Usage errors (bad arguments, a malformed workflow, a store of another workflow) print one line
 ``bbb: error: ...`` to stderr and exit with status 2, without a traceback.  A failed task exits
-with status 1 and names the frequency, family and chunk.
+with status 1 and names the frequency, family and chunk.  ``bbb run`` stopped by Ctrl-C exits
+with status 130, by SIGTERM (``kill``, a batch system ending the job it runs in) with 143; both
+end the run alike: the store's lock is released and, with ``--cluster``, every job cancelled.
 """
 
 from __future__ import annotations
@@ -17,7 +19,10 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import signal
 import sys
+import threading
+from contextlib import contextmanager
 from dataclasses import replace
 from importlib import metadata
 from pathlib import Path
@@ -29,6 +34,11 @@ __all__ = ["main", "default_store_path"]
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
+EXIT_TERMINATED = 128 + signal.SIGTERM
+
+
+class Terminated(KeyboardInterrupt):
+    """SIGTERM during ``bbb run``: unwinds the run as Ctrl-C's KeyboardInterrupt does."""
 
 
 class UsageError(Exception):
@@ -164,9 +174,34 @@ def main(argv: list[str] | None = None) -> int:
     except UsageError as e:
         _error(str(e).removeprefix("bbb: "))
         return EXIT_USAGE
+    except Terminated:
+        _error("terminated (SIGTERM); re-run the same command to resume")
+        return EXIT_TERMINATED
     except KeyboardInterrupt:
         _error("interrupted; re-run the same command to resume")
         return 130
+
+
+@contextmanager
+def _sigterm_as_interrupt():
+    """While ``bbb run`` runs, SIGTERM raises Terminated (a KeyboardInterrupt) in the main
+    thread, so it unwinds like Ctrl-C: the ``finally`` blocks release the store's lock and
+    cancel a --cluster's jobs (Python's default for SIGTERM ends the process at once, leaving
+    SLURM jobs running).  Further SIGTERMs are ignored while that clean-up runs; the previous
+    handler is restored on exit (tests call main() in-process)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield  # signal handlers can only be set from the main thread
+        return
+
+    def handler(signum, frame):
+        signal.signal(signal.SIGTERM, signal.SIG_IGN)
+        raise Terminated
+
+    before = signal.signal(signal.SIGTERM, handler)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, before)
 
 
 def _main(argv: list[str] | None) -> int:
@@ -176,7 +211,8 @@ def _main(argv: list[str] | None) -> int:
     args = _build_parser().parse_args(argv)
     try:
         if args.command == "run":
-            return _cmd_run(args)
+            with _sigterm_as_interrupt():
+                return _cmd_run(args)
         if args.command == "reduce":
             return _cmd_reduce(args)
         if args.command == "accuracy":
