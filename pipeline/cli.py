@@ -21,12 +21,11 @@ import math
 import os
 import signal
 import sys
-import threading
-from contextlib import contextmanager
 from dataclasses import replace
 from importlib import metadata
 from pathlib import Path
 
+from .execute.interrupt import Terminated, sigterm_as_interrupt
 from .store.layout import default_store_path  # importable from here as before
 from .workflow.identity import f_key
 
@@ -35,10 +34,6 @@ __all__ = ["main", "default_store_path"]
 EXIT_USAGE = 2
 EXIT_FAILED = 1
 EXIT_TERMINATED = 128 + signal.SIGTERM
-
-
-class Terminated(KeyboardInterrupt):
-    """SIGTERM during ``bbb run``: unwinds the run as Ctrl-C's KeyboardInterrupt does."""
 
 
 class UsageError(Exception):
@@ -182,28 +177,6 @@ def main(argv: list[str] | None = None) -> int:
         return 130
 
 
-@contextmanager
-def _sigterm_as_interrupt():
-    """While ``bbb run`` runs, SIGTERM raises Terminated (a KeyboardInterrupt) in the main
-    thread, so it unwinds like Ctrl-C: the ``finally`` blocks release the store's lock and
-    cancel a --cluster's jobs (Python's default for SIGTERM ends the process at once, leaving
-    SLURM jobs running).  Further SIGTERMs are ignored while that clean-up runs; the previous
-    handler is restored on exit (tests call main() in-process)."""
-    if threading.current_thread() is not threading.main_thread():
-        yield  # signal handlers can only be set from the main thread
-        return
-
-    def handler(signum, frame):
-        signal.signal(signal.SIGTERM, signal.SIG_IGN)
-        raise Terminated
-
-    before = signal.signal(signal.SIGTERM, handler)
-    try:
-        yield
-    finally:
-        signal.signal(signal.SIGTERM, before)
-
-
 def _main(argv: list[str] | None) -> int:
     from .store.study_store import StoreError
     from .workflow.load import WorkflowError
@@ -211,7 +184,7 @@ def _main(argv: list[str] | None) -> int:
     args = _build_parser().parse_args(argv)
     try:
         if args.command == "run":
-            with _sigterm_as_interrupt():
+            with sigterm_as_interrupt():
                 return _cmd_run(args)
         if args.command == "reduce":
             return _cmd_reduce(args)
