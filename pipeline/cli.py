@@ -9,7 +9,9 @@ frequency's value (pipeline/workflow/study.py), so its chunks are those of the w
 
 Usage errors (bad arguments, a malformed workflow, a store of another workflow) print one line
 ``bbb: error: ...`` to stderr and exit with status 2, without a traceback.  A failed task exits
-with status 1 and names the frequency, family and chunk.
+with status 1 and names the frequency, family and chunk.  ``bbb run`` stopped by Ctrl-C exits
+with status 130, by SIGTERM (``kill``, a batch system ending the job it runs in) with 143; both
+end the run alike: the store's lock is released and, with ``--cluster``, every job cancelled.
 """
 
 from __future__ import annotations
@@ -17,11 +19,13 @@ from __future__ import annotations
 import argparse
 import math
 import os
+import signal
 import sys
 from dataclasses import replace
 from importlib import metadata
 from pathlib import Path
 
+from .execute.interrupt import Terminated, sigterm_as_interrupt
 from .store.layout import default_store_path  # importable from here as before
 from .workflow.identity import f_key
 
@@ -29,6 +33,7 @@ __all__ = ["main", "default_store_path"]
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
+EXIT_TERMINATED = 128 + signal.SIGTERM
 
 
 class UsageError(Exception):
@@ -164,6 +169,9 @@ def main(argv: list[str] | None = None) -> int:
     except UsageError as e:
         _error(str(e).removeprefix("bbb: "))
         return EXIT_USAGE
+    except Terminated:
+        _error("terminated (SIGTERM); re-run the same command to resume")
+        return EXIT_TERMINATED
     except KeyboardInterrupt:
         _error("interrupted; re-run the same command to resume")
         return 130
@@ -176,7 +184,8 @@ def _main(argv: list[str] | None) -> int:
     args = _build_parser().parse_args(argv)
     try:
         if args.command == "run":
-            return _cmd_run(args)
+            with sigterm_as_interrupt():
+                return _cmd_run(args)
         if args.command == "reduce":
             return _cmd_reduce(args)
         if args.command == "accuracy":

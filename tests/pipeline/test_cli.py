@@ -107,6 +107,16 @@ def test_failed_task_exits_1_naming_the_chunk(tiny_workflow, tmp_path):
     assert not store_arrays(tmp_path / "f.zarr")["done"][0, 0, 0]
 
 
+
+def test_bbb_run_called_in_process_puts_sigterms_handler_back(tmp_path):
+    """`bbb run` turns SIGTERM into an interrupt while it runs (tests/cluster/test_map_on_slurm.py
+    shows it cancelling SLURM jobs); main() called from Python leaves the handler as it was."""
+    import signal
+
+    before = signal.getsignal(signal.SIGTERM)
+    assert main(["run", str(tmp_path / "missing.toml")]) == 2
+    assert signal.getsignal(signal.SIGTERM) is before
+
 def _snapshot(path) -> dict[str, bytes]:
     out = {}
     for root, _, files in os.walk(path):
