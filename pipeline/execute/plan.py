@@ -164,6 +164,7 @@ class TaskRow:
     collisions: float
     cpu_s: float
     why: str  # fixed | target | resolved | law? | cap
+    grid: tuple = ()  # the point's grid values (a map's)
 
 
 @dataclass(frozen=True)
@@ -255,7 +256,7 @@ def predict(study: Study, rates: Rates, workers: int, overheads: Overheads = Ove
             chunk_cpu = acc.chunk_size * acc.t_max * cell.per_particle_s / r
             chunks = n // acc.chunk_size
             rows.append(TaskRow(f, fam.name, n, chunks, n * acc.t_max * cell.per_particle_s,
-                                chunks * chunk_cpu, why))
+                                chunks * chunk_cpu, why, point.grid))
             durations += [chunk_cpu + overheads.per_task] * chunks
     target = getattr(acc, "target_ci", None)
     size = (f"target_ci {target:g} (chunks of {acc.chunk_size})" if target is not None else
@@ -282,7 +283,10 @@ def plan_table(plan: Plan) -> str:
     groups: dict[tuple[str, str], list[TaskRow]] = {}
     for row in sorted(plan.rows, key=lambda r: r.f):
         groups.setdefault((_band(row.f), row.family), []).append(row)
-    head = (f"{'band (Hz)':<10} {'family':<10} {'freqs':>5} {'particles/f':>12} {'chunks':>6} "
+    grid = any(r.grid for r in plan.rows)  # a map: its rows count points, not frequencies
+    w = 6 if grid else 5
+    head = (f"{'band (Hz)':<10} {'family':<10} {'points' if grid else 'freqs':>{w}} "
+            f"{'particles/pt' if grid else 'particles/f':>12} {'chunks':>6} "
             f"{'coll/particle-s':>15} {'collisions':>10} {'CPU-s':>8} {'share':>6}  stop")
     lines = [plan.header, f"cost model: {plan.source}; {plan.rate:.3g} collisions per task-s "
              f"(kernel rate x {plan.overheads.in_task:g} inside pipeline tasks)", "", head]
@@ -294,12 +298,12 @@ def plan_table(plan: Plan) -> str:
         whys = sorted({r.why for r in rows})
         why = ", ".join(f"{w} {sum(r.why == w for r in rows)}" for w in whys)
         cpu = sum(r.cpu_s for r in rows)
-        lines.append(f"{band:<10} {fam:<10} {len(rows):>5} {n_text:>12} "
+        lines.append(f"{band:<10} {fam:<10} {len(rows):>{w}} {n_text:>12} "
                      f"{sum(r.chunks for r in rows):>6} {pps:>15.4g} "
                      f"{sum(r.collisions for r in rows):>10.3g} {cpu:>8.1f} "
                      f"{100 * cpu / total_cpu:>5.1f}%  {why}")
-    freqs = len({r.f for r in plan.rows})
-    lines.append(f"{'total':<10} {'':<10} {freqs:>5} {'':>12} {plan.chunks:>6} {'':>15} "
+    freqs = len({(r.f, r.grid) for r in plan.rows})
+    lines.append(f"{'total':<10} {'':<10} {freqs:>{w}} {'':>12} {plan.chunks:>6} {'':>15} "
                  f"{plan.collisions:>10.3g} {plan.cpu_s:>8.1f} {100.0:>5.1f}%")
     lines.append("")
     lines.append(f"predicted: {plan.cpu_s:.0f} CPU-s in tasks; wall {plan.wall_s:.0f} s "

@@ -205,3 +205,19 @@ def test_a_map_line_between_two_probed_lines_is_costed_as_their_distance_weighte
     near = rates.cell(60.0, "rest", (("contact", "stick"), ("alpha", 0.6)))
     assert near.collisions == round((100 / 0.25**2 + 300 / 0.75**2) / (1 / 0.25**2 + 1 / 0.75**2))
     assert rates.cell(60.0, "rest", (("contact", "stick"), ("alpha", 0.9))).collisions == 300
+
+
+def test_a_maps_plan_counts_its_points_not_its_frequencies():
+    from pipeline.execute.plan import Cell, Rates, plan_table, predict
+    from pipeline.workflow.identity import f_key
+    from pipeline.workflow.load import parse_workflow
+
+    from ..helpers import TINY
+
+    study = parse_workflow(TINY + "[grid]\nalpha = [0.5, 0.7]\n", source="m.toml")
+    cells = {(f_key(p.f), fam.name, p.grid): Cell(p.f, fam.name, 4, 10.0, 4000, 0.01)
+             for p in study.points for fam in study.families}
+    text = plan_table(predict(study, Rates(cells, scales=(("alpha", 0.5, 0.7),)), workers=2))
+    head = next(ln for ln in text.splitlines() if ln.startswith("band"))
+    total = next(ln for ln in text.splitlines() if ln.startswith("total"))
+    assert head.split()[3] == "points" and total.split()[1] == "4"  # 2 f x 2 alpha
