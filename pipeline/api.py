@@ -257,8 +257,8 @@ def attach_tables(ds: xr.Dataset, tables: dict[str, pd.DataFrame]) -> xr.Dataset
     values, else attached as ``<table>_<column>`` (e.g. ``counters_n_left_cell``: per family,
     where the store's ``n_left_cell`` is per particle).  Each variable's attributes: ``units``
     (:func:`pipeline.tables.units.column_unit`, as the Parquet metadata), ``long_name``,
-    ``source`` (``bbb reduce: <table> table``) and ``column``."""
-    from .tables.dataset import tables_dataset
+    ``source`` (``bbb reduce: <table> table``), ``table`` and ``column``."""
+    from .tables.dataset import same_values, tables_dataset
 
     axes = _grid_axes(ds)
     families = [str(f) for f in ds["family"].values] if "family" in ds.coords else []
@@ -269,9 +269,9 @@ def attach_tables(ds: xr.Dataset, tables: dict[str, pd.DataFrame]) -> xr.Dataset
     out = ds.copy()
     for name, var in tds.data_vars.items():
         if name in out.variables:
-            if _same_values(out[name].variable, var.variable):
+            if same_values(out[name], var):
                 continue
-            name = f"{var.attrs['source'].rsplit(': ', 1)[-1].split()[0]}_{name}"
+            name = f"{var.attrs['table']}_{name}"
         out[name] = var
     return out
 
@@ -295,14 +295,3 @@ def plot_store(path: str | os.PathLike, out_dir: str | os.PathLike, *,
     from .plot.figures import plot_dataset
 
     return plot_dataset(reduced_dataset(path), out_dir, formats=formats)
-
-
-def _same_values(a, b) -> bool:
-    """Two variables hold the same values (broadcast against each other, NaN equal NaN)."""
-    import xarray as xr
-
-    try:
-        x, y = xr.broadcast(xr.DataArray(a), xr.DataArray(b))
-        return bool(x.equals(y))
-    except (ValueError, TypeError):
-        return False

@@ -124,8 +124,8 @@ class Rates:
                     d += ((v - want[a]) / scale[a]) ** 2
             return d
 
-        weights = [(1.0 / distance2(line), self.cells[(key[0], family, line)]) for line in lines
-                   if math.isfinite(distance2(line))]
+        weights = [(1.0 / d2, self.cells[(key[0], family, line)])
+                   for d2, line in ((distance2(line), line) for line in lines) if math.isfinite(d2)]
         total = sum(w for w, _ in weights)
 
         def mean(attr: str) -> float:

@@ -95,7 +95,7 @@ def create_layout(g: zarr.Group, study: Study) -> None:
     n_base = max(1, len(study.base_frequencies) if not study.grid else len(study.points))
 
     def coord(name, values, dtype, units, long_name, dim=None, chunk=None):
-        arr = g.create_array(name, shape=(len(values),), dtype=dtype if dtype is not str else str,
+        arr = g.create_array(name, shape=(len(values),), dtype=dtype,
                              chunks=(chunk or max(1, len(values)),),
                              dimension_names=[dim or name],
                              attributes={"units": units, "long_name": long_name})

@@ -14,7 +14,8 @@ point is absent (a grid point left out as invalid, or not computed yet).
   are variables over the point dimensions and ``family``; a column two tables share keeps
   its plain name where the values agree, else it is ``<table>_<column>``.
 * Every variable has ``units`` (:mod:`pipeline.tables.units`) and ``long_name``
-  (:data:`LONG_NAMES`, else what the column is called in its table), and ``source``; flag
+  (:data:`LONG_NAMES`, else what the column is called in its table), ``source``, ``table``
+  and ``column``; flag
   columns (True/False/unknown) are floats 1/0/NaN and text columns strings ("" where
   absent), so ``to_netcdf`` writes the Dataset as it is.  Dataset attributes: ``Conventions``
   (CF-1.10), ``title``, ``source`` and what the caller adds (the store's fingerprint).
@@ -30,7 +31,8 @@ import xarray as xr
 
 from .units import column_unit
 
-__all__ = ["LONG_NAMES", "FAMILY_STEMS", "CONVENTIONS", "tables_dataset", "long_name"]
+__all__ = ["LONG_NAMES", "FAMILY_STEMS", "CONVENTIONS", "tables_dataset", "long_name",
+           "same_values"]
 
 CONVENTIONS = "CF-1.10"
 
@@ -90,7 +92,7 @@ def tables_dataset(tables: Mapping[str, pd.DataFrame],
     for name, df in per_point:
         for var, values in _variables(name, df, list(axes), list(families)):
             if var in out.variables:
-                if _same(out[var], values):
+                if same_values(out[var], values):
                     continue
                 var = f"{name}_{var}"
             out[var] = values
@@ -162,11 +164,14 @@ def _array(series: pd.Series, col: str, table: str, unit_of: str | None = None) 
         da = da.fillna("").astype(str)
     unit = column_unit(unit_of or col)
     da.attrs = {"units": unit, "long_name": long_name(col, table),
-                "source": f"bbb reduce: {table} table", "column": unit_of or col}
+                "source": f"bbb reduce: {table} table", "table": table,
+                "column": unit_of or col}
     return da
 
 
-def _same(a: xr.DataArray, b: xr.DataArray) -> bool:
+def same_values(a: xr.DataArray, b: xr.DataArray) -> bool:
+    """Two variables hold the same values: aligned on their coordinates and broadcast against
+    each other, NaN equal to NaN."""
     try:
         x, y = xr.align(a, b, join="outer")
         x, y = xr.broadcast(x, y)

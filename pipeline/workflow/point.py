@@ -7,6 +7,7 @@ point's f); :class:`Point` is what the store, the tasks and the tables index by.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -16,7 +17,8 @@ from bbb.params import PRESETS, Params
 
 from .identity import point_key
 
-__all__ = ["Grid", "Point", "resolve_params", "fmt_value", "combinations", "CONDITIONAL_AXES"]
+__all__ = ["Grid", "Point", "resolve_params", "fmt_value", "combinations", "CONDITIONAL_AXES",
+           "elsewhere"]
 
 #: a grid: (axis, values) per [grid] axis, in the workflow's order
 Grid = tuple[tuple[str, tuple[Any, ...]], ...]
@@ -24,6 +26,20 @@ Grid = tuple[tuple[str, tuple[Any, ...]], ...]
 #: axes that apply only where another key has a value, {axis: (key, value, the axis's value
 #: elsewhere)}: mu, the Coulomb friction, is 0 under every other contact model (bbb.Params)
 CONDITIONAL_AXES: dict[str, tuple[str, Any, Any]] = {"mu": ("contact", "coulomb", 0.0)}
+
+
+def elsewhere(axis: str, values: Mapping[str, Any]):
+    """The value a conditional axis (:data:`CONDITIONAL_AXES`) takes at a point whose other
+    keys are ``values`` (overrides and grid values) when its condition fails there; None
+    when the axis is not conditional or its condition holds (a key absent from ``values``
+    has bbb.Params' default)."""
+    if axis not in CONDITIONAL_AXES:
+        return None
+    other, when, value = CONDITIONAL_AXES[axis]
+    return None if values.get(other, _PARAM_DEFAULTS[other]) == when else value
+
+
+_PARAM_DEFAULTS = {f.name: f.default for f in dataclasses.fields(Params)}
 
 
 def combinations(grid: Grid, overrides: Mapping[str, Any]):
@@ -37,9 +53,10 @@ def combinations(grid: Grid, overrides: Mapping[str, Any]):
     seen = set()
     for combo in itertools.product(*(values for _, values in grid)):
         pairs = dict(zip(names, combo, strict=True))
-        for a, (other, value, elsewhere) in CONDITIONAL_AXES.items():
-            if a in pairs and pairs.get(other, overrides.get(other, "stick")) != value:
-                pairs[a] = elsewhere
+        for a in CONDITIONAL_AXES.keys() & pairs.keys():
+            other = elsewhere(a, {**overrides, **pairs})
+            if other is not None:
+                pairs[a] = other
         out = tuple(pairs.items())
         if out not in seen:
             seen.add(out)

@@ -29,7 +29,7 @@ from bbb.params import Params
 
 from .identity import chunk_seed, f_key, point_key
 from .keys import Accuracy, Analysis, Family, GridRefine, Observables, RefineTable
-from .point import Grid, Point, combinations, fmt_value, resolve_params
+from .point import Grid, Point, combinations, elsewhere, fmt_value, resolve_params
 from .schema import InputError, as_dict, line_of
 from .serial import drop_none
 
@@ -159,7 +159,7 @@ class Study:
         overrides = dict(self.overrides)
         for a, axis in self.grid:
             v = values[a]
-            if v not in axis and not _elsewhere(a, v, {**self.overrides, **values}):
+            if v not in axis and v != elsewhere(a, {**self.overrides, **values}):
                 raise ValueError(f"{a} = {fmt_value(v)} is not on the grid; allowed: "
                                  + ", ".join(fmt_value(x) for x in axis))
             if a == "contact" and v == "stick":
@@ -176,13 +176,6 @@ class Study:
         return replace(self, overrides=overrides, frequencies=freqs, grid=(), invalid="refuse",
                        refined=tuple(f for f in self.refined if f in freqs), stored_points=(),
                        text=text)
-
-    def skipped(self) -> tuple:
-        """The keys (:func:`pipeline.workflow.identity.point_key`) of the grid's combinations
-        left out as invalid (``invalid = "skip"``), in axis order; () when none is."""
-        have = {p.key for p in self.points}
-        keys = (point_key(f, grid) for grid in self._grid_values() for f in self.frequencies)
-        return tuple(k for k in keys if k not in have)
 
     def _grid_values(self):
         """Every combination of the grid axes' values as (axis, value) pairs, in axis order
@@ -323,16 +316,6 @@ class Study:
     def fingerprint(self) -> str:
         blob = json.dumps(self.data_identity(), sort_keys=True, default=_json_default)
         return hashlib.sha256(blob.encode()).hexdigest()
-
-
-def _elsewhere(axis: str, value: Any, values: Mapping[str, Any]) -> bool:
-    """Whether ``value`` is the value a conditional axis takes where its condition fails."""
-    from .point import CONDITIONAL_AXES
-
-    if axis not in CONDITIONAL_AXES:
-        return False
-    other, when, elsewhere = CONDITIONAL_AXES[axis]
-    return value == elsewhere and values.get(other, "stick") != when
 
 
 def _json_default(o):
