@@ -12,6 +12,7 @@ run by :func:`bbb.simulate`) made.  None of them is hashed into the kernel ident
 ``approx``       the flat-floor spiral and k = 2 v f / g (paper Eqs. 7–9)
 ``extrema``      significant extrema of a noisy curve with CIs
 ``liftoff``      the lowest frequency at which a particle at rest can lift off
+``period1``      where the flat-floor 1/1 orbit exists (Γ₁) and stays stable (Γ')
 ``lyapunov``     largest Lyapunov exponent from two nearby trajectories
 ================ =========================================================================
 

@@ -26,6 +26,7 @@ Modules (every public name is re-exported here, so ``from bbb.analysis.stats imp
 ``rare``        the rare-mover rule: D's CI when a few particles carry D (used by bootstrap)
 ``ergodicity``  EB, its Brownian value, and the calibrated ergodicity verdict
 ``inputs``      shape and finiteness checks shared by the above
+``proportion``  Wilson interval of a share, Newcombe's of a difference of two shares
 =============== ==========================================================================
 """
 

@@ -17,6 +17,7 @@ import numpy as np
 import pandas as pd
 
 from bbb.analysis.extrema import Extremum
+from bbb.analysis.period1 import frequency_at, gamma_prime
 
 from ...claims import record as _claims
 from ...claims.measures import extremum, growth, onset_measure, table_value
@@ -39,18 +40,12 @@ from .measures import (
     spiral_closeness,
 )
 
-__all__ = ["CLAIMS", "MAIN", "K_TOL", "period1_limit", "spiral_closeness", "families", "evaluate"]
+__all__ = ["CLAIMS", "MAIN", "K_TOL", "spiral_closeness", "families", "evaluate"]
 
 _AROUND = ("'around f0' in the paper; ± 2 Hz = the spacing of the landmarks it names "
            "(58, 60, 62 Hz) — a value read off its Fig. 2, not a fit")
 _K_WHY = ("k = 2 v_y⁺ f / g with the maximal v_y⁺ read off the paper's Fig. 3; ± 0.15 in k "
           "is ± 8–12 mm/s at 60–90 Hz, the width of the spiral's outer edge in that figure")
-
-
-def period1_limit(alpha: float) -> float:
-    """Γ above which the flat-floor period-1 (1/1 locked) orbit is unstable (Luck & Mehta 1993):
-    Γ₂ = sqrt((π(1-α)/(1+α))² + (2(1+α²)/(1+α)²)²); 1.1707 for α = 0.7."""
-    return math.hypot(math.pi * (1 - alpha) / (1 + alpha), 2 * (1 + alpha**2) / (1 + alpha) ** 2)
 
 
 # -------------------------------------------------------------------------------------------
@@ -77,8 +72,8 @@ def _note_54(ctx) -> str:
     p = ctx.get("params")
     if p is None:
         return ""
-    g2 = period1_limit(p["alpha"])
-    f2 = math.sqrt(g2 * p["g"] / p["A"]) / (2 * math.pi)
+    g2 = gamma_prime(p["alpha"])
+    f2 = frequency_at(g2, p["A"], p["g"])
     falling, f_low = _falling_curves(ctx)
     seen = (f"; the D of {', '.join(falling)} indeed falls from the lowest f studied "
             f"({f_low:g} Hz) to 57 Hz without a significant rise" if falling else "")

@@ -29,12 +29,12 @@ from ...claims.markdown import markdown_table, md_cell
 from ...claims.measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
 from ...claims.record import Row
 from ...tables.collisions import as_store
-from .claims import CLAIMS, evaluate, period1_limit  # evaluate: importable from here as before
+from .claims import CLAIMS, evaluate  # evaluate: importable from here as before
 from .committed import CLAIMS_HEADING, claim_rows
 from .measures import DEPTH_FRACTION, curve_extrema, curves, spiral_closeness
 
 __all__ = ["Row", "CLAIMS", "curve_extrema", "onset", "evaluate", "write_report",
-           "spiral_closeness", "period1_limit"]
+           "spiral_closeness"]
 
 _fmt_d = fmt_d
 _row_at = row_at

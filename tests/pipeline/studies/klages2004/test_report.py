@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.studies.klages2004.report import CLAIMS, evaluate, onset, period1_limit, write_report
+from pipeline.studies.klages2004.report import CLAIMS, evaluate, onset, write_report
 
 from ...figure_store import tiny_store
 
@@ -86,10 +86,6 @@ def test_the_loop_row_finds_where_k_max_steps_up():
     rows, _ = evaluate({"locking": lock})
     row = _row(rows, "two-loop spiral")
     assert row.verdict == "agrees" and "spacing Δf = 10.0 Hz" in row.measured
-
-
-def test_the_period_1_stability_limit_is_luck_and_mehtas():
-    assert period1_limit(0.7) == pytest.approx(1.1707, abs=1e-4)
 
 
 def test_claims_without_their_table_are_not_measured():

@@ -1,0 +1,53 @@
+"""A line of the D(f, α) map against the committed D(f) curve of the scene without a grid at the
+same parameters: where they share frequencies, do they agree within their combined CIs?
+
+At a shared frequency the two D's agree when |D_map − D_ref| ≤ sqrt(h_map² + h_ref²), each h
+the half-width of the 95 % CI on the side facing the other value (the CI of a difference of
+two independent estimates; where the two runs share chunks, as a map line and the scene with
+its seed do, the estimates are positively correlated and the test is lenient, a consistency
+check).  Resolved zeros are judged at their scene's resolution: a point whose run stopped as
+"resolved zero" (CI half-width ≤ ``d_resolved`` at a D that small) has h at least that
+``d_resolved``.  A frequency where either estimator failed (no D) is not compared and is
+counted as such.  Units: f in Hz, D in mm²/s.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+__all__ = ["RESOLVED_ZERO", "CUT_COLUMNS", "compare_cut"]
+
+RESOLVED_ZERO = "resolved zero"
+CUT_COLUMNS = ("f", "D", "D_lo", "D_hi", "stop", "D_ref", "D_ref_lo", "D_ref_hi", "stop_ref",
+               "d_resolved", "d_resolved_ref", "agree")
+
+
+def _half(D, lo, hi, other, stop, d_res):
+    h = np.where(other >= D, hi - D, D - lo)
+    return np.where(stop == RESOLVED_ZERO, np.maximum(h, d_res), h)
+
+
+def compare_cut(line: pd.DataFrame, ref: pd.DataFrame, d_resolved: float,
+                d_resolved_ref: float) -> pd.DataFrame:
+    """One row per frequency the map's ``line`` and the reference table ``ref`` share (to
+    1 mHz; columns f, D, D_lo, D_hi, stop in both): :data:`CUT_COLUMNS`, ``agree`` 1/0, NaN
+    where either D is missing (estimator failed)."""
+    a = line.assign(_k=np.round(line["f"].to_numpy(float) * 1000).astype(np.int64))
+    b = ref.assign(_k=np.round(ref["f"].to_numpy(float) * 1000).astype(np.int64))
+    stop_b = b["stop"] if "stop" in b else pd.Series("", index=b.index)
+    m = a[["_k", "f", "D", "D_lo", "D_hi", "stop"]].merge(
+        b.assign(stop_ref=stop_b)[["_k", "D", "D_lo", "D_hi", "stop_ref"]].rename(
+            columns={"D": "D_ref", "D_lo": "D_ref_lo", "D_hi": "D_ref_hi"}), on="_k")
+    D, Dr = m["D"].to_numpy(float), m["D_ref"].to_numpy(float)
+    h = _half(D, m["D_lo"].to_numpy(float), m["D_hi"].to_numpy(float), Dr,
+              m["stop"].to_numpy(str), d_resolved)
+    hr = _half(Dr, m["D_ref_lo"].to_numpy(float), m["D_ref_hi"].to_numpy(float), D,
+               m["stop_ref"].to_numpy(str), d_resolved_ref)
+    with np.errstate(invalid="ignore"):
+        agree = (np.abs(D - Dr) <= np.hypot(h, hr)).astype(float)
+    agree[~(np.isfinite(D) & np.isfinite(Dr) & np.isfinite(h) & np.isfinite(hr))] = math.nan
+    m = m.assign(d_resolved=d_resolved, d_resolved_ref=d_resolved_ref, agree=agree)
+    return m[list(CUT_COLUMNS)].sort_values("f").reset_index(drop=True)
