@@ -48,8 +48,8 @@ from bbb import Params
 from bbb.analysis.period1 import frequency_at, gamma_1, gamma_prime
 from bbb.analysis.stats.proportion import share_difference, wilson
 
-from ...claims.record import Band, Claim, Measured, Part, Quantity, judge, measure
 from ...claims.rank import rank_trend
+from ...claims.record import Band, Claim, Measured, Part, Quantity, judge, measure
 from .lines import cut, first_max_above, first_reaching, judged_lines, onset
 
 __all__ = ["MAP", "LOCKING", "R25", "CUTS", "ONSET_TOL", "LEVEL_SHARE", "P_TREND", "NEAR_ONSET",
