@@ -339,6 +339,10 @@ def _cmd_plan(args) -> int:
     if rate is not None:
         rates = rates.with_rate(rate, Path(args.kernel_rate).name)
     print(plan_table(predict(study, rates, args.workers or os.cpu_count() or 1)))
+    if study.refine is not None or study.grid_refine is not None:
+        which = "[grid.refine]" if study.grid_refine is not None else "[frequencies] refine"
+        print(f"not priced: the points refinement ({which}) adds where D changes -- the plan "
+              "covers the points the workflow lists; a refined run costs more")
     return 0
 
 

@@ -221,3 +221,18 @@ def test_a_maps_plan_counts_its_points_not_its_frequencies():
     head = next(ln for ln in text.splitlines() if ln.startswith("band"))
     total = next(ln for ln in text.splitlines() if ln.startswith("total"))
     assert head.split()[3] == "points" and total.split()[1] == "4"  # 2 f x 2 alpha
+
+
+@pytest.mark.parametrize("refine, says", [
+    ("\n[grid]\nalpha = [0.6, 0.7]\n\n[grid.refine]\nf = 0.5\n", "[grid.refine]"),
+    ("\n[grid]\nalpha = [0.6, 0.7]\n", None),
+])
+def test_the_plan_says_refinement_is_not_priced(refine, says, tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    wf = tmp_path / "w.toml"
+    wf.write_text(PLAN_TINY.replace("[families.rest]", refine + "\n[families.rest]"))
+    assert main(["plan", str(wf), "--workers", "2", "--pilot-particles", "2"]) == 0
+    out = capsys.readouterr().out
+    assert ("not priced" in out) == (says is not None)
+    if says:
+        assert says in out
