@@ -11,11 +11,18 @@ frequencies sit on the 1 mHz grid, other values on a 1e-9 grid, so a point added
 of the data at the points before it only, and the same on every machine.  Repeated on the grown
 map until nothing is added, every extremum and every significant jump along an axis ends with
 neighbours at most that axis's resolution apart.
+
+Only the lines through the workflow's own values are refined (``own``): along f the lines at
+the grid's listed values, along another axis the lines at the listed frequencies (and the
+other axes' listed values).  A value refinement added between two listed ones holds a few
+points, not a curve: refining along it would fill it in point by point, round after round,
+without bound on the cost -- measured on a D(f, α) map, whose rounds kept adding 50-100
+points each while its listed lines had long converged.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 
@@ -33,15 +40,19 @@ NewPoint = tuple[float, tuple[tuple[str, object], ...]]  # (f, grid values)
 
 
 def refine_grid(points: Sequence[Point], table: np.ndarray, rule: GridRefine, *,
-                ci: float = 0.95) -> list[NewPoint]:
+                ci: float = 0.95, own: Mapping[str, Sequence] | None = None) -> list[NewPoint]:
     """The points to add to a map of ``points`` whose value and CI at each is ``table`` (one
     row (value, lo, hi) per point, NaN where unknown), by ``rule``; in a deterministic order
     (axis by axis as ``rule.to`` gives them, then line by line in point order), none of them
-    already a point."""
+    already a point.  ``own``: the workflow's own values per axis (``"f"``: its frequencies,
+    Hz); only lines through them are refined (module docstring); None: every line."""
     have = {p.key for p in points}
+    keep = None if own is None else {a: {_value_key(a, v) for v in vs} for a, vs in own.items()}
     out: dict[tuple, NewPoint] = {}
     for axis, res in rule.to:
-        for members in _lines(points, axis).values():
+        for line_key, members in _lines(points, axis).items():
+            if keep is not None and not _through_own(line_key, axis, keep):
+                continue
             x = np.array([_coord(points[i], axis) for i in members], dtype=np.float64)
             rows = table[members]
             gaps = split_gaps(x, rows[:, 0], rows[:, 1], rows[:, 2], ci=ci,
@@ -66,6 +77,21 @@ def _lines(points: Sequence[Point], axis: str) -> dict[tuple, list[int]]:
         key = rest if axis == "f" else (f_key(p.f), rest)
         lines.setdefault(key, []).append(i)
     return lines
+
+
+def _value_key(axis: str, v) -> object:
+    """A value as compared with the workflow's own: f to 1 mHz, numbers to VALUE_DIGITS."""
+    if axis == "f":
+        return f_key(float(v))
+    return v if isinstance(v, str) else round(float(v), VALUE_DIGITS)
+
+
+def _through_own(line_key: tuple, axis: str, keep: Mapping[str, set]) -> bool:
+    """Whether the line keyed ``line_key`` (as :func:`_lines` keys it) lies on own values."""
+    rest = line_key if axis == "f" else line_key[1]
+    if axis != "f" and "f" in keep and line_key[0] not in keep["f"]:
+        return False
+    return all(a not in keep or _value_key(a, v) in keep[a] for a, v in rest)
 
 
 def _coord(p: Point, axis: str) -> float:

@@ -172,7 +172,8 @@ class Waves:
         done = self.store.done()
         table = np.array([self._refined_quantity(fi, done, rule.quantity)
                           for fi in range(len(study.points))])
-        new = refine_grid(study.points, table, rule, ci=study.analysis.ci)
+        own = {"f": study.base_frequencies, **{a: vs for a, vs in study.grid}}
+        new = refine_grid(study.points, table, rule, ci=study.analysis.ci, own=own)
         if not new:
             return False
         self.rounds += 1

@@ -52,6 +52,25 @@ def test_an_extremum_along_f_splits_both_its_gaps_on_the_millihertz_grid():
     assert sorted(new) == [(52.5, (("alpha", 0.7),)), (57.5, (("alpha", 0.7),))]
 
 
+def test_only_lines_through_the_workflows_own_values_are_refined():
+    """α = 0.6 was added between the listed 0.5 and 0.7 (at 60 and 70 Hz); its jump along f
+    is not refined: only the listed lines are curves."""
+    pts = points("alpha", (0.5, 0.6, 0.7), (60.0, 70.0))
+    rows = table([(10, 1), (11, 1), (10, 1), (90, 1), (10, 1), (11, 1)])
+    rule = GridRefine((("f", 1.0),), extrema=False, jumps=True)
+    own = {"f": (60.0, 70.0), "alpha": (0.5, 0.7)}
+    assert refine_grid(pts, rows, rule, own=own) == []
+    assert refine_grid(pts, rows, rule) == [(65.0, (("alpha", 0.6),))]  # without own: filled
+
+
+def test_along_an_axis_only_the_listed_frequencies_are_refined():
+    pts = points("alpha", (0.5, 0.9), (60.0, 60.5))
+    rows = table([(10, 1), (10, 1), (90, 1), (90, 1)])  # a jump along α at both frequencies
+    rule = GridRefine((("alpha", 0.05),), extrema=False, jumps=True)
+    new = refine_grid(pts, rows, rule, own={"f": (60.0,), "alpha": (0.5, 0.9)})
+    assert new == [(60.0, (("alpha", 0.7),))]
+
+
 def test_each_grid_line_is_refined_on_its_own():
     """Along f, the line alpha = 0.5 has a jump and the line alpha = 0.7 none."""
     pts = points("alpha", (0.5, 0.7), (60.0, 70.0))
