@@ -15,48 +15,12 @@ from pipeline.studies.transport.claims import (
     LINES,
     SLIDING,
     SLIDING_GEOMETRY,
-    reversals,
-    significant_signs,
     sliding_liftoff,
 )
+from pipeline.studies.transport.signs import significant_signs
 from pipeline.workflow.scenes import load_scene
 
 F = np.arange(50.0, 100.1, 2.0)  # the scenes' 26 frequencies
-SE = 0.5  # mm/s: standard error of each v
-
-
-def _noisy(v_true: np.ndarray, rng) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    v = v_true + SE * rng.standard_normal(v_true.size)
-    return v, v - 1.96 * SE, v + 1.96 * SE
-
-
-def test_a_current_free_curve_shows_a_significant_v_in_at_most_5_percent_of_curves():
-    rng = np.random.default_rng(1)
-    hits = sum(bool(significant_signs(*_noisy(np.zeros(F.size), rng)).any()) for _ in range(2000))
-    # Bonferroni over 26 points: family-wise 1 − (1 − α/26)^26 ≈ 4.9 %; 7 % is 4 binomial SDs
-    # above that, while unadjusted 95 % CIs would flag 1 − 0.95^26 ≈ 74 % of curves.
-    assert hits / 2000 <= 0.07, hits
-
-
-def test_a_current_free_curve_almost_never_shows_a_reversal():
-    rng = np.random.default_rng(2)
-    n = sum(bool(reversals(F, significant_signs(*_noisy(np.zeros(F.size), rng))))
-            for _ in range(2000))
-    assert n / 2000 <= 0.01, n
-
-
-def test_a_current_that_changes_sign_is_found_as_one_reversal_near_its_zero():
-    rng = np.random.default_rng(3)
-    found = []
-    for _ in range(200):  # v = 3 SE ... -3 SE ... crossing zero at 75 Hz, 8 SE at the ends
-        r = reversals(F, significant_signs(*_noisy(-8 * SE * np.tanh((F - 75.0) / 8.0), rng)))
-        found.append(len(r) == 1 and abs(r[0] - 75.0) <= 6.0)
-    assert np.mean(found) >= 0.9
-
-
-def test_pure_one_sign_drift_has_no_reversal():
-    s = significant_signs(np.full(F.size, -3.0), np.full(F.size, -3.5), np.full(F.size, -2.5))
-    assert (s == -1).all() and reversals(F, s) == []
 
 
 def _table(v, lo, hi, d=None) -> pd.DataFrame:
@@ -73,7 +37,7 @@ def test_the_claim_rows_turn_on_synthetic_tables_with_known_answers():
                  for s in CONVEYORS}}
     rows = evaluate(CLAIMS, {"tables": tables})
     assert [r.verdict for r in rows] == ["agrees", "agrees", "disagrees", "agrees",
-                                         "not measured"], rows
+                                         "not measured", "not measured"], rows
     tables[HOPPING[0]] = _table(bumpy, bumpy - 0.3, bumpy + 0.3)  # a current where none may be
     for s in CONVEYORS:
         tables[s] = _table(-bumpy, -bumpy - 0.3, -bumpy + 0.3)  # reversed sign: still none
@@ -82,11 +46,6 @@ def test_the_claim_rows_turn_on_synthetic_tables_with_known_answers():
     wave = 6.0 * np.sin(2 * np.pi * (F - 50.0) / 40.0)  # changes sign at 70 Hz
     tables[CONVEYORS[0]] = _table(wave, wave - 0.3, wave + 0.3)
     assert evaluate(CLAIMS, {"tables": tables})[2].verdict == "agrees"
-
-
-def test_rounding_level_currents_of_particles_at_rest_are_not_significant():
-    v = np.full(F.size, -6e-16)  # a CI of rounding size that excludes 0
-    assert not significant_signs(v, v - 1e-16, v + 1e-16).any()
 
 
 def test_unsteady_frequencies_are_left_out_of_every_rule():
