@@ -80,7 +80,9 @@ from .reversal import (
     REVERSAL_LINES,
     REVERSAL_MAP,
     airborne,
+    f_ranges,
     f_reversals,
+    floor_label,
     hopping_boundary,
     judge_boundary,
     line_label,
@@ -227,17 +229,19 @@ def v_reversals(claim: Claim, ctx) -> Measured:
     if not along_f and not quiet:
         return Measured(missing="no conveyor scene reduced")
     tilted = {sc: (v, ctx["tables"].get(sc)) for sc, v in GEOMETRIES.items() if v["tilt"] != 0}
-    by_floor: dict[tuple, list] = {}
-    for floor, f, (a, b, k) in throw_reversals(throw_cuts(tilted)):
-        by_floor.setdefault(floor, []).append(f"{f:g} Hz: ψ {a:g}°→{b:g}° ({_sign(k)} at {b:g}°)")
-    along_psi = [f"{line_label(dict(floor, throw=0)).split(', ψ')[0]}"
-                 f"{''.join(', ' + str(v) for k, v in floor if k == 'contact')}: "
-                 f"{len(found)} ({'; '.join(found)})" for floor, found in by_floor.items()]
-    total += sum(len(x) for x in by_floor.values())
+    by_floor: dict[tuple, dict] = {}
+    for floor, f, change in throw_reversals(throw_cuts(tilted)):
+        by_floor.setdefault(floor, {}).setdefault(change, []).append(f)
+    along_psi = [f"{floor_label(floor)}: " + "; ".join(
+        f"ψ {a:g}°→{b:g}° ({_sign(-k)} → {_sign(k)}) at {f_ranges(fs)}"
+        for (a, b, k), fs in changes.items()) for floor, changes in by_floor.items()]
+    n_psi = sum(len(fs) for changes in by_floor.values() for fs in changes.values())
+    total += n_psi
     text = ("along f: " + ("; ".join(along_f) or "none")
             + (f"; no significant sign change along f on {len(quiet)} lines "
                f"({', '.join(quiet)})" if quiet else "")
-            + ". Along ψ at fixed f (tilted floors): " + ("; ".join(along_psi) or "none"))
+            + f". Along ψ at fixed f (tilted floors, ψ from 90° down): {n_psi} ("
+            + (". ".join(along_psi) or "none") + ")")
     return Measured([Part("significant sign changes of v along f or ψ at a fixed floor, all "
                           "conveyor floors", Quantity(float(total)), text)])
 

@@ -209,8 +209,9 @@ def figure_reversal(tables: Mapping[str, pd.DataFrame | None],
     contact = contact or {}
     by_model = {c: {ln: vals for ln, vals in REVERSAL_LINES.items() if vals["contact"] == c}
                 for c, _ in REVERSAL_MODELS}
-    vmax = max([float(np.nanmax(np.abs(t["v"]))) for t in tables.values()
-                if t is not None and "v" in t and len(t)] + [1.0])
+    vs = [np.abs(t["v"].to_numpy(float)) for t in tables.values() if t is not None and "v" in t]
+    vs = np.concatenate(vs + [np.array([1.0])])
+    vmax = float(vs[np.isfinite(vs)].max())
     norm = SymLogNorm(linthresh=1.0, vmin=-vmax, vmax=vmax)
     psi = np.array(sorted(REVERSAL_THROWS))
     _, ey = cell_edges(psi)

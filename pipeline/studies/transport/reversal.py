@@ -42,7 +42,7 @@ from .signs import reversal_intervals, significant_signs, steady_rows
 
 __all__ = ["REVERSAL_MAP", "REVERSAL_TILT", "REVERSAL_THROWS", "REVERSAL_MODELS",
            "REVERSAL_LINES", "MODEL_LABELS", "HOPPING_CALIBRATION", "AIRBORNE_MIN", "F_STEP",
-           "reversal_line", "line_label", "throw_number_frequency", "airborne",
+           "reversal_line", "line_label", "floor_label", "f_ranges", "throw_number_frequency", "airborne",
            "hopping_boundary", "judge_boundary", "f_reversals", "throw_cuts", "throw_reversals"]
 
 REVERSAL_MAP = "transport_reversal"
@@ -76,6 +76,24 @@ def line_label(values: Mapping) -> str:
     s = f"φ = {float(values['tilt']):g}°, ψ = {float(values['throw']):g}°"
     return s + (f", {MODEL_LABELS.get(values['contact'], values['contact'])}"
                 if "contact" in values else "")
+
+
+def floor_label(floor: tuple) -> str:
+    """"φ = 2°, stick" from a floor key of :func:`throw_cuts` (its (axis, value) pairs)."""
+    d = dict(floor)
+    return f"φ = {float(d['tilt']):g}°" + (
+        f", {MODEL_LABELS.get(d['contact'], d['contact'])}" if "contact" in d else "")
+
+
+def f_ranges(fs, step: float = F_STEP) -> str:
+    """"46–58, 62 Hz": sorted frequencies with runs of neighbours ``step`` apart joined."""
+    runs: list[list[float]] = []
+    for f in sorted(fs):
+        if runs and f - runs[-1][-1] <= step + 1e-9:
+            runs[-1].append(f)
+        else:
+            runs.append([f])
+    return ", ".join(f"{r[0]:g}–{r[-1]:g}" if len(r) > 1 else f"{r[0]:g}" for r in runs) + " Hz"
 
 
 def throw_number_frequency(tilt: float, throw: float, params: Params | None = None) -> float:

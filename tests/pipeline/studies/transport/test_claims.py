@@ -158,3 +158,67 @@ def test_the_docs_quote_the_committed_calibration_and_benchmark():
            f"{100 * fa['hi']:.1f}] %" in doc
     t5 = MIRROR["variance"]["transport_t5"]["v"]
     assert f"| tilt 5° | {t5['ratio']:.3g} [{t5['lo']:.2f}, {t5['hi']:.2f}] |" in doc
+
+
+F_MAP = np.arange(30.0, 100.1, 2.0)  # the transport_reversal scene's 36 frequencies
+
+
+def _map_line(v, se=0.5) -> pd.DataFrame:
+    v = np.asarray(v, float)
+    return pd.DataFrame({"f": F_MAP, "v": v, "v_lo": v - 1.96 * se, "v_hi": v + 1.96 * se})
+
+
+def test_current_reversals_count_a_sign_change_along_the_throw_at_a_fixed_floor():
+    from pipeline.studies.transport.reversal import REVERSAL_LINES
+
+    # each line keeps one sign along f, but the throw flips it: downhill at ψ = 90°, uphill
+    # below -- a change along ψ only
+    tables = {n: _map_line(np.full(F_MAP.size, -4.0 if v["throw"] == 90.0 else 4.0))
+              for n, v in REVERSAL_LINES.items()}
+    row = evaluate(CLAIMS, {"tables": tables})[2]
+    assert row.verdict == "agrees" and "along f: none" in row.measured
+    assert "ψ 90°→75° (− → +) at 30–100 Hz" in row.measured
+    for n in tables:  # one sign everywhere: nothing to count
+        tables[n] = _map_line(np.full(F_MAP.size, -4.0))
+    assert evaluate(CLAIMS, {"tables": tables})[2].verdict == "disagrees"
+
+
+def test_current_reversals_along_f_on_a_floor_tilted_against_its_throw_are_intervals():
+    from pipeline.studies.transport.reversal import REVERSAL_LINES, reversal_line
+
+    uphill_then_down = np.where(F_MAP <= 60.0, 6.0, -300.0)  # as φ = 2°, ψ = 60° might
+    uphill_then_down[(F_MAP > 60.0) & (F_MAP < 66.0)] = 0.0  # not significant in between
+    tables = {reversal_line(60.0, "stick"): _map_line(uphill_then_down)}
+    row = evaluate(CLAIMS, {"tables": tables})[2]
+    assert row.verdict == "agrees"
+    assert "φ = 2°, ψ = 60°, stick: 60–66 Hz (+ → −)" in row.measured
+    assert set(REVERSAL_LINES) >= set(tables)
+
+
+def _contact_tables(boundary: dict[str, float]) -> dict[str, pd.DataFrame]:
+    """Contact tables whose airborne share jumps from 0 to 0.4 at ``boundary[line]`` Hz."""
+    out = {}
+    for n, f0 in boundary.items():
+        air = np.where(F_MAP >= f0, 0.4, 0.0)
+        held = 1.0 - air
+        out[n] = pd.DataFrame({"f": F_MAP, "held_frac": held, "slide_frac": 0.0,
+                               "held_frac_lo": held - 0.01, "held_frac_hi": held + 0.01,
+                               "slide_frac_lo": 0.0, "slide_frac_hi": 0.0})
+    return out
+
+
+def test_the_hopping_boundary_claim_agrees_at_the_throw_number_and_not_beyond_a_step():
+    from pipeline.studies.transport.reversal import REVERSAL_LINES, throw_number_frequency
+
+    f_v = {n: throw_number_frequency(v["tilt"], v["throw"]) for n, v in REVERSAL_LINES.items()}
+    # the first frequency of the scene above Γ_v = 1 hops: the boundary brackets f_v
+    at = {n: F_MAP[F_MAP > f][0] for n, f in f_v.items()}
+    row = evaluate(CLAIMS, {"tables": {}, "contact": _contact_tables(at)})[5]
+    assert row.verdict in ("agrees", "agrees within the CI"), row
+    late = {n: f + 6.0 for n, f in at.items()}  # hopping 6 Hz late everywhere
+    assert evaluate(CLAIMS, {"tables": {}, "contact": _contact_tables(late)})[5].verdict == \
+        "disagrees"
+    half = {n: (late if i % 2 else at)[n] for i, n in enumerate(at)}
+    assert evaluate(CLAIMS, {"tables": {}, "contact": _contact_tables(half)})[5].verdict == \
+        "partly"
+    assert evaluate(CLAIMS, {"tables": {}})[5].verdict == "not measured"
