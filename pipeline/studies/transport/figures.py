@@ -17,9 +17,10 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 from matplotlib import rc_context
+from matplotlib.collections import PatchCollection
 from matplotlib.colors import SymLogNorm
 from matplotlib.lines import Line2D
-from matplotlib.patches import Patch
+from matplotlib.patches import Patch, Rectangle
 
 from ...plot.heatmap import cell_edges
 from ..figure_style import STYLE, figure_files, new_figure, save_figure
@@ -239,8 +240,10 @@ def figure_reversal(tables: Mapping[str, pd.DataFrame | None],
             mesh = ax.pcolormesh(ex, ey, np.ma.masked_invalid(z), cmap="RdBu_r", norm=norm,
                                  gid="map")
             if unsteady.any():
-                ax.pcolor(ex, ey, np.ma.masked_where(~unsteady, np.ones_like(z)), hatch="////",
-                          alpha=0.0, gid="hatch:steady")
+                ax.add_collection(PatchCollection(
+                    [Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j])
+                     for j, i in zip(*np.nonzero(unsteady), strict=True)],
+                    facecolor="none", edgecolor="0.15", lw=0, hatch="////", gid="hatch:steady"))
             cell = np.diff(ey).min()
             for ln, vals in lines.items():
                 r = f_reversals(tables.get(ln))
