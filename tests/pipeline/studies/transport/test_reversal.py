@@ -96,7 +96,7 @@ def test_sign_changes_along_the_throw_are_found_at_each_frequency_per_floor():
     assert {(dict(fl)["contact"], f) for fl, f, _ in found} == {
         (c, f) for c in ("stick", "coulomb") for f in F if 50.0 <= f <= 60.0}
     assert all(change == (75.0, 60.0, 1) for _, _, change in found)
-    for name, (vals, t) in lines.items():  # a uniform sign: no change anywhere
+    for name, (vals, _) in lines.items():  # a uniform sign: no change anywhere
         lines[name] = (vals, _line(np.full(F.size, -5.0)))
     assert throw_reversals(throw_cuts(lines)) == []
 
@@ -119,7 +119,7 @@ def test_the_map_holds_the_lines_the_rules_assume():
     study = load_scene(REVERSAL_MAP)
     assert {tuple(p.grid) for p in study.points} == {tuple(v.items())
                                                     for v in REVERSAL_LINES.values()}
-    for name, vals in REVERSAL_LINES.items():
+    for vals in REVERSAL_LINES.values():
         line = study.line(vals)
         p = line.params(50.0)
         assert (p.tilt, p.throw, p.contact, p.mu) == (vals["tilt"], vals["throw"],
