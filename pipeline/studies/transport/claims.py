@@ -1,17 +1,17 @@
 """The transport claims as data (judged by :mod:`pipeline.claims.record` from the diffusion table
 of each line of the map scenes, with its v, D_drift columns; :mod:`bbb.analysis.transport`).
-The claims are judged on five floors of the map ``transport`` (the level floor vibrated
-vertically, two tilts, two throws: :data:`HOPPING`); its four floors both tilted and thrown
-(:data:`COMBINED`) are drawn, not judged.
+Claims T1, T2, T4 are judged on five floors of the map ``transport`` (the level floor
+vibrated vertically, two tilts, two throws: :data:`HOPPING`); T3 also on its four floors both
+tilted and thrown (:data:`COMBINED`) and on every line of the map ``transport_reversal``
+(φ = 2° against throws ψ = 90°…30°, stick and Coulomb; :mod:`.reversal`); T5 on the sliding
+map; T6 on transport_reversal.
 
 Rules, fixed before the data (calibrated on synthetic curves in
 tests/pipeline/studies/transport/test_claims.py):
 
-significant v   v(f) ≠ 0 at a frequency when |v| exceeds z_n standard errors (read off its CI
-                side towards 0, as bbb.analysis.extrema does), z_n = Φ⁻¹(1 − α / (2 n)) Bonferroni over
-                the n frequencies of the curve, α = 0.05: on a curve with v ≡ 0 the chance of
-                calling any frequency significant is ≤ 5 %; and |v| > V_MIN = 1e-6 mm/s (a
-                particle at rest has |v| ~ 1e-16 mm/s with a CI of rounding size).
+significant v   :mod:`.signs`: v ≠ 0 at a point of a curve when |v| exceeds z_n standard
+                errors, z_n = Φ⁻¹(1 − α / (2 n)) Bonferroni over the n points of the curve,
+                α = 0.05, and |v| > V_MIN = 1e-6 mm/s.
 steady only     every rule uses the frequencies whose drift is steady (bbb.analysis.transport: not
                 steady when the CI of v(second half) − v(first half) lies beyond ±(5 % of |v|
                 + k SE(v) + 1e-6 mm/s), k calibrated on synthetic steady and accelerating
@@ -25,9 +25,17 @@ diffusive only  an extremum of v(f) or of D_drift(f) at a frequency whose D abou
                 running at different speeds (some stuck), or velocity memory as long as the
                 lags -- so D_drift is a window slope, not a diffusion coefficient, and v may
                 average a population that does not mix.  The rows name them.
-reversal        a sign change between consecutive significant frequencies (those in between
-                not significant).  The claim counts reversals over all conveyor scenes; it
-                agrees with ≥ 1.
+reversal        a sign change between consecutive significant points (those in between not
+                significant), located as the interval between the last significant point of
+                one sign and the first of the other (:mod:`.signs`).  T3 counts them along f on
+                every conveyor line (:data:`GEOMETRIES`) and along ψ at each fixed f on the
+                tilted floors (the cuts of the lines sharing tilt and contact model, ψ from 90°
+                down); it agrees with ≥ 1.
+hopping         T6, per line of transport_reversal: the sliding/hopping boundary, from the last
+                frequency whose airborne share (1 − time held − time sliding) is significantly
+                below H to the first significantly above it (H read from hopping.json, checked
+                on flat floors where the answer is Γ_v = 1: :mod:`.hopping_calibration`), minus
+                the f of Γ_v = Γ sin ψ / cos φ = 1, must lie within ± one frequency step.
 extrema         bbb.analysis.extrema.find_extrema (Bonferroni over all pairs, family-wise α = 0.05)
                 on v(f) and on D_drift(f), min_depth = V_MIN resp. D_MIN = 1e-6 mm²/s.
                 "Extrema of the transport rate": ≥ 1 extremum of v(f) per conveyor scene.
@@ -54,7 +62,6 @@ from __future__ import annotations
 import json
 import math
 from importlib import resources
-from statistics import NormalDist
 
 import numpy as np
 import pandas as pd
@@ -67,14 +74,31 @@ from bbb.analysis.transport import SYMMETRY
 from ...claims.markdown import markdown_table
 from ...claims.record import Band, Claim, Measured, Part, Quantity, evaluate, measure
 from ..map_lines import split_lines
+from .reversal import (
+    AIRBORNE_MIN,
+    F_STEP,
+    REVERSAL_LINES,
+    REVERSAL_MAP,
+    airborne,
+    f_ranges,
+    f_reversals,
+    floor_label,
+    hopping_boundary,
+    judge_boundary,
+    line_label,
+    throw_cuts,
+    throw_number_frequency,
+    throw_reversals,
+)
+from .signs import V_MIN, significant_signs, steady_rows
 
 __all__ = ["SCENES", "MAP", "SLIDING_MAP", "LINES", "HOPPING", "COMBINED", "CONVEYORS",
-           "LABELS", "SLIDING", "SLIDING_LABELS", "SLIDING_GEOMETRY", "line_tables",
-           "sliding_liftoff", "CLAIMS", "significant_signs", "reversals", "report_lines"]
+           "LABELS", "SLIDING", "SLIDING_LABELS", "SLIDING_GEOMETRY", "GEOMETRIES",
+           "line_tables", "sliding_liftoff", "CLAIMS", "report_lines"]
 
 #: the map scenes: tilt x throw (hopping), and the sliding floor's contact x mu
 MAP, SLIDING_MAP = "transport", "transport_sliding"
-SCENES = (MAP, SLIDING_MAP)
+SCENES = (MAP, SLIDING_MAP, REVERSAL_MAP)
 #: (line, tilt φ °, throw ψ °) of the map judged by the claims; the first one is the paper's
 #: symmetric floor.  A line's name keys its tables (``<line>_diffusion``, :func:`line_tables`)
 GEOMETRY = (("transport_t0", 0.0, 90.0), ("transport_t2", 2.0, 90.0),
@@ -94,52 +118,24 @@ SLIDING = (("transport_sliding_stick", "stick", 0.0),
            ("transport_sliding_coulomb", "coulomb", 0.3))
 SLIDING_LABELS = {"transport_sliding_stick": "stick",
                   "transport_sliding_coulomb": "Coulomb, μ = 0.3"}
-#: {line: its grid values} of both maps
+#: {line: its grid values} of the maps transport and transport_sliding (transport_reversal's:
+#: reversal.REVERSAL_LINES)
 LINES = {**{s: {"tilt": t, "throw": p} for s, t, p in GEOMETRY + COMBINED_GEOMETRY},
          **{s: {"contact": c, "mu": mu} for s, c, mu in SLIDING}}
-ALPHA = 0.05
-V_MIN = 1e-6  # mm/s
+#: {line: its floor and driving (tilt, throw; contact, mu where the map has them)}: the
+#: conveyor lines claim T3 judges (every line of the maps transport and transport_reversal but
+#: the mirror-symmetric φ = 0°, ψ = 90°)
+GEOMETRIES = {**{s: {"tilt": t, "throw": p} for s, t, p in GEOMETRY[1:] + COMBINED_GEOMETRY},
+              **REVERSAL_LINES}
 D_MIN = 1e-6  # mm²/s
-_Z95 = NormalDist().inv_cdf(0.975)
 #: the mirror-pair benchmark: variance saved per scene, T1's false alarms without pairs
 MIRROR: dict = json.loads(resources.files(__package__).joinpath("mirror.json")
                           .read_text(encoding="utf-8"))
 
 
-def significant_signs(v, lo, hi, ci: float = 0.95, alpha: float = ALPHA) -> np.ndarray:
-    """+1 / −1 where v is significantly positive / negative (Bonferroni over the n points,
-    module docstring), 0 elsewhere."""
-    v, lo, hi = (np.asarray(a, dtype=float) for a in (v, lo, hi))
-    z_ci = NormalDist().inv_cdf(0.5 + ci / 2.0)
-    z_n = NormalDist().inv_cdf(1.0 - alpha / (2.0 * max(1, v.size)))
-    s_below, s_above = (v - lo) / z_ci, (hi - v) / z_ci  # standard errors, each side
-    pos = (v > z_n * s_below) & (v > V_MIN)
-    neg = (-v > z_n * s_above) & (-v > V_MIN)
-    return np.where(pos, 1, np.where(neg, -1, 0))
-
-
-def reversals(f, signs) -> list[float]:
-    """Frequencies (midpoints) where consecutive significant signs differ."""
-    out, prev = [], None
-    for fi, s in zip(f, signs, strict=True):
-        if s == 0:
-            continue
-        if prev is not None and s != prev[1]:
-            out.append(0.5 * (prev[0] + fi))
-        prev = (fi, s)
-    return out
-
-
 def _table(ctx, scene: str) -> pd.DataFrame | None:
     """The scene's rows with a steady drift, sorted by f (attrs["unsteady"]: the others' f)."""
-    t = ctx["tables"].get(scene)
-    if t is None or "v" not in t:
-        return None
-    t = t.dropna(subset=["v", "v_lo", "v_hi"]).sort_values("f")
-    ok = t["steady"].fillna(True).astype(bool) if "steady" in t else pd.Series(True, t.index)
-    out = t[ok].copy()
-    out.attrs["unsteady"] = t["f"][~ok].tolist()
-    return out
+    return steady_rows(ctx["tables"].get(scene))
 
 
 def _left_out(t: pd.DataFrame) -> str:
@@ -210,24 +206,44 @@ def v_extrema(claim: Claim, ctx) -> Measured:
     return Measured(parts) if parts else Measured(missing="no conveyor scene reduced")
 
 
+def _sign(s: int) -> str:
+    return "+" if s > 0 else "−"
+
+
 @measure("transport_reversals")
 def v_reversals(claim: Claim, ctx) -> Measured:
-    texts, total, seen = [], 0, False
-    for sc in CONVEYORS:
-        t = _table(ctx, sc)
-        if t is None:
+    along_f, quiet, total = [], [], 0
+    for sc, values in GEOMETRIES.items():
+        r = f_reversals(ctx["tables"].get(sc))
+        if r is None:
             continue
-        seen = True
-        s = significant_signs(t["v"], t["v_lo"], t["v_hi"])
-        r = reversals(t["f"].to_numpy(), s)
-        total += len(r)
-        texts.append(f"{LABELS[sc]}: {len(r)} ({', '.join(f'~{x:g} Hz' for x in r) or 'none'}; "
-                     f"v > 0 at {int((s > 0).sum())}, < 0 at {int((s < 0).sum())} of {len(t)} f)"
-                     f"{_left_out(t)}")
-    if not seen:
+        found, s, t = r
+        total += len(found)
+        if not found:
+            quiet.append(line_label(values) + _left_out(t))
+            continue
+        along_f.append(f"{line_label(values)}: " + ", ".join(
+            f"{a:g}–{b:g} Hz ({_sign(-k)} → {_sign(k)})" for a, b, k in found)
+            + f" (v > 0 at {int((s > 0).sum())}, < 0 at {int((s < 0).sum())} of {len(t)} f"
+            f"{_left_out(t).replace(' [', '; ').rstrip(']')})")
+    if not along_f and not quiet:
         return Measured(missing="no conveyor scene reduced")
-    return Measured([Part("significant sign changes of v(f), all conveyor scenes",
-                          Quantity(float(total)), "; ".join(texts))])
+    tilted = {sc: (v, ctx["tables"].get(sc)) for sc, v in GEOMETRIES.items() if v["tilt"] != 0}
+    by_floor: dict[tuple, dict] = {}
+    for floor, f, change in throw_reversals(throw_cuts(tilted)):
+        by_floor.setdefault(floor, {}).setdefault(change, []).append(f)
+    along_psi = [f"{floor_label(floor)}: " + "; ".join(
+        f"ψ {a:g}°→{b:g}° ({_sign(-k)} → {_sign(k)}) at {f_ranges(fs)}"
+        for (a, b, k), fs in changes.items()) for floor, changes in by_floor.items()]
+    n_psi = sum(len(fs) for changes in by_floor.values() for fs in changes.values())
+    total += n_psi
+    text = ("along f: " + ("; ".join(along_f) or "none")
+            + (f"; no significant sign change along f on {len(quiet)} lines "
+               f"({', '.join(quiet)})" if quiet else "")
+            + f". Along ψ at fixed f (tilted floors, ψ from 90° down): {n_psi} ("
+            + (". ".join(along_psi) or "none") + ")")
+    return Measured([Part("significant sign changes of v along f or ψ at a fixed floor, all "
+                          "conveyor floors", Quantity(float(total)), text)])
 
 
 @measure("transport_d_extrema")
@@ -278,6 +294,32 @@ def sliding(claim: Claim, ctx) -> Measured:
     return Measured(parts) if parts else Measured(missing="no sliding scene reduced")
 
 
+@measure("transport_hopping_boundary")
+def hopping_vs_throw_number(claim: Claim, ctx) -> Measured:
+    parts = []
+    for sc, values in REVERSAL_LINES.items():
+        c = ctx.get("contact", {}).get(sc)
+        if c is None or not len(c):
+            continue
+        a = airborne(c)
+        b = hopping_boundary(a["f"], a["air_lo"], a["air_hi"], AIRBORNE_MIN)
+        f_v = throw_number_frequency(values["tilt"], values["throw"])
+        _, q = judge_boundary(b, f_v)
+        per = ""
+        n = ctx.get("counters", {}).get(sc)
+        if b is not None and n is not None and "liftoffs_per_s" in n:
+            hop = n[np.isclose(n["f"], b[1])]
+            per = (f"; lift-offs per period at {b[1]:g} Hz: "
+                   f"{float(hop['liftoffs_per_s'].iloc[0]) / b[1]:.2f}" if len(hop) else "")
+        where = ("no boundary in the scene's range (airborne share "
+                 f"{a['air'].min():.2g}–{a['air'].max():.2g})" if b is None else
+                 f"boundary {b[0]:g}–{b[1]:g} Hz (airborne share {a['air'][a['f'] == b[0]].iloc[0]:.2g}"
+                 f" → {a['air'][a['f'] == b[1]].iloc[0]:.2g})")
+        parts.append(Part(line_label(values), q if q is not None else Quantity(math.nan),
+                          f"{where}, Γ_v = 1 at {f_v:.1f} Hz{per}", found=b is not None))
+    return Measured(parts) if parts else Measured(missing="no transport_reversal contact table")
+
+
 CLAIMS = [
     Claim("Mirror symmetry: a level floor vibrated vertically carries no current",
           no_current, HOPPING[0],
@@ -290,8 +332,13 @@ CLAIMS = [
                "drift is not diffusive")),
     Claim("Current reversals: the sign of the current changes with the driving (paper's "
           "outlook, after Grochowski et al.)", v_reversals, "",
-          Band(1.0, math.inf, "rule: at least one sign change between frequencies whose v is "
-               "significant (Bonferroni over the curve)")),
+          Band(1.0, math.inf, "rule: at least one significant sign change of v along f or "
+               "along ψ at a fixed floor (between consecutive significant points, Bonferroni "
+               "over each curve; steady drifts only), judged on every conveyor floor: the "
+               "tilted floors (φ = 2°, 5°, ψ = 90°), the thrown ones (φ = 0°, ψ = 60°, 30°), "
+               "the floors tilted against their throw (φ = 2°, 5° with ψ = 60°, 30° of scene "
+               "transport; φ = 2° with ψ = 90°, 75°, 60°, 45°, 30° under stick and Coulomb "
+               "μ = 0.3 of scene transport_reversal); along ψ on the tilted floors")),
     Claim("Not only the current, but also the diffusion coefficient may be irregular functions "
           "of control parameters", d_extrema, "",
           Band(2.0, math.inf, "rule: at least 2 significant extrema of D about the drift "
@@ -303,28 +350,43 @@ CLAIMS = [
           Band(-math.inf, math.inf, "rule: below the lift-off frequency (bbb.analysis.liftoff) the "
                "number of frequencies with a significant v (Bonferroni over the curve) is 0 "
                "under stick and ≥ 1 under Coulomb friction")),
+    Claim("Conveyor theory's sliding/hopping boundary lies at the throw number Γ_v = Γ sin ψ / "
+          "cos φ = 1 (Sloot & Kruyt 1996)", hopping_vs_throw_number, "",
+          Band(-F_STEP, F_STEP, f"rule: per line of scene transport_reversal, the boundary "
+               f"(from the last f whose airborne share is significantly below H = "
+               f"{AIRBORNE_MIN:g} to the first significantly above, hopping_calibration.py) "
+               f"minus the f of Γ_v = 1 lies within ± one frequency step ({F_STEP:g} Hz)",
+               "Hz")),
 ]
 
 
 def line_tables(tables) -> dict[str, pd.DataFrame]:
-    """The maps' tables (keyed ``transport_<table>``, ``transport_sliding_<table>``) as one
-    table per line, keyed ``<line>_<table>`` (:data:`LINES`): the rows of that line without
-    the axis columns, exactly what the scene with those values in [params] gives."""
+    """The maps' tables (keyed ``transport_<table>``, ``transport_sliding_<table>``,
+    ``transport_reversal_<table>``) as one table per line, keyed ``<line>_<table>``
+    (:data:`LINES`, :data:`~.reversal.REVERSAL_LINES`): the rows of that line without the axis
+    columns, exactly what the scene with those values in [params] gives."""
     return {**split_lines(tables, MAP, {s: LINES[s] for s in HOPPING + COMBINED},
                           ("diffusion", "counters")),
             **split_lines(tables, SLIDING_MAP, {s: LINES[s] for s, _, _ in SLIDING},
+                          ("diffusion", "contact", "counters")),
+            **split_lines(tables, REVERSAL_MAP, REVERSAL_LINES,
                           ("diffusion", "contact", "counters"))}
 
 
 def report_lines(tables) -> list[str]:
     """The REPORT.md section: the claim rows judged from each line's diffusion table."""
     lines = line_tables(tables)
-    ctx = {"tables": {sc: lines.get(f"{sc}_diffusion") for sc in HOPPING + tuple(
-        s for s, _, _ in SLIDING)}}
+    names = HOPPING + COMBINED + tuple(s for s, _, _ in SLIDING) + tuple(REVERSAL_LINES)
+    ctx = {"tables": {sc: lines.get(f"{sc}_diffusion") for sc in names},
+           **{k: {sc: lines[f"{sc}_{k}"] for sc in REVERSAL_LINES if f"{sc}_{k}" in lines}
+              for k in ("contact", "counters")}}
     rows = evaluate(CLAIMS, ctx)
-    L = ["", "## Transport on a vibro-conveyor (scenes transport, transport_sliding)", "",
+    L = ["", "## Transport on a vibro-conveyor (scenes transport, transport_sliding, "
+         "transport_reversal)", "",
          "Drift v with its bootstrap CI and D about the drift (bbb.analysis.transport) along f per "
-         "(tilt φ, throw ψ), and on one floor (φ = 0°, ψ = 30°) per contact model from low Γ "
-         f"to above lift-off ({sliding_liftoff():.1f} Hz, bbb.analysis.liftoff); "
-         "pipeline/studies/transport/claims.py states the rules.", ""]
+         "(tilt φ, throw ψ), on one floor (φ = 0°, ψ = 30°) per contact model from low Γ "
+         f"to above lift-off ({sliding_liftoff():.1f} Hz, bbb.analysis.liftoff), and over "
+         "(throw ψ, f) on a floor tilted 2° against its throw per contact model, with the "
+         "share of the run in flight; pipeline/studies/transport/claims.py states the rules.",
+         ""]
     return L + markdown_table(rows, prefix="T")

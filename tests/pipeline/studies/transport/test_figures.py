@@ -15,6 +15,8 @@ def test_draw_writes_the_figure_files_from_a_map_missing_a_line_and_the_sliding_
     long = pd.concat([t.assign(**LINES[sc]) for sc in HOPPING[1:] + COMBINED])
     paths = draw({"transport_diffusion": long}, {}, tmp_path)
     assert sorted(p.name for p in paths) == ["fig_transport.pdf", "fig_transport.png",
+                                             "fig_transport_reversal.pdf",
+                                             "fig_transport_reversal.png",
                                              "fig_transport_sliding.pdf",
                                              "fig_transport_sliding.png"]
     assert all(p.stat().st_size > 1000 for p in paths)
@@ -55,3 +57,35 @@ def test_points_whose_D_about_the_drift_is_not_diffusive_are_crossed(tmp_path):
         crossed = [ln for ln in ax.get_lines() if ln.get_marker() == "x"]
         assert len(crossed) == 1 and list(crossed[0].get_xdata()) == [54.0, 58.0]
         assert list(crossed[0].get_ydata()) == list(t[col][[2, 4]])
+
+
+def test_the_transport_map_draws_the_sign_changes_the_hopping_boundary_and_the_throw_number(
+        tmp_path):
+    from pipeline.studies.transport.figures import figure_reversal
+    from pipeline.studies.transport.reversal import REVERSAL_LINES, throw_number_frequency
+
+    f = np.arange(30.0, 100.1, 2.0)
+    tables, contact = {}, {}
+    for n, vals in REVERSAL_LINES.items():
+        v = np.where(f <= 60.0, 6.0, -300.0) if vals["throw"] == 60.0 else np.full(f.size, -9.0)
+        tables[n] = pd.DataFrame({"f": f, "v": v, "v_lo": v - 1.0, "v_hi": v + 1.0,
+                                  "steady": f < 90})
+        air = np.where(f >= 56.0, 0.4, 0.0)
+        contact[n] = pd.DataFrame({"f": f, "held_frac": 1 - air, "slide_frac": 0.0,
+                                   "held_frac_lo": 1 - air, "held_frac_hi": 1 - air,
+                                   "slide_frac_lo": 0.0, "slide_frac_hi": 0.0})
+    fig = figure_reversal(tables, contact, tmp_path)
+    assert (tmp_path / "fig_transport_reversal.png").stat().st_size > 1000
+    ax = fig.axes[0]
+    by = {}
+    for ln in ax.get_lines():
+        by.setdefault(ln.get_gid(), []).append(ln)
+    along_f = {tuple(ln.get_xdata()) for ln in by["reversal:f"]}
+    assert along_f == {(60.0, 62.0)}  # ψ = 60° only
+    along_psi = {(ln.get_xdata()[0], tuple(ln.get_ydata())) for ln in by["reversal:psi"]}
+    assert along_psi == {(fi, (75.0, 60.0)) for fi in f if fi <= 60.0} | {
+        (fi, (60.0, 45.0)) for fi in f if fi <= 60.0}
+    assert {tuple(ln.get_xdata()) for ln in by["hopping"]} == {(54.0, 56.0)}
+    gv = by["throw_number"][0]
+    i = int(np.argmin(np.abs(gv.get_ydata() - 90.0)))
+    assert gv.get_xdata()[i] == throw_number_frequency(2.0, gv.get_ydata()[i])
