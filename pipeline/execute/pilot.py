@@ -111,24 +111,36 @@ def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
 
 
 def probe_lines(study: Study) -> list[tuple[tuple[str, object], ...]]:
-    """The grid lines a grid scene's plan pilots, as grid values: every corner of the
-    numeric axes (their least and greatest values) with every value of the string axes
-    (contact), and the centre (each numeric axis's middle value); lines with no valid point
-    are left out."""
+    """The grid lines a grid scene's plan pilots, as grid values: for every combination of the
+    string axes' values (contact) the lines hold, every corner of the numeric axes (their
+    least and greatest values among those lines) and the centre (each numeric axis's middle
+    value).  Corners are taken among the lines that exist, so a conditional axis (mu, only
+    under contact = "coulomb") gets its own corners per contact model, and a model whose lines
+    all hold mu's default is probed too."""
     import itertools
 
-    corner_values, centre = [], []
-    for a, values in study.grid:
-        if isinstance(values[0], str):
-            corner_values.append([(a, v) for v in values])
-            centre.append([(a, v) for v in values])
-        else:
-            s = sorted(values)
+    lines = list(dict.fromkeys(p.grid for p in study.points))
+    strings = {a for a, values in study.grid if isinstance(values[0], str)}
+    groups: dict[tuple, list[tuple]] = {}
+    for line in lines:
+        groups.setdefault(tuple((a, v) for a, v in line if a in strings), []).append(line)
+    out: list[tuple] = []
+    for key, members in groups.items():
+        order = [a for a, _ in members[0]]
+        corner_values, centre = [], []
+        for a in order:
+            if a in strings:
+                continue
+            s = sorted({dict(m)[a] for m in members})
             corner_values.append([(a, v) for v in dict.fromkeys((s[0], s[-1]))])
             centre.append([(a, s[(len(s) - 1) // 2])])
-    lines = [*itertools.product(*corner_values), *itertools.product(*centre)]
-    have = {p.grid for p in study.points}
-    return [line for line in dict.fromkeys(tuple(x) for x in lines) if line in have]
+        have = set(members)
+        for combo in [*itertools.product(*corner_values), *itertools.product(*centre)]:
+            values = {**dict(key), **dict(combo)}
+            line = tuple((a, values[a]) for a in order)
+            if line in have and line not in out:
+                out.append(line)
+    return out
 
 
 def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str) -> Rates:

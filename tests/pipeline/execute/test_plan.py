@@ -236,3 +236,17 @@ def test_the_plan_says_refinement_is_not_priced(refine, says, tmp_path, monkeypa
     assert ("not priced" in out) == (says is not None)
     if says:
         assert says in out
+
+
+def test_a_map_with_a_conditional_axis_probes_and_prices_every_contact_model():
+    """mu applies under coulomb only: the stick lines hold mu's default, not the listed 0.3;
+    each model gets its own probe lines, so the stick points are priced from stick pilots."""
+    from pipeline.execute.pilot import probe_lines
+
+    study = parse_workflow(PLAN_TINY.replace(
+        "[families.rest]", '[grid]\ncontact = ["stick", "coulomb"]\nmu = [0.05, 0.3]\n\n'
+        "[families.rest]"))
+    probed = probe_lines(study)
+    assert {dict(line)["contact"] for line in probed} == {"stick", "coulomb"}
+    assert {dict(line)["mu"] for line in probed if dict(line)["contact"] == "coulomb"} == {0.05, 0.3}
+    assert all(line in {p.grid for p in study.points} for line in probed)
