@@ -4,11 +4,12 @@ one ensemble under each definition of :mod:`.moving` (D in mm²/s, shares in [0,
 Per definition (``all``, ``displaced``, ``moving_time``) :func:`decompose` returns one
 :class:`Decomposition`:
 
-* share -- ``all``: 1; ``displaced``: k / n with the Wilson score interval (never of zero
-  width, also at k = 0 or n); ``moving_time``: mean φ_i with the percentile bootstrap over
-  particles, or, when every φ_i is the same (all 0 or all 1: the bootstrap has no spread),
-  the Wilson interval of the particles with any moving block (all 0) or with every block
-  moving (all 1), which bounds mean φ from above or below;
+* share -- ``all``: 1 exactly (no interval: share_lo, share_hi NaN); ``displaced``: k / n
+  with the Wilson score interval (never of zero width, also at k = 0 or n); ``moving_time``:
+  mean φ_i with the percentile bootstrap over particles, or, when every φ_i is the same
+  (all 0 or all 1: the bootstrap has no spread), the Wilson interval of the particles with
+  any moving block (all 0) or with every block moving (all 1), which bounds mean φ from
+  above or below;
 * D -- ``all``: bbb reduce's D = mean D_i with its interval and status
   (:func:`bbb.analysis.stats.interval.d_interval`: bootstrap over particles, rare-mover rule);
   ``displaced``: the same over the displaced particles (fewer than 2: status
@@ -122,7 +123,7 @@ def decompose(x: ArrayLike, dt: float, S: float, T: float, *, n_resamples: int, 
     all_i = d_interval(d_i, bootstrap_mean_unchecked(d_i, n_resamples, ci, rngs[0],
                                                      "percentile"), ci)
     D_all = (all_i.D, all_i.lo, all_i.hi)
-    out = [Decomposition("all", n, n, 1.0, 1.0, 1.0, *D_all, all_i.status, *D_all, 0.0, tiny,
+    out = [Decomposition("all", n, n, 1.0, math.nan, math.nan, *D_all, all_i.status, *D_all, 0.0, tiny,
                          True)]
 
     mask = displaced(xw, S, discard)

@@ -74,7 +74,7 @@ def paragraph(verdicts: pd.DataFrame, curves: pd.DataFrame) -> str:
     else:
         one = {p: m for p, m in missing.items() if len(m) == 1}
         text = (f"None of the {n} protocols reproduces {', '.join(SHORT.values())} together. "
-                + (f"Closest (all but one): " + "; ".join(
+                + ("Closest (all but one): " + "; ".join(
                     f"{p} (not {SHORT[m[0]]})" for p, m in one.items()) + ". " if one else ""))
     text += ("Each claim alone: " + "; ".join(f"{SHORT[k]} under {len(ps)}" for k, ps in
                                               per.items()) + " protocols. ")
@@ -91,7 +91,7 @@ def paragraph(verdicts: pd.DataFrame, curves: pd.DataFrame) -> str:
               for T in (T0, T1) for f in (50.0, 54.0, 58.0)}
         dm = {(T, f): _value(curves, MIXTURE, T, "displaced", f, "D")
               for T in (T0, T1) for f in (50.0, 54.0, 58.0)}
-        text += (f"In the mixture of all families the share displaced beyond one arc period is "
+        text += ("In the mixture of all families the share displaced beyond one arc period is "
                  + "; ".join(f"{_pct(sh[T, 50.0])}, {_pct(sh[T, 54.0])}, {_pct(sh[T, 58.0])} "
                              f"at 50, 54, 58 Hz for T = {T:g} s" for T in (T0, T1))
                  + ", and the displaced particles' D is "

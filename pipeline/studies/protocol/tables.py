@@ -4,8 +4,10 @@ intervals, read off the protocol store's positions by :func:`bbb.analysis.moving
 
 A window of T s is the first T s of the stored 50 s run, analysed as ``bbb reduce`` analyses
 a run of length T (first 10 % dropped, fit lags 5–25 % of the rest): the kernel draws no
-random number after the initial condition, so it *is* a run of length T
-(tests/pipeline/studies/protocol/test_tables.py checks that prefix property on the kernel).
+random number after the initial condition, so it *is* a run of length T: the same positions
+bit for bit but at the window's last sample, which a run ending there computes on another
+path and which differs by rounding (~1e-16 mm; tests/pipeline/studies/protocol/
+test_tables.py checks this on the kernel).  The transient therefore needs no separate runs.
 The ensembles are the scene's families and :data:`MIXTURE`, all families pooled.  Bootstrap
 seeds are keyed by (study seed, f, ensemble, T): the table is a function of the store alone.
 """
