@@ -13,6 +13,8 @@ run by :func:`bbb.simulate`) made.  None of them is hashed into the kernel ident
 ``extrema``      significant extrema of a noisy curve with CIs
 ``liftoff``      the lowest frequency at which a particle at rest can lift off
 ``lyapunov``     largest Lyapunov exponent from two nearby trajectories
+``moving``       which particles move: operational definitions of "moving particles"
+``moving_d``     the share that moves and D of the moving particles, with intervals
 ================ =========================================================================
 
 The calibrated rules ship beside their modules (transport_rules.json, gk_contrast_rule.json,
