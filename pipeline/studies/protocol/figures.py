@@ -35,7 +35,7 @@ CAPTIONS = {
         "particles (top: all particles; middle: those displaced beyond one arc period S over "
         "the analysed window; bottom: D per unit of time spent moving), rows the initial "
         "ensemble and the analysis run length T (the first T s of each run); beside each map "
-        "the 95 % CI's half-width relative to D. Grey: no D (fewer than two moving particles "
+        "the 95 % CI's half-width relative to D. Blank: no D (fewer than two moving particles "
         "or no moving time). Dotted: 50, 54, 58 and 60 Hz, the paper's onset, maximum, minimum "
         "and VHO maximum. Verdicts per protocol in the protocol section below."),
     "fig_protocol_decomposition": (
