@@ -25,7 +25,8 @@ from bbb.analysis.moving_d import decompose
 from ...tables.collisions import as_store
 from ...workflow.identity import f_key, label_key
 
-__all__ = ["WINDOWS", "MIXTURE", "DEFINITIONS", "COLUMNS", "protocol_table", "protocol_name"]
+__all__ = ["WINDOWS", "MIXTURE", "DEFINITIONS", "COLUMNS", "COLUMN_UNITS", "protocol_table",
+           "protocol_name"]
 
 #: s, the analysis run lengths T
 WINDOWS = (5.0, 10.0, 20.0, 50.0)
@@ -35,6 +36,12 @@ MIXTURE = "mixture"
 COLUMNS = ("f", "Gamma", "ensemble", "T", "definition", "n", "n_moving", "share", "share_lo",
            "share_hi", "D", "D_lo", "D_hi", "D_status", "D_all", "D_all_lo", "D_all_hi",
            "residual", "bound", "holds", "approx_ok")
+
+#: the units of the study's own columns (protocol_curves and protocol_verdicts) that the
+#: engine's map (pipeline.tables.units) does not know; CI bounds follow their column
+COLUMN_UNITS = {"ensemble": "", "T": "s", "definition": "", "n": "1", "share": "1",
+                "residual": "mm^2/s", "bound": "mm^2/s", "holds": "", "approx_ok": "",
+                "protocol": "", "claim": "", "measured": ""}
 
 
 def protocol_name(ensemble: str, T: float, definition: str) -> str:
