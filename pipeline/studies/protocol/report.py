@@ -43,15 +43,16 @@ def _d(x: float) -> str:
 
 
 def decomposition_text(curves: pd.DataFrame) -> str:
-    """How well D_all = share × D_moving holds: checked points, those within the bound the
-    still particles allow, those resolved within D_all's CI."""
+    """How well D_all = share × D_moving holds: the points checked (every point for
+    ``displaced``; those with a D for ``moving_time``), those within the bound the still
+    particles allow, those resolved within D_all's CI."""
     parts = []
     for d in ("displaced", "moving_time"):
         t = curves[curves["definition"] == d]
         checked = t[t["residual"].notna()]
         parts.append(f"{d}: the identity holds within the still particles' bound at "
-                     f"{int(checked['holds'].astype(bool).sum())} of {len(checked)} points with "
-                     f"a D, and share × D_moving lies within D_all's 95 % CI at "
+                     f"{int(checked['holds'].astype(bool).sum())} of the {len(checked)} points "
+                     f"checked, and share × D_moving lies within D_all's 95 % CI at "
                      f"{int(checked['approx_ok'].astype(bool).sum())}")
     return "D_all = share × D_moving: " + "; ".join(parts) + "."
 
