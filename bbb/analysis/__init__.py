@@ -14,6 +14,8 @@ run by :func:`bbb.simulate`) made.  None of them is hashed into the kernel ident
 ``liftoff``      the lowest frequency at which a particle at rest can lift off
 ``period1``      where the flat-floor 1/1 orbit exists (Γ₁) and stays stable (Γ')
 ``lyapunov``     largest Lyapunov exponent from two nearby trajectories
+``moving``       which particles move: operational definitions of "moving particles"
+``moving_d``     the share that moves and D of the moving particles, with intervals
 ================ =========================================================================
 
 The calibrated rules ship beside their modules (transport_rules.json, gk_contrast_rule.json,

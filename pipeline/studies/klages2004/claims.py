@@ -80,7 +80,33 @@ def _note_54(ctx) -> str:
     return (f"Likely reason: on a flat floor the 1/1 orbit is stable only up to Γ = "
             f"{g2:.4f}, f = {f2:.1f} Hz (Luck & Mehta); above it bouncing particles decay into "
             f"creeping within our run{seen}. A maximum near 54 needs an ensemble that still "
-            "bounces there, e.g. shorter runs or particles counted only while moving.")
+            "bounces there, e.g. shorter runs or particles counted only while moving."
+            + _protocol_note(ctx))
+
+
+def _protocol_note(ctx) -> str:
+    """What the protocol study found for this claim, from its verdicts table
+    (``protocol_verdicts``: one row per protocol and claim, the paper's claim numbers in
+    ``claim``), if the tables hold it: the protocols giving a maximum near 54 Hz, and those
+    giving claims 1, 2, 4 and 5 (onset, maximum, minimum, VHO maximum) together."""
+    v = ctx["tables"].get("protocol_verdicts")
+    if v is None or v.empty:
+        return ""
+    positive = v["verdict"].isin(("agrees", "agrees within the CI"))
+    claim = v["claim"].astype(str)
+    curves = v[claim != "16"]
+    n = curves["protocol"].nunique()
+    at54 = list(dict.fromkeys(v["protocol"][positive & (claim == "2")]))
+    bad = set(curves["protocol"][~positive[curves.index]])
+    together = [p for p in dict.fromkeys(curves["protocol"]) if p not in bad]
+
+    def names(ps):
+        return "; ".join(ps) if ps else "none"
+
+    return (f" Protocol study (section below; {n} protocols: initial ensemble × run length T "
+            f"× definition of moving): a maximum near 54 Hz under {len(at54)} of them "
+            f"({names(at54)}); onset near 50, maximum near 54, minimum near 58 and the VHO "
+            f"maximum at 60 together under {len(together)} ({names(together)}).")
 
 
 def _note_onset(ctx) -> str:

@@ -38,7 +38,9 @@ __all__ = ["TABLE_FILES", "FLOAT_FORMAT", "CLAIMS_HEADING", "write_csv", "read_t
 TABLE_FILES = {"figure2": "diffusion_figure2.csv", "ergodicity": "diffusion_ergodicity.csv",
                "figure2_matyas2004": "diffusion_figure2_matyas2004.csv",
                "finescale": "diffusion_finescale.csv", "locking": "locking.csv",
-               "locking_matyas2004": "locking_matyas2004.csv"}
+               "locking_matyas2004": "locking_matyas2004.csv",
+               # the protocol study's verdicts (pipeline.studies.protocol), read by claim 2's note
+               "protocol_verdicts": "protocol_verdicts.csv"}
 #: every committed table keeps six significant digits
 FLOAT_FORMAT = "%.6g"
 #: the heading of this study's claims section in REPORT.md

@@ -10,4 +10,4 @@ SCENES = ("figure2", "ergodicity", "figure3", "locking", "figure2_matyas2004",
           "locking_matyas2004", "finescale")
 #: further studies drawn in the same run (modules under pipeline.studies exposing SCENES,
 #: draw(tables, stores, out_dir) -> paths, and report_lines(tables) -> REPORT.md lines)
-EXTRA_STUDIES = ("mechanisms", "transport", "contact", "dissipation")
+EXTRA_STUDIES = ("mechanisms", "transport", "contact", "protocol", "dissipation")

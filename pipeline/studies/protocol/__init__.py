@@ -1,0 +1,17 @@
+"""The measuring protocol behind the paper's D(f) near onset: D at 46–62 Hz per initial
+ensemble (rest; dropped from two height ranges; launched at two speed ranges; their mixture)
+× analysis run length T (the first 5, 10, 20, 50 s of each run) × averaging (all particles;
+the moving ones under the two definitions of :mod:`bbb.analysis.moving`), from the scene
+``scenes/protocol.toml``: the table (``tables``), the paper's claims 1, 2, 4, 5 and 16
+re-judged per protocol (``claims``), the figures (``figures``) and the report section with
+its generated paragraph (``report``).
+
+The interface make_figures uses: :data:`SCENES`, :func:`draw`, :func:`report_lines` and
+:data:`CAPTIONS`.
+"""
+
+from .claims import SCENES
+from .figures import CAPTIONS, draw
+from .report import report_lines
+
+__all__ = ["SCENES", "CAPTIONS", "draw", "report_lines"]
