@@ -29,7 +29,6 @@ a function of (positions, dt, S, T, n_resamples, seed) alone.
 from __future__ import annotations
 
 import math
-from statistics import NormalDist
 from typing import NamedTuple
 
 import numpy as np
@@ -39,8 +38,9 @@ from .moving import DEFINITIONS, displaced, moving_blocks, still_bound, window
 from .stats.bootstrap import bootstrap_mean_unchecked
 from .stats.fit import DEFAULT_DISCARD, fit_regime, per_particle_fit
 from .stats.interval import FAILED, OK, d_interval
+from .stats.proportion import wilson
 
-__all__ = ["TOO_FEW", "NO_TIME", "Decomposition", "wilson", "decompose"]
+__all__ = ["TOO_FEW", "NO_TIME", "Decomposition", "decompose"]
 
 #: status of a D that cannot be estimated: fewer than two moving particles
 TOO_FEW = "too few movers"
@@ -69,18 +69,6 @@ class Decomposition(NamedTuple):
     residual: float
     bound: float
     holds: bool
-
-
-def wilson(k: int, n: int, ci: float = 0.95) -> tuple[float, float, float]:
-    """k / n with its Wilson score interval at level ``ci`` (n ≥ 1): (p, lo, hi)."""
-    if n < 1 or not 0 <= k <= n:
-        raise ValueError(f"need 0 <= k <= n and n >= 1, got k = {k}, n = {n}")
-    z = NormalDist().inv_cdf(0.5 + ci / 2)
-    p = k / n
-    den = 1 + z * z / n
-    mid = (p + z * z / (2 * n)) / den
-    half = z * math.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / den
-    return p, min(p, max(0.0, mid - half)), max(p, min(1.0, mid + half))
 
 
 def _ratio_ci(d: np.ndarray, phi: np.ndarray, n_resamples: int, ci: float,

@@ -7,7 +7,8 @@ import math
 import pytest
 
 from bbb.analysis.moving import synthetic_positions
-from bbb.analysis.moving_d import NO_TIME, TOO_FEW, decompose, wilson
+from bbb.analysis.moving_d import NO_TIME, TOO_FEW, decompose
+from bbb.analysis.stats.proportion import wilson
 
 S, DT = 2.0, 0.05
 
