@@ -34,8 +34,13 @@ def _row(label: str, entries: list[Mapping]) -> str:
     chunks = sum(e.get("chunks", 0) for e in entries)
     workers = sorted({e["workers"] for e in entries if "workers" in e})
     earlier = sum(bool(e.get("earlier_invocation")) for e in entries)
+    separate = sum(bool(e.get("separate_run")) for e in entries)
     note = ("" if not earlier else " (computed by an earlier invocation)" if earlier == len(entries)
             else f" ({earlier} of {len(entries)} scenes computed by an earlier invocation)")
+    if separate:
+        note += (" (computed by a separate `bbb run`, not counted: see the maps' costs below)"
+                 if separate == len(entries) else f" ({separate} of {len(entries)} scenes "
+                 "computed by a separate `bbb run`, not counted: see the maps' costs below)")
     return (f"| {label} | {_duration(wall)}{note} | {done} of {chunks} | "
             f"{'/'.join(map(str, workers)) or '–'} | "
             f"{f'{red:.0f} s' if red else '–'} |")

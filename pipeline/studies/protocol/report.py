@@ -9,10 +9,10 @@ from collections.abc import Mapping
 
 import pandas as pd
 
+from bbb.analysis.period1 import frequency_at, gamma_prime
 from bbb.params import Params
 
 from ...claims.markdown import md_cell
-from ..klages2004.claims import period1_limit
 from .claims import CURVE_CLAIMS, ERGODIC_CLAIM, POSITIVE, reproducing
 from .tables import MIXTURE
 
@@ -96,7 +96,7 @@ def _decay_text(curves: pd.DataFrame) -> str:
     if not Ts or not (curves["ensemble"] == MIXTURE).any():
         return ""
     p = Params.preset("klages2004", f=60.0)
-    f2 = math.sqrt(period1_limit(p.alpha) * p.g / p.A) / (2 * math.pi)
+    f2 = frequency_at(gamma_prime(p.alpha), p.A, p.g)
     sh = {(T, f): _value(curves, MIXTURE, T, "moving_time", f, "share")
           for T in (Ts[0], Ts[-1]) for f in (54.0, 57.0)}
     return ("The mixture's share of time spent moving is " + "; ".join(

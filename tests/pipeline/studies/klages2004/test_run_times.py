@@ -35,6 +35,15 @@ def test_a_further_studys_scenes_are_summed_into_its_row_and_earlier_runs_marked
     assert not any(r.startswith("| `ergodicity`") or r.startswith("| contact") for r in rows)
 
 
+def test_a_store_filled_by_a_separate_run_says_so_instead_of_a_wall_time():
+    log = {"scenes": {"dissipation": {"computed": 0, "chunks": 40, "workers": 2,
+                                      "separate_run": True},
+                      "dissipation_r25": {"wall_s": 12.0, "computed": 3, "chunks": 3, "workers": 2}}}
+    rows = table(log)
+    assert ("| dissipation (2 scenes) | 12 s (1 of 2 scenes computed by a separate `bbb run`, not "
+            "counted: see the maps' costs below) | 3 of 43 | 2 | – |") in rows
+
+
 def test_update_readme_rewrites_only_between_the_markers(tmp_path):
     log = {"scenes": {"figure3": {"wall_s": 3.0, "computed": 12, "chunks": 12, "workers": 2}}}
     readme = tmp_path / "README.md"
