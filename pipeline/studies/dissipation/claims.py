@@ -3,9 +3,9 @@
 Rules, fixed before the map was looked at (tests/pipeline/studies/dissipation/test_claims.py
 turns each on synthetic maps with known answers):
 
-lines           the judged α lines (:func:`.lines.judged_lines`): the scene's α values, each a
-                whole D(f) curve; α values refinement added hold a few points and are drawn,
-                not judged.
+lines           the judged α lines (:func:`.lines.judged_lines`): the α values the scene lists,
+                each a whole D(f) curve; α values refinement added hold a few points and are
+                drawn, not judged.
 onset           per line, the lowest f whose D_lo exceeds 1 % of the line's largest D, with
                 the CI of the paper's claim 1 (:func:`pipeline.claims.measures.onset_ci`).
 thresholds      f(Γ) = sqrt(Γ g / A) / 2π of the flat-floor 1/1 orbit's existence Γ₁(α) and
@@ -50,7 +50,7 @@ from bbb.analysis.stats.proportion import share_difference, wilson
 
 from ...claims.rank import rank_trend
 from ...claims.record import Band, Claim, Measured, Part, Quantity, judge, measure
-from .lines import cut, first_max_above, first_reaching, judged_lines, onset
+from .lines import cut, first_max_above, first_reaching, judged_lines, listed_alphas, onset
 
 __all__ = ["MAP", "LOCKING", "R25", "CUTS", "ONSET_TOL", "LEVEL_SHARE", "P_TREND", "NEAR_ONSET",
            "BEYOND_MAX", "CUT_SHARE", "CLAIMS", "threshold_frequency", "cut_line"]
@@ -87,7 +87,12 @@ def _trend_part(label: str, x, y, sign: int = 0) -> Part:
 
 
 def _lines(ctx, scene: str = MAP) -> dict[float, pd.DataFrame]:
-    return judged_lines(ctx["tables"].get(f"{scene}_diffusion"))
+    return judged_lines(ctx["tables"].get(f"{scene}_diffusion"), _listed(ctx))
+
+
+def _listed(ctx) -> tuple[float, ...]:
+    """The α lines judged: ``ctx["listed"]``, else those the shipped scene lists."""
+    return ctx.get("listed") or listed_alphas(MAP)
 
 
 @measure("dissipation.onset_threshold")
@@ -134,7 +139,7 @@ def first_maximum(claim: Claim, ctx) -> Measured:
 
 @measure("dissipation.loops")
 def loops(claim: Claim, ctx) -> Measured:
-    lock = judged_lines(ctx["tables"].get(f"{LOCKING}_locking"))
+    lock = judged_lines(ctx["tables"].get(f"{LOCKING}_locking"), _listed(ctx))
     if not lock:
         return Measured(missing="no locking map reduced")
     parts = []

@@ -27,7 +27,7 @@ from bbb.analysis.liftoff import liftoff_frequency
 
 from ...plot.style import PAGE, STYLE, figure_files, new_figure, save_figure
 from .claims import CUTS, LOCKING, MAP, cut_line, threshold_frequency
-from .lines import first_max_above, judged_lines, onset
+from .lines import first_max_above, judged_lines, listed_alphas, onset
 
 __all__ = ["CAPTIONS", "D_FLOOR", "figure_map", "figure_cuts", "files"]
 
@@ -36,7 +36,8 @@ CAPTIONS = {
     "fig_dissipation": (
         "D(f, α) from rest at the paper's arcs (R = 15 mm, A = 0.1 mm), α from 0.4 to 0.95, "
         "D to 5 % (or resolved as below 9 mm²/s), refined along f and α next to extrema and "
-        "jumps (dots: α values refinement added). Grey: D < 1 mm²/s (creeping). White "
+        "jumps (dots: α values refinement added). Grey: D < 1 mm²/s (creeping); white: no D (the "
+        "estimator failed: the MSD's fit gives D significantly below 0). White "
         "lines: k_max = 2 v_max f / g = 1, 2, 3, ... (the spiral's loops; scene "
         "dissipation_locking). Dashed: the flat-floor 1/1 orbit appears (Γ₁) and loses "
         "stability (Γ'); dotted: Γ = 1, lift-off from rest. Per line: the onset of "
@@ -97,11 +98,12 @@ def _draw_landmarks(ax, lines, lock: pd.DataFrame | None, f_range) -> None:
 
 
 def figure_map(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLike | None = None,
-               name: str = "fig_dissipation") -> Figure | None:
+               name: str = "fig_dissipation", listed=None) -> Figure | None:
     """The D(f, α) map from ``tables["dissipation_diffusion"]`` (and the locking map's
-    ``dissipation_locking_locking`` for the k_max lines); None without the map."""
+    ``dissipation_locking_locking`` for the k_max lines), its rows the ``listed`` α lines
+    (default: the shipped scene's); None without the map."""
     t = tables.get(f"{MAP}_diffusion")
-    lines = judged_lines(t)
+    lines = judged_lines(t, listed or listed_alphas(MAP))
     if not lines:
         return None
     D = t["D"].to_numpy(float)
@@ -147,7 +149,8 @@ def figure_cuts(tables: Mapping[str, pd.DataFrame], refs: Mapping[str, pd.DataFr
                 ax.plot(t["f"], t["D"], color=c, lw=0.8, label=lab)
             if cmp_ is not None:
                 bad = cmp_[(cmp_["cut"] == n) & (cmp_["agree"] == 0)]
-                ax.plot(bad["f"], bad["D"], "x", color="tab:red", ms=4, label="disagree")
+                if len(bad):
+                    ax.plot(bad["f"], bad["D"], "x", color="tab:red", ms=4, label="disagree")
             ax.set(xlabel="f (Hz)", ylabel="D (mm²/s)", title=f"({letter}) {CUTS[n][0]}")
             ax.legend(loc="upper left", fontsize=6)
         if out_dir is not None:

@@ -2,10 +2,10 @@
 located on each (the onset of diffusion, the first maximum above it, where k_max reaches n).
 
 Refinement adds α values between grid lines only at the frequencies where D(α) jumps or
-has an extremum, so a refined α holds a few points, not a curve.  A line is *judged* when it
-holds every *base* frequency -- those present on at least :data:`BASE_SHARE` of the α values
-(the scene's ``[frequencies]``): the scene's own α values, whatever refinement added.  Its
-features use every point it has, refined frequencies included.  Units: f in Hz, D in mm²/s.
+has an extremum, so a refined α holds a few points, not a curve.  The *judged* lines are the
+α values the scene lists in its ``[grid]`` (:func:`listed_alphas`), whatever refinement added;
+their features use every point they hold, refined frequencies included.  Units: f in Hz, D in
+mm²/s.
 """
 
 from __future__ import annotations
@@ -19,32 +19,31 @@ from ...claims.measures import grid_step, onset_ci
 from ...claims.record import Quantity
 from ..klages2004.measures import curve_extrema
 
-__all__ = ["BASE_SHARE", "COLS", "judged_lines", "onset", "first_max_above", "first_reaching",
+__all__ = ["COLS", "listed_alphas", "judged_lines", "onset", "first_max_above", "first_reaching",
            "cut"]
 
-#: a frequency is a base frequency when at least this share of the α values hold it
-BASE_SHARE = 0.9
 COLS = ("D", "D_lo", "D_hi")
 
 
-def _f_keys(f) -> np.ndarray:
-    return np.round(np.asarray(f, dtype=float) * 1000.0).astype(np.int64)  # 1 mHz
+def listed_alphas(scene: str = "dissipation") -> tuple[float, ...]:
+    """The α values the scene ``scene`` lists in its ``[grid]`` (the shipped scene, not its
+    draft: a draft lists some of them)."""
+    from ...workflow.scenes import load_scene
+
+    return tuple(float(v) for v in dict(load_scene(scene).grid)["alpha"])
 
 
-def judged_lines(table: pd.DataFrame | None, axis: str = "alpha") -> dict[float, pd.DataFrame]:
-    """{α: the line's rows sorted by f, index 0..n-1} for every judged line (module docstring)
-    of the long table ``table`` (columns f, ``axis``, ...), in increasing α; {} if None."""
+def judged_lines(table: pd.DataFrame | None, listed, axis: str = "alpha"
+                 ) -> dict[float, pd.DataFrame]:
+    """{α: the line's rows sorted by f, index 0..n-1} for every α of ``listed`` that the long
+    table ``table`` (columns f, ``axis``, ...) holds, in increasing α; {} if None."""
     if table is None or table.empty or axis not in table:
         return {}
-    values = np.unique(table[axis].to_numpy(float))
-    keys = _f_keys(table["f"])
-    holders = pd.Series(table[axis].to_numpy(float)).groupby(keys).nunique()
-    base = set(holders.index[holders >= BASE_SHARE * values.size])
     out = {}
-    for a in values:
+    for a in sorted(float(v) for v in listed):
         rows = table[np.isclose(table[axis].to_numpy(float), a, rtol=0, atol=1e-9)]
-        if base <= set(_f_keys(rows["f"])):
-            out[float(a)] = rows.sort_values("f").reset_index(drop=True)
+        if len(rows):
+            out[a] = rows.sort_values("f").reset_index(drop=True)
     return out
 
 

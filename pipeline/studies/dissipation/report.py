@@ -17,7 +17,7 @@ from ..klages2004.committed import TABLE_FILES
 from .claims import CLAIMS, CUTS, LOCKING, MAP, R25, cut_line
 from .cuts import compare_cut
 from .figures import figure_cuts, figure_map, files
-from .lines import judged_lines
+from .lines import judged_lines, listed_alphas
 
 __all__ = ["SCENES", "draw", "cuts_table", "report_lines"]
 
@@ -60,12 +60,13 @@ def draw(tables: dict[str, pd.DataFrame], stores: Mapping[str, str],
 
 def report_lines(tables: Mapping[str, pd.DataFrame]) -> list[str]:
     """The REPORT.md section: the map's claim rows."""
-    rows = evaluate(CLAIMS, {"tables": tables})
-    n = len(judged_lines(tables.get(f"{MAP}_diffusion")))
+    listed = listed_alphas(MAP)
+    rows = evaluate(CLAIMS, {"tables": tables, "listed": listed})
+    n = len(judged_lines(tables.get(f"{MAP}_diffusion"), listed))
     t = tables.get(f"{MAP}_diffusion")
     pts = 0 if t is None else len(t)
     L = ["", "## D(f, α): dissipation (scenes dissipation, dissipation_locking, dissipation_r25)",
-         "", f"D from rest over f × α at the paper's arcs: {pts} points, {n} whole α lines "
-         "judged (the others added by refinement); the flat-floor thresholds Γ₁, Γ' from "
+         "", f"D from rest over f × α at the paper's arcs: {pts} points, {n} α lines judged "
+         "(the scene's; refinement added the others' points); the flat-floor thresholds Γ₁, Γ' from "
          "bbb.analysis.period1; pipeline/studies/dissipation/claims.py states the rules.", ""]
     return L + markdown_table(rows, prefix="A")

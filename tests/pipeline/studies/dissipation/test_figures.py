@@ -41,3 +41,11 @@ def test_the_cuts_mark_the_frequencies_that_disagree(tmp_path):
     crosses = [ln for ln in fig.axes[0].get_lines() if ln.get_label() == "disagree"]
     assert list(crosses[0].get_xdata()) == [70.0]
     assert (tmp_path / "fig_dissipation_cuts.png").stat().st_size > 10_000
+
+
+def test_cuts_that_agree_everywhere_mark_nothing(tmp_path):
+    line = dmap(refined=False).query("alpha == 0.7").reset_index(drop=True)
+    cmp_ = compare_cut(line, line, 9.0, 9.0).assign(cut="figure2")
+    fig = figure_cuts({"dissipation_diffusion": dmap(), "dissipation_cuts": cmp_},
+                      {"figure2": line}, tmp_path)
+    assert not [ln for ln in fig.axes[0].get_lines() if ln.get_label() == "disagree"]

@@ -7,22 +7,25 @@ from pipeline.studies.dissipation.lines import (
     first_max_above,
     first_reaching,
     judged_lines,
+    listed_alphas,
     onset,
 )
 
 from .synthetic import ALPHAS, dmap, line
 
 
-def test_the_judged_lines_are_the_scenes_alphas_not_those_refinement_added():
-    lines = judged_lines(dmap(refined=True))
+def test_the_judged_lines_are_the_listed_alphas_not_those_refinement_added():
+    lines = judged_lines(dmap(refined=True), ALPHAS)
     assert list(lines) == pytest.approx(list(ALPHAS))
     assert all(len(t) == 55 for t in lines.values())
 
 
-def test_a_line_missing_a_base_frequency_is_not_judged():
-    t = dmap(refined=False)
-    t = t[~((t["alpha"] == 0.5) & (t["f"] == 70.0))]
-    assert 0.5 not in judged_lines(t)
+def test_the_listed_alphas_are_the_shipped_scenes():
+    assert listed_alphas() == pytest.approx(ALPHAS)
+
+
+def test_a_listed_alpha_the_map_does_not_hold_is_not_judged():
+    assert list(judged_lines(dmap(), (0.5, 0.52))) == [0.5]
 
 
 def test_the_onset_is_the_first_frequency_that_diffuses():
@@ -47,3 +50,15 @@ def test_where_k_max_first_reaches_n():
 def test_a_cut_is_the_rows_at_one_value():
     assert len(cut(dmap(), "alpha", 0.7)) == 55
     assert cut(dmap(), "alpha", 0.71) is None
+
+
+def test_many_refined_alphas_do_not_become_judged_lines():
+    """Refinement can add more α values than the scene lists, each at a few frequencies."""
+    import numpy as np
+    import pandas as pd
+
+    extra = [line(60.0, 65.0, a).query("f in (60.0, 61.0, 62.0)")
+             for a in np.round(np.arange(0.4125, 0.95, 0.0125), 5) if round(a, 5) not in ALPHAS]
+    t = pd.concat([dmap(refined=False), *extra], ignore_index=True)
+    assert len(extra) > len(ALPHAS)
+    assert list(judged_lines(t, ALPHAS)) == pytest.approx(list(ALPHAS))
