@@ -59,3 +59,13 @@ def test_the_readmes_map_numbers_are_the_committed_benchmarks():
               cell(scale, "compute wall", 4), cell(plan, "CPU in tasks, s (probes)", 4),
               cell(plan, "CPU in tasks, s (all)", 4)]
     assert re.findall(r"\d+\.\d+", text) == quoted
+
+
+def test_the_readmes_map_costs_are_the_committed_results():
+    """The maps' planned and measured costs are copied from their results file, row by row."""
+    results = (ROOT / "benchmarks" / "results" / "map-costs-2026-11-25.md").read_text(
+        encoding="utf-8")
+    rows = [ln for ln in results.splitlines() if ln.startswith("|")]
+    assert len(rows) >= 4
+    shown = README.split("<!-- map costs:", 1)[1].split("\n\n", 1)[0].splitlines()[1:]
+    assert shown == rows

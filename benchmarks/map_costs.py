@@ -1,0 +1,83 @@
+"""What each map cost against what ``bbb plan`` predicted: chunks and collisions (independent of
+the machine's load) from the store, CPU time from the run's own measurement.
+
+    python benchmarks/map_costs.py [--runs runs] [--cpu NAME=SECONDS ...]
+
+For every map scene below with a plan in ``benchmarks/results/plan-<name>-*.txt`` (the output of
+``bbb plan``) and a store ``<runs>/<name>.zarr``: the plan's chunks, collisions and CPU-s in
+tasks; the chunks and collisions the store holds at the points the workflow lists (a refined
+map's added points are not priced by the plan, and are counted apart); and the CPU-s measured
+for the run (``--cpu``: user + system time of the ``bbb run`` process tree, e.g. from
+``/usr/bin/time -v``), when one was measured.  Ratios are measured / planned.
+"""
+
+from __future__ import annotations
+
+import argparse
+import re
+import sys
+from pathlib import Path
+
+import numpy as np
+
+sys.path[0] = str(Path(__file__).resolve().parents[1])
+
+from pipeline.store.study_store import StudyStore  # noqa: E402
+from pipeline.workflow.identity import point_key  # noqa: E402
+from pipeline.workflow.scenes import load_scene  # noqa: E402
+
+RESULTS = Path(__file__).resolve().parent / "results"
+MAPS = ("dissipation", "dissipation_locking", "dissipation_r25", "protocol", "transport_reversal")
+
+
+def planned(name: str) -> dict[str, float] | None:
+    files = sorted(RESULTS.glob(f"plan-{name}-*.txt")) or sorted(
+        RESULTS.glob(f"plan-{name}-map-*.txt"))
+    if not files:
+        return None
+    text = files[-1].read_text(encoding="utf-8")
+    total = re.search(r"^[#\s]*total\s+\d+\s+(\d+)\s+([\d.e+]+)\s+([\d.]+)", text, re.M)
+    return {"chunks": float(total.group(1)), "collisions": float(total.group(2)),
+            "cpu_s": float(total.group(3)), "file": files[-1].name}
+
+
+def measured(runs: Path, name: str) -> dict[str, float]:
+    st = StudyStore.open(str(runs / f"{name}.zarr"))
+    listed = {point_key(p.f, p.grid) for p in load_scene(name).points}
+    done = st.done()
+    coll = np.asarray(st.group()["n_collisions"][...])
+    per_point = np.where(done.any(axis=(1, 2)), coll.reshape(coll.shape[0], -1).sum(axis=1), 0)
+    is_listed = np.array([point_key(p.f, p.grid) in listed for p in st.study.points])
+    return {"points": len(st.study.points), "listed": int(is_listed.sum()),
+            "chunks": float(done[is_listed].sum()), "collisions": float(per_point[is_listed].sum()),
+            "chunks_added": float(done[~is_listed].sum()),
+            "collisions_added": float(per_point[~is_listed].sum())}
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", default="runs", type=Path)
+    ap.add_argument("--cpu", action="append", default=[], metavar="NAME=SECONDS")
+    a = ap.parse_args()
+    cpu = {k: float(v) for k, v in (x.split("=", 1) for x in a.cpu)}
+    print("| map | points (listed) | chunks planned / measured | collisions planned / measured "
+          "| CPU-s planned / measured | plan |")
+    print("| --- | --- | --- | --- | --- | --- |")
+    for name in MAPS:
+        p = planned(name)
+        if p is None or not (a.runs / f"{name}.zarr").exists():
+            continue
+        m = measured(a.runs, name)
+        added = (f"; refinement added {m['points'] - m['listed']} points, {m['chunks_added']:.0f} "
+                 f"chunks, {m['collisions_added']:.3g} collisions, not planned"
+                 if m["points"] > m["listed"] else "")
+        c = cpu.get(name)
+        cpu_text = (f"{p['cpu_s']:.0f} / {c:.0f} ({c / p['cpu_s']:.2f})" if c is not None
+                    else f"{p['cpu_s']:.0f} / not measured")
+        print(f"| `{name}` | {m['points']} ({m['listed']}) | {p['chunks']:.0f} / {m['chunks']:.0f} "
+              f"({m['chunks'] / p['chunks']:.2f}) | {p['collisions']:.3g} / {m['collisions']:.3g} "
+              f"({m['collisions'] / p['collisions']:.2f}) | {cpu_text} | {p['file']}{added} |")
+
+
+if __name__ == "__main__":
+    main()
