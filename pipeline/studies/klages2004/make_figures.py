@@ -119,7 +119,8 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
                 entry.update({k: old[k] for k in ("wall_s", "computed", "skipped", "chunks",
                                                   "workers", "task_s") if k in old},
                              earlier_invocation=True)
-            elif run and not entry.get("computed") and not old.get("computed"):
+            elif not entry.get("computed") and (old.get("separate_run")
+                                                or (run and not old.get("computed"))):
                 # nothing to compute and no earlier invocation did it: a separate `bbb run`
                 # filled the store, and its wall time is not this log's to know
                 entry["separate_run"] = True

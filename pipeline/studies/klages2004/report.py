@@ -123,6 +123,9 @@ def _scene_rows(stores: Mapping[str, str], run_log: Mapping | None) -> list[str]
         log = (run_log or {}).get("scenes", {}).get(name, {})
         wall = (f"{log['wall_s']:.0f} s ({log.get('computed', 0)} chunks computed on "
                 f"{log.get('workers', '?')} workers)" if "wall_s" in log else "–")
+        if log.get("separate_run"):
+            wall = (f"{log.get('wall_s', 0.0):.0f} s (its chunks computed by a separate "
+                    "`bbb run`)")
         lines.append(f"| {name} | `{log.get('workflow', st.study.source)}` | {acc.preset} | "
                      f"{acc.n_particles} × {acc.t_max:g} s | {_points(st.study)} × "
                      f"{len(st.study.families)} | {int(done.sum())}/{done.size} | {secs:.0f} s | "

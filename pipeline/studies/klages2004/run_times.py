@@ -32,15 +32,17 @@ def _row(label: str, entries: list[Mapping]) -> str:
     red = sum(e.get("reduce_s", 0.0) for e in entries)
     done = sum(e.get("computed", 0) for e in entries)
     chunks = sum(e.get("chunks", 0) for e in entries)
-    workers = sorted({e["workers"] for e in entries if "workers" in e})
+    # a scene whose chunks a separate run computed ran none here: its 0 workers say nothing
+    workers = sorted({e["workers"] for e in entries
+                      if "workers" in e and not e.get("separate_run")})
     earlier = sum(bool(e.get("earlier_invocation")) for e in entries)
     separate = sum(bool(e.get("separate_run")) for e in entries)
     note = ("" if not earlier else " (computed by an earlier invocation)" if earlier == len(entries)
             else f" ({earlier} of {len(entries)} scenes computed by an earlier invocation)")
     if separate:
-        note += (" (computed by a separate `bbb run`, not counted: see the maps' costs below)"
-                 if separate == len(entries) else f" ({separate} of {len(entries)} scenes "
-                 "computed by a separate `bbb run`, not counted: see the maps' costs below)")
+        note += (" (chunks computed by a separate `bbb run`: see the maps' costs below)"
+                 if separate == len(entries) else f" ({separate} of {len(entries)} scenes' "
+                 "chunks computed by a separate `bbb run`: see the maps' costs below)")
     return (f"| {label} | {_duration(wall)}{note} | {done} of {chunks} | "
             f"{'/'.join(map(str, workers)) or '–'} | "
             f"{f'{red:.0f} s' if red else '–'} |")

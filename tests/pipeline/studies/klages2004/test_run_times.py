@@ -40,8 +40,8 @@ def test_a_store_filled_by_a_separate_run_says_so_instead_of_a_wall_time():
                                       "separate_run": True},
                       "dissipation_r25": {"wall_s": 12.0, "computed": 3, "chunks": 3, "workers": 2}}}
     rows = table(log)
-    assert ("| dissipation (2 scenes) | 12 s (1 of 2 scenes computed by a separate `bbb run`, not "
-            "counted: see the maps' costs below) | 3 of 43 | 2 | – |") in rows
+    assert ("| dissipation (2 scenes) | 12 s (1 of 2 scenes' chunks computed by a separate "
+            "`bbb run`: see the maps' costs below) | 3 of 43 | 2 | – |") in rows
 
 
 def test_update_readme_rewrites_only_between_the_markers(tmp_path):
