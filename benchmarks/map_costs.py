@@ -27,18 +27,23 @@ from pipeline.workflow.identity import point_key  # noqa: E402
 from pipeline.workflow.scenes import load_scene  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"
-MAPS = ("dissipation", "dissipation_locking", "dissipation_r25", "protocol", "transport_reversal")
+#: {map scene: the plans of it (``bbb plan`` outputs in benchmarks/results/), one row each}
+MAPS = {"dissipation": ("plan-dissipation-map-*.txt", "plan-dissipation-all-lines-*.txt"),
+        "dissipation_locking": ("plan-dissipation_locking-*.txt",),
+        "dissipation_r25": ("plan-dissipation_r25-*.txt",),
+        "protocol": ("plan-protocol-*.txt",),
+        "transport_reversal": ("plan-transport_reversal-*.txt",)}
 
 
-def planned(name: str) -> dict[str, float] | None:
-    files = sorted(RESULTS.glob(f"plan-{name}-*.txt")) or sorted(
-        RESULTS.glob(f"plan-{name}-map-*.txt"))
+def planned(pattern: str) -> dict[str, float] | None:
+    files = sorted(RESULTS.glob(pattern))
     if not files:
         return None
     text = files[-1].read_text(encoding="utf-8")
     total = re.search(r"^[#\s]*total\s+\d+\s+(\d+)\s+([\d.e+]+)\s+([\d.]+)", text, re.M)
     return {"chunks": float(total.group(1)), "collisions": float(total.group(2)),
-            "cpu_s": float(total.group(3)), "file": files[-1].name}
+            "cpu_s": float(total.group(3)), "file": files[-1].name,
+            "all": "--pilot-lines all" in text.splitlines()[0]}
 
 
 def measured(runs: Path, name: str) -> dict[str, float]:
@@ -63,21 +68,22 @@ def main() -> None:
     print("| map | points (listed) | chunks planned / measured | collisions planned / measured "
           "| CPU-s planned / measured | plan |")
     print("| --- | --- | --- | --- | --- | --- |")
-    for name in MAPS:
-        p = planned(name)
-        if p is None or not (a.runs / f"{name}.zarr").exists():
+    for name, patterns in MAPS.items():
+        if not (a.runs / f"{name}.zarr").exists():
             continue
         m = measured(a.runs, name)
         added = (f"; refinement added {m['points'] - m['listed']} points, {m['chunks_added']:.0f} "
                  f"chunks, {m['collisions_added']:.3g} collisions, not planned"
                  if m["points"] > m["listed"] else "")
-        c = cpu.get(name)
-        cpu_text = (f"{p['cpu_s']:.0f} / {c:.0f} ({c / p['cpu_s']:.2f})" if c is not None
-                    else f"{p['cpu_s']:.0f} / not measured")
-        print(f"| `{name}` | {m['points']} ({m['listed']}) | {p['chunks']:.0f} / {m['chunks']:.0f} "
-              f"({m['chunks'] / p['chunks']:.2f}) | {p['collisions']:.3g} / {m['collisions']:.3g} "
-              f"({m['collisions'] / p['collisions']:.2f}) | {cpu_text} | {p['file']}{added} |")
-
+        for p in filter(None, map(planned, patterns)):
+            c = cpu.get(name)
+            cpu_text = (f"{p['cpu_s']:.0f} / {c:.0f} ({c / p['cpu_s']:.2f})" if c is not None
+                        else f"{p['cpu_s']:.0f} / not measured")
+            label = f"`{name}`" + (" (every line piloted)" if p["all"] else "")
+            print(f"| {label} | {m['points']} ({m['listed']}) | {p['chunks']:.0f} / "
+                  f"{m['chunks']:.0f} ({m['chunks'] / p['chunks']:.2f}) | {p['collisions']:.3g} / "
+                  f"{m['collisions']:.3g} ({m['collisions'] / p['collisions']:.2f}) | {cpu_text} | "
+                  f"{p['file']}{added} |")
 
 if __name__ == "__main__":
     main()
