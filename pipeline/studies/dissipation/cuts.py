@@ -18,11 +18,14 @@ import math
 import numpy as np
 import pandas as pd
 
-__all__ = ["RESOLVED_ZERO", "CUT_COLUMNS", "compare_cut"]
+__all__ = ["RESOLVED_ZERO", "CUT_COLUMNS", "CUT_UNITS", "compare_cut"]
 
 RESOLVED_ZERO = "resolved zero"
 CUT_COLUMNS = ("f", "D", "D_lo", "D_hi", "stop", "D_ref", "D_ref_lo", "D_ref_hi", "stop_ref",
                "d_resolved", "d_resolved_ref", "agree")
+#: the units of the cuts table's own columns (``cut`` names the committed scene; ``agree`` 1/0)
+CUT_UNITS = {"cut": "", "D_ref": "mm^2/s", "D_ref_lo": "mm^2/s", "D_ref_hi": "mm^2/s",
+             "stop_ref": "", "d_resolved": "mm^2/s", "d_resolved_ref": "mm^2/s", "agree": "1"}
 
 
 def _half(D, lo, hi, other, stop, d_res):
