@@ -14,8 +14,8 @@ from pipeline.api import open_study, reduced
 from pipeline.execute.task import compute_chunk
 from pipeline.store.study_store import StudyStore
 from pipeline.studies.accuracy.study import COLUMN_UNITS as ACCURACY_UNITS
-from pipeline.studies.klages2004.finescale import EXTREMA_UNITS
 from pipeline.studies.dissipation.cuts import CUT_UNITS
+from pipeline.studies.klages2004.finescale import EXTREMA_UNITS
 from pipeline.studies.protocol.tables import COLUMN_UNITS as PROTOCOL_UNITS
 from pipeline.tables.catalog import TABLES, table_names, tables
 from pipeline.tables.reduce import reduce_store, table_metadata
