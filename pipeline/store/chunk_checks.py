@@ -1,7 +1,8 @@
 """The checks of one done chunk's data (``bbb verify``, :mod:`pipeline.store.verify`): is each
 particle's record what a sound run of the kernel could have written?
 
-- ``positions`` finite, starting inside the first cell (|x(0)| <= S/2, mm);
+- ``positions`` finite, starting inside the first cell (|x(0)| <= S/2, mm; on a thrown floor
+  the cell rides on the floor, so x(0) may be off by its along-plane amplitude |A_x|);
 - ``n_recorded`` within [0, record]; ``collisions`` finite in the first ``n_recorded`` rows and
   NaN after them; each recorded collision at record_from <= t <= t_max (s), floor phase in
   [0, 1], times non-decreasing, and on the floor surface y = -A sin(2 pi phase) - c(d) (mm)
@@ -78,12 +79,16 @@ def chunk_problems(g: zarr.Group, study: Study, fi: int, mi: int, ci: int,
             yield "positions", (f"{int(bad.sum())} non-finite values (first: particle "
                                 f"{ci * cs + i}, t = {study.sample_times()[k]:g} s: {float(x[i, k])!r})")
         x0 = x[:, 0]
-        out = np.isfinite(x0) & (np.abs(x0) > 0.5 * p.S)
+        # a thrown floor starts displaced along its plane by up to its amplitude there
+        shift = abs(p.floor_frame()[2]) if p.transport else 0.0
+        out = np.isfinite(x0) & (np.abs(x0) > 0.5 * p.S + shift)
         if out.any():
             i = int(np.argmax(out))
+            allowed = (f"S/2 = {0.5 * p.S:g} mm" if not shift else
+                       f"S/2 + |A_x| = {0.5 * p.S + shift:g} mm (the thrown floor's offset)")
             yield "positions", (f"{int(out.sum())} particles start outside the first cell "
                                 f"(particle {ci * cs + i}: x(0) = {float(x0[i])!r} mm); allowed: "
-                                f"|x(0)| <= S/2 = {0.5 * p.S:g} mm")
+                                f"|x(0)| <= {allowed}")
 
     yield from _contact_problems(data, acc.t_max, ci * cs)
     nrec = data.get("n_recorded")
