@@ -36,13 +36,16 @@ def _half(D, lo, hi, other, stop, d_res):
 def compare_cut(line: pd.DataFrame, ref: pd.DataFrame, d_resolved: float,
                 d_resolved_ref: float) -> pd.DataFrame:
     """One row per frequency the map's ``line`` and the reference table ``ref`` share (to
-    1 mHz; columns f, D, D_lo, D_hi, stop in both): :data:`CUT_COLUMNS`, ``agree`` 1/0, NaN
+    1 mHz; columns f, D, D_lo, D_hi, and stop where the scene has a target):
+    :data:`CUT_COLUMNS`, ``agree`` 1/0, NaN
     where either D is missing (estimator failed)."""
-    a = line.assign(_k=np.round(line["f"].to_numpy(float) * 1000).astype(np.int64))
-    b = ref.assign(_k=np.round(ref["f"].to_numpy(float) * 1000).astype(np.int64))
-    stop_b = b["stop"] if "stop" in b else pd.Series("", index=b.index)
+    # a fixed-size scene (a draft) has no stop column: none of its points is a resolved zero
+    a = line.assign(_k=np.round(line["f"].to_numpy(float) * 1000).astype(np.int64),
+                    stop=line["stop"] if "stop" in line else "")
+    b = ref.assign(_k=np.round(ref["f"].to_numpy(float) * 1000).astype(np.int64),
+                   stop_ref=ref["stop"] if "stop" in ref else "")
     m = a[["_k", "f", "D", "D_lo", "D_hi", "stop"]].merge(
-        b.assign(stop_ref=stop_b)[["_k", "D", "D_lo", "D_hi", "stop_ref"]].rename(
+        b[["_k", "D", "D_lo", "D_hi", "stop_ref"]].rename(
             columns={"D": "D_ref", "D_lo": "D_ref_lo", "D_hi": "D_ref_hi"}), on="_k")
     D, Dr = m["D"].to_numpy(float), m["D_ref"].to_numpy(float)
     h = _half(D, m["D_lo"].to_numpy(float), m["D_hi"].to_numpy(float), Dr,

@@ -40,3 +40,10 @@ def test_the_resolutions_are_kept_beside_each_row():
     a = table([(60.0, 1.0, 0.9, 1.1, "target met")])
     row = compare_cut(a, a, 9.0, 0.75).iloc[0]
     assert (row["d_resolved"], row["d_resolved_ref"]) == pytest.approx((9.0, 0.75))
+
+
+def test_a_fixed_size_scene_without_stop_reasons_is_compared_too():
+    a = table([(60.0, 1.0, 0.9, 1.1, "target met")]).drop(columns="stop")
+    b = table([(60.0, 1.05, 0.95, 1.15, "target met")]).drop(columns="stop")
+    row = compare_cut(a, b, 0.0, 0.0).iloc[0]
+    assert row["agree"] == 1 and row["stop"] == "" and row["stop_ref"] == ""
