@@ -95,8 +95,20 @@ def _build_parser() -> argparse.ArgumentParser:
     pl = sub.add_parser("plan", help="predict CPU and wall time of a workflow before it runs "
                                      "(a cached pilot of a few particles; pipeline/execute/pilot.py)")
     pl.add_argument("workflow", metavar="WORKFLOW", help="workflow TOML file")
-    pl.add_argument("--workers", metavar="N", type=_positive_int,
-                    help="worker processes to plan for (default: number of cores)")
+    pl.add_argument("--workers", metavar="N[,N...]", type=_positive_ints,
+                    help="worker counts to plan for, e.g. 2,8,64,256: the table of the first, "
+                         "and each one's wall time simulated with the waves, the scheduler and "
+                         "start-up (default: number of cores)")
+    pl.add_argument("--cluster", choices=("slurm",),
+                    help="plan for SLURM jobs (default: a LocalCluster on this machine's cores)")
+    pl.add_argument("--cores-per-job", metavar="K", type=_positive_int, default=32,
+                    help="with --cluster slurm: single-core workers per job (default: 32)")
+    pl.add_argument("--numba", choices=("cached", "cold"), default="cached",
+                    help="the kernel loaded from numba's cache (default) or compiled by the "
+                         "first worker of every host (cold)")
+    pl.add_argument("--chunk-sizes", metavar="C[,C...]", type=_positive_ints,
+                    help="also the wall time and efficiency at the largest worker count for "
+                         "these chunk sizes (those dividing n_particles)")
     pl.add_argument("--pilot-lines", choices=("probes", "all"), default="probes",
                     help="a map: pilot its corner and centre lines and cost the others from "
                          "them (probes, default), or pilot every line (all: costs the pilot's "
@@ -158,6 +170,14 @@ def _positive_int(text: str) -> int:
     if n < 1:
         raise argparse.ArgumentTypeError(f"{n} is out of range; allowed: an integer >= 1")
     return n
+
+
+def _positive_ints(text: str) -> tuple[int, ...]:
+    """'2,8,64' -> (2, 8, 64): integers >= 1, distinct."""
+    out = tuple(_positive_int(item.strip()) for item in text.split(","))
+    if len(set(out)) != len(out):
+        raise argparse.ArgumentTypeError(f"{text!r} repeats a number; allowed: distinct integers")
+    return out
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -338,12 +358,29 @@ def _cmd_plan(args) -> int:
                         echo=lambda m: print(m, file=sys.stderr))
     if rate is not None:
         rates = rates.with_rate(rate, Path(args.kernel_rate).name)
-    print(plan_table(predict(study, rates, args.workers or os.cpu_count() or 1)))
+    workers = list(args.workers or (os.cpu_count() or 1,))
+    print(plan_table(predict(study, rates, workers[0])))
+    print()
+    print(_scaling(args, study, rates, workers))
     if study.refine is not None or study.grid_refine is not None:
         which = "[grid.refine]" if study.grid_refine is not None else "[frequencies] refine"
         print(f"not priced: the points refinement ({which}) adds where D changes -- the plan "
               "covers the points the workflow lists; a refined run costs more")
     return 0
+
+
+def _scaling(args, study, rates, workers: list[int]) -> str:
+    """`bbb plan --workers 2,8,...`: the simulated wall times (pipeline/execute/scale_plan.py)."""
+    from .execute.scale_plan import chunk_size_sweep, scaling_table, sweep_table, units_of
+
+    where = {"kind": args.cluster or "local", "cores": os.cpu_count() or 1,
+             "per_job": args.cores_per_job, "cold": args.numba == "cold"}
+    text = scaling_table(units_of(study, rates), workers, **where)
+    if args.chunk_sizes:
+        n = max(workers)
+        text += "\n\n" + sweep_table(chunk_size_sweep(study, rates, n, list(args.chunk_sizes),
+                                                         **where), n)
+    return text
 
 
 def _cmd_plot(args) -> int:
