@@ -16,11 +16,11 @@ from dataclasses import dataclass, replace
 
 from ..workflow.study import Study
 from .adaptive import wave_ends
-from .plan import Overheads, Rates, predict
+from .plan import Overheads, Rates, plan_table, predict
 from .scaling import Costs, Deployment, Timeline, Unit, simulate
 
 __all__ = ["MEASURED", "units_of", "Row", "scaling_rows", "scaling_table", "chunk_size_sweep",
-           "sweep_table"]
+           "sweep_table", "plan_report"]
 
 #: overheads measured on this machine, s (benchmarks/results/scaling-overheads-*.txt;
 #: tests/pipeline/execute/test_scaling_docs.py checks these against that file)
@@ -124,3 +124,23 @@ def sweep_table(sweep: list[tuple[int, Row]], workers: int) -> str:
     lines.append(f">= 90 % efficiency at {workers} workers: chunk_size "
                  + (", ".join(map(str, good)) if good else "none of these"))
     return "\n".join(lines)
+
+
+def plan_report(study: Study, rates: Rates, workers: list[int], *, kind: str = "local",
+                cores: int = 2, per_job: int = 32, cold: bool = False,
+                chunk_sizes: tuple[int, ...] = ()) -> str:
+    """What `bbb plan` prints: the plan's table at the first worker count
+    (pipeline/execute/plan.py), the scaling table at every one, the chunk size sweep at the
+    largest if ``chunk_sizes`` are given, and what the plan does not price."""
+    where = {"kind": kind, "cores": cores, "per_job": per_job, "cold": cold}
+    text = plan_table(predict(study, rates, workers[0])) + "\n\n"
+    text += scaling_table(units_of(study, rates), workers, **where)
+    if chunk_sizes:
+        n = max(workers)
+        text += "\n\n" + sweep_table(chunk_size_sweep(study, rates, n, list(chunk_sizes),
+                                                         **where), n)
+    if study.refine is not None or study.grid_refine is not None:
+        which = "[grid.refine]" if study.grid_refine is not None else "[frequencies] refine"
+        text += (f"\nnot priced: the points refinement ({which}) adds where D changes -- the "
+                 "plan covers the points the workflow lists; a refined run costs more")
+    return text

@@ -11,7 +11,7 @@ import pytest
 from pipeline.cli import main
 from pipeline.execute.adaptive import predicted_waves, wave_ends
 from pipeline.execute.plan import Cell, Rates
-from pipeline.execute.scale_plan import units_of
+from pipeline.execute.scale_plan import plan_report, units_of
 from pipeline.execute.scaling import Costs, Deployment, Unit, ready_times, simulate
 from pipeline.workflow.load import parse_workflow
 
@@ -155,17 +155,27 @@ def test_plan_with_a_list_of_workers_prints_a_row_for_each(tmp_path, monkeypatch
     monkeypatch.chdir(tmp_path)
     (tmp_path / "w.toml").write_text(PLAN_TINY.replace("t_max = 30.0", "t_max = 10.0"))
     assert main(["plan", "w.toml", "--workers", "1,2,8", "--pilot-particles", "2",
-                 "--cluster", "slurm", "--cores-per-job", "4", "--chunk-sizes", "16,32,48"]) == 0
+                 "--cluster", "slurm", "--cores-per-job", "4"]) == 0
     out = capsys.readouterr().out
     rows = [line.split() for line in out.splitlines() if line[:7].strip() in ("1", "2", "8")]
     assert [r[0] for r in rows] == ["1", "2", "8"]
     assert rows[0][2] == "1.00" and rows[0][3] == "100.0%"
     assert "SLURM jobs of 4 single-core workers" in out
-    sweep = out[out.index("chunk sizes at 8 workers"):].splitlines()
+    assert "predicted:" in out and "on 1 workers" in out  # the plan's table at the first N
+
+
+def test_the_chunk_size_sweep_keeps_the_sizes_that_divide_n_particles(tmp_path):
+    study = parse_workflow(PLAN_TINY)
+    cells = {(round(f * 1000), "rest"): Cell(f, "rest", 8, 30.0, 1000 * 8 * 30, 1.0)
+             for f in (54.0, 55.0, 60.0, 72.0)}
+    text = plan_report(study, Rates(cells, rate=1e6), [1, 8], chunk_sizes=(16, 32, 48))
+    sweep = text[text.index("chunk sizes at 8 workers"):].splitlines()
     assert [line.split()[0] for line in sweep[2:4]] == ["16", "32"]  # 48 does not divide 128
+    assert sweep[4].startswith(">= 90 % efficiency at 8 workers: chunk_size")
 
 
 def test_plan_refuses_a_malformed_worker_list(capsys):
     assert main(["plan", "w.toml", "--workers", "2,x"]) == 2
-    assert main(["plan", "w.toml", "--workers", "2,2"]) == 2
-    assert "repeats" in capsys.readouterr().err
+    assert main(["plan", "w.toml", "--workers", "2,0"]) == 2
+    err = capsys.readouterr().err
+    assert "'x' is not an integer" in err and "0 is out of range" in err
