@@ -112,14 +112,20 @@ def first_task(study, store_path: Path, env: dict) -> tuple[float, float]:
                 os.environ[k] = v
 
 
-def cluster_start(n: int) -> float:
+def cluster_start(n: int) -> tuple[float, float]:
+    """(LocalCluster of n workers up, closed) seconds."""
     from distributed import Client, LocalCluster
 
     t = time.perf_counter()
-    with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=":0",
-                      env={"NUMBA_NUM_THREADS": "1"}) as cluster, Client(cluster) as c:
-        c.wait_for_workers(n)
-        return time.perf_counter() - t
+    cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                           dashboard_address=":0", env={"NUMBA_NUM_THREADS": "1"})
+    client = Client(cluster)
+    client.wait_for_workers(n)
+    up = time.perf_counter() - t
+    t = time.perf_counter()
+    client.close()
+    cluster.close()
+    return up, time.perf_counter() - t
 
 
 def noop(i):
@@ -219,14 +225,16 @@ def main() -> int:
                   f"{first_x:.2f} |",
                   f"| first task's latency after the worker is up | {first_c - up_c:.2f} | "
                   f"{first_x - up_x:.2f} |", ""]
-        starts = {n: cluster_start(n) for n in (1, 2, 8)}
+        times = {n: cluster_start(n) for n in (1, 2, 8)}
+        starts = {n: up for n, (up, _) in times.items()}
         per_worker = (starts[8] - starts[2]) / (8 / 2 - 1)  # CPU-s per process on 2 cores
         lines += ["## 2. LocalCluster start-up (s; processes share the cores)", "",
                   "| workers | 1 | 2 | 8 |", "| --- | --- | --- | --- |",
                   "| up, every worker joined | " + " | ".join(f"{starts[n]:.2f}" for n in (1, 2, 8))
-                  + " |", "",
+                  + " |",
+                  "| closed | " + " | ".join(f"{times[n][1]:.2f}" for n in (1, 2, 8)) + " |", "",
                   f"worker_start = (t8 - t2) / (8/2 - 1) = {per_worker:.2f} CPU-s per worker "
-                  "process", ""]
+                  f"process; the rest of t2: {starts[2] - per_worker:.2f} s", ""]
         submit, rate = no_op_tasks(args.tasks)
         lines += [f"## 3. {args.tasks} no-op tasks, submitted one by one, on 2 workers", "",
                   f"submit: {1e3 * submit:.3f} ms per task (client)",

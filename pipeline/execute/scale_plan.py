@@ -100,8 +100,10 @@ def scaling_table(units: list[Unit], workers: list[int], *, kind: str = "local",
 
 
 def chunk_size_sweep(study: Study, rates: Rates, workers: int, sizes: list[int], *,
-                     overheads: Overheads | None = None, **kw) -> list[tuple[int, Row]]:
-    """(chunk_size, the row at ``workers``) for each of ``sizes`` that divides the study's
+                     overheads: Overheads | None = None, **kw
+                     ) -> list[tuple[int, Row, int]]:
+    """(chunk_size, the row at ``workers``, the most workers -- a power of 2 up to
+    ``workers`` -- still at >= 90 % efficiency) for each of ``sizes`` that divides the study's
     n_particles (the store's chunking: each size is a different store and seeds)."""
     out = []
     for size in sizes:
@@ -110,19 +112,23 @@ def chunk_size_sweep(study: Study, rates: Rates, workers: int, sizes: list[int],
             continue
         sized = replace(study, accuracy=replace(acc, chunk_size=size))
         units = units_of(sized, rates, overheads)
-        out.append((size, scaling_rows(units, [workers], **kw)[0]))
+        ns = [2 ** k for k in range(workers.bit_length()) if 2 ** k < workers] + [workers]
+        rows = scaling_rows(units, ns, **kw)
+        good = max((r.workers for r in rows if r.efficiency >= 0.9), default=1)
+        out.append((size, rows[-1], good))
     return out
 
 
-def sweep_table(sweep: list[tuple[int, Row]], workers: int) -> str:
+def sweep_table(sweep: list[tuple[int, Row, int]], workers: int) -> str:
     lines = [f"chunk sizes at {workers} workers:",
-             f"{'chunk_size':>10} {'tasks':>7} {'wall (s)':>9} {'effic.':>6}  bound"]
-    for size, r in sweep:
+             f"{'chunk_size':>10} {'tasks':>7} {'wall (s)':>9} {'effic.':>6}  {'bound':<10} "
+             "most workers at >= 90 %"]
+    for size, r, good in sweep:
         lines.append(f"{size:>10} {r.timeline.tasks:>7} {r.timeline.wall:>9.1f} "
-                     f"{100 * r.efficiency:>5.1f}%  {r.timeline.bound}")
-    good = [size for size, r in sweep if r.efficiency >= 0.9]
+                     f"{100 * r.efficiency:>5.1f}%  {r.timeline.bound:<10} {good}")
+    ok = [size for size, r, _ in sweep if r.efficiency >= 0.9]
     lines.append(f">= 90 % efficiency at {workers} workers: chunk_size "
-                 + (", ".join(map(str, good)) if good else "none of these"))
+                 + (", ".join(map(str, ok)) if ok else "none of these"))
     return "\n".join(lines)
 
 
