@@ -22,10 +22,12 @@ from .scaling import Costs, Deployment, Timeline, Unit, simulate
 __all__ = ["MEASURED", "units_of", "Row", "scaling_rows", "scaling_table", "chunk_size_sweep",
            "sweep_table", "plan_report"]
 
-#: overheads measured on this machine, s (benchmarks/results/scaling-overheads-*.txt;
-#: tests/pipeline/execute/test_scaling_docs.py checks these against that file)
-MEASURED = Costs(base=1.5, worker_start=1.2, warm=0.45, cold=9.0, sched=0.0012, submit=0.0002,
-                 result=0.0008, decide_fixed=0.004, decide=0.0006, end=0.3, job_wait=2.1)
+#: overheads measured on this machine, s (benchmarks/results/scaling-overheads-2026-11-25.txt,
+#: job_wait from slurm-fixture-2026-11-25.txt; tests/pipeline/execute/test_scaling_docs.py
+#: checks these against those files); base is an estimate (the store's layout)
+MEASURED = Costs(base=0.1, worker_start=0.43, warm=0.19, cold=6.61, sched=0.0009925,
+                 submit=0.000185, result=0.0009925, decide_fixed=0.0013, decide=0.00111, end=0.15,
+                 job_wait=2.14)
 
 
 def units_of(study: Study, rates: Rates, overheads: Overheads | None = None) -> list[Unit]:

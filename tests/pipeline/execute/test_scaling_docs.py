@@ -83,3 +83,7 @@ def test_the_models_overheads_are_the_measured_ones():
     assert MEASURED.decide == pytest.approx(number(r"decide = ([\d.]+) s per chunk"), abs=5e-6)
     assert MEASURED.decide_fixed == pytest.approx(number(r"decide_fixed = ([\d.]+) s"),
                                                   abs=5e-5)
+    assert MEASURED.end == pytest.approx(number(r"\| closed \| [\d.]+ \| ([\d.]+)"), abs=0.005)
+    fixture = (RESULTS / "slurm-fixture-2026-11-25.txt").read_text()
+    first_job = re.search(r"sbatch -> output file, 1st job\s+([\d.]+)", fixture)
+    assert MEASURED.job_wait == pytest.approx(float(first_job[1]), abs=0.005)
