@@ -87,3 +87,11 @@ def test_the_models_overheads_are_the_measured_ones():
     fixture = (RESULTS / "slurm-fixture-2026-11-25.txt").read_text()
     first_job = re.search(r"sbatch -> output file, 1st job\s+([\d.]+)", fixture)
     assert MEASURED.job_wait == pytest.approx(float(first_job[1]), abs=0.005)
+
+
+def test_the_docs_chunk_size_sweep_is_the_committed_one():
+    res = latest("dissipation").read_text()
+    sweep = res[res.index("chunk sizes at 256 workers:"):]
+    sweep = "\n".join(sweep.splitlines()[:sweep.splitlines().index(next(
+        ln for ln in sweep.splitlines() if ln.startswith(">= 90 %"))) + 1])
+    assert f"```\n{sweep}\n```" in DOC
