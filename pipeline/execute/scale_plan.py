@@ -24,8 +24,10 @@ __all__ = ["MEASURED", "units_of", "Row", "scaling_rows", "scaling_table", "chun
 
 #: overheads measured on this machine, s (benchmarks/results/scaling-overheads-2026-11-25.txt,
 #: job_wait from slurm-fixture-2026-11-25.txt; tests/pipeline/execute/test_scaling_docs.py
-#: checks these against those files); base is an estimate (the store's layout)
-MEASURED = Costs(base=0.1, worker_start=0.43, warm=0.19, cold=6.61, sched=0.0009925,
+#: checks these against those files); base is an estimate (the store's layout).  warm and cold
+#: are a fresh process's: its imports (bbb, numba: 0.33 s) and the kernel's load or compile --
+#: a new worker imports bbb with its first warm-up
+MEASURED = Costs(base=0.1, worker_start=0.43, warm=0.52, cold=6.94, sched=0.0009925,
                  submit=0.000185, result=0.0009925, decide_fixed=0.0013, decide=0.00111, end=0.15,
                  job_wait=2.14)
 
