@@ -32,8 +32,9 @@ What is simulated is what :mod:`pipeline.execute.run` and :mod:`pipeline.execute
   cores are simulated as such, not as 8 cores.
 
 The result, :class:`Timeline`, has the wall time and the lower bounds that show what bounds
-it: the start-up, the work over the cores, the longest chain of waves of one unit (its tasks,
-dispatches and decisions one after another), and the serial time of client and scheduler.
+it: the start-up, the work over the cores as they become ready, the longest chain of waves of
+one unit (its tasks, dispatches and decisions one after another), and the serial time of
+client and scheduler.
 Not simulated: network latency (hidden by Dask's prefetch of one more task per worker),
 work stealing, jobs pending in a busy queue beyond ``job_wait``, workers lost mid-run, and
 the points refinement adds (the plan does not price them).
@@ -261,12 +262,25 @@ def simulate(units: list[Unit], dep: Deployment, costs: Costs = Costs()) -> Time
         if not events or events[0][0] > t:
             dispatch(t)  # once everything of this instant has happened
     wall = max(last, client) + costs.end
-    return Timeline(wall, t0, n_tasks, busy, _bounds(units, dep, costs, t0))
+    return Timeline(wall, t0, n_tasks, busy, _bounds(units, dep, costs, t0, workers))
 
 
-def _bounds(units: list[Unit], dep: Deployment, costs: Costs, t0: float) -> dict[str, float]:
+def _work_done_by(work: float, ready: list[tuple[float, float]], t0: float) -> float:
+    """The earliest time workers ready at their (time, share of a core) can have done
+    ``work`` CPU-s, none before t0: the work bound with the workers' staggered start-up."""
+    rate, done, t = 0.0, 0.0, t0
+    for r, share in sorted((max(r, t0), share) for r, share in ready):
+        if rate > 0 and done + rate * (r - t) >= work:
+            break
+        done, t, rate = done + rate * (r - t), r, rate + share
+    return t + (work - done) / rate if rate > 0 else t
+
+
+def _bounds(units: list[Unit], dep: Deployment, costs: Costs, t0: float,
+            workers: list[tuple[float, int]]) -> dict[str, float]:
     """Lower bounds of the wall time, s, by cause."""
-    cores = sum(min(n, c) for n, c in dep.hosts())
+    hosts = dep.hosts()
+    share = [min(1.0, c / n) for n, c in hosts]  # of a core, per worker of each host
     tasks = sum(sum(u.waves) for u in units)
     work = sum(u.task_s * sum(u.waves) for u in units)
     decisions = sum(len(u.waves) for u in units)
@@ -278,7 +292,7 @@ def _bounds(units: list[Unit], dep: Deployment, costs: Costs, t0: float) -> dict
 
     return {
         "start-up": t0 + costs.end,
-        "work": t0 + work / max(1, cores) + costs.end,
+        "work": _work_done_by(work, [(r, share[h]) for r, h in workers], t0) + costs.end,
         "waves": t0 + max((chain(u) for u in units), default=0.0) + costs.end,
         "serial": t0 + tasks * (costs.sched + costs.submit + costs.result)
                   + decisions * costs.decide_fixed + read * costs.decide + costs.end,

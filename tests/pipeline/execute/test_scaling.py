@@ -179,3 +179,15 @@ def test_plan_refuses_a_malformed_worker_list(capsys):
     assert main(["plan", "w.toml", "--workers", "2,0"]) == 2
     err = capsys.readouterr().err
     assert "'x' is not an integer" in err and "0 is out of range" in err
+
+
+def test_the_work_bound_counts_the_workers_as_they_become_ready():
+    """4 SLURM workers of one job loading the kernel one after another (1 s each): ready at 1,
+    2, 3, 4 s; 10 CPU-s of work cannot be done before 5 s (1 + 2 + 3 by 4 s, the last 4 on 4
+    workers), not 1 + 10 / 4 = 3.5 s."""
+    units = [Unit(0, 2.5, (4,))]
+    tl = simulate(units, Deployment("slurm", 4, 1, per_host=4), Costs(warm=1.0))
+    assert tl.bounds["work"] == pytest.approx(5.0)
+    # the 4 tasks are queued at 1 s: the first two workers ready each take two (one running,
+    # one held: Dask's prefetch; work stealing is not simulated), 2 + 2 x 2.5 = 7 s
+    assert tl.wall == pytest.approx(7.0)
