@@ -62,8 +62,9 @@ def _build_parser() -> argparse.ArgumentParser:
     r.add_argument("--cluster", choices=("slurm",),
                    help="submit Dask workers as batch jobs (dask-jobqueue, configured in dask's "
                         "config files; docs/cluster.md)")
-    r.add_argument("--jobs", metavar="N", type=_positive_int,
-                   help="with --cluster: at most N jobs at once (default: 1)")
+    r.add_argument("--jobs", metavar="N|MIN:MAX", type=_jobs,
+                   help="with --cluster: N jobs at once (default: 1), or MIN:MAX for elastic "
+                        "workers, one per chunk queued, between MIN and MAX jobs")
     r.add_argument("--frequencies", metavar="F1,F2,...", type=_frequency_list,
                    help="only these frequencies of the workflow (Hz), into their own store "
                         "(default: runs/<name>-F1Hz-F2Hz.zarr); same seeds, so the same chunks "
@@ -95,8 +96,11 @@ def _build_parser() -> argparse.ArgumentParser:
     pl = sub.add_parser("plan", help="predict CPU and wall time of a workflow before it runs "
                                      "(a cached pilot of a few particles; pipeline/execute/pilot.py)")
     pl.add_argument("workflow", metavar="WORKFLOW", help="workflow TOML file")
-    pl.add_argument("--workers", metavar="N", type=_positive_int,
-                    help="worker processes to plan for (default: number of cores)")
+    pl.add_argument("--workers", metavar="N[,N...]", type=_positive_ints,
+                    help="worker counts, e.g. 2,8,64,256: the table at the first, and each "
+                         "one's wall time simulated (default: number of cores)")
+    pl.add_argument("--cluster", choices=("slurm",), help="for SLURM jobs (default: this machine)")
+    pl.add_argument("--cores-per-job", metavar="K", type=_positive_int, default=32, help="SLURM job size")
     pl.add_argument("--pilot-lines", choices=("probes", "all"), default="probes",
                     help="a map: pilot its corner and centre lines and cost the others from "
                          "them (probes, default), or pilot every line (all: costs the pilot's "
@@ -158,6 +162,20 @@ def _positive_int(text: str) -> int:
     if n < 1:
         raise argparse.ArgumentTypeError(f"{n} is out of range; allowed: an integer >= 1")
     return n
+
+
+def _jobs(text: str) -> int | tuple[int, int]:
+    """'4' -> 4; '0:8' -> (0, 8): elastic, 0 <= MIN <= MAX, MAX >= 1."""
+    lo, colon, hi = text.partition(":")
+    if not colon:
+        return _positive_int(text)
+    if not (lo.isdigit() and hi.isdigit() and int(lo) <= int(hi) and int(hi) >= 1):
+        raise argparse.ArgumentTypeError(f"{text!r}; allowed: N, or MIN:MAX, 0 <= MIN <= MAX >= 1")
+    return int(lo), int(hi)
+
+
+def _positive_ints(text: str) -> tuple[int, ...]:
+    return tuple(_positive_int(x.strip()) for x in text.split(","))
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -264,7 +282,7 @@ def _cluster(args, study, store: str):
     check_slurm()  # a bad configuration is a usage error, found before anything runs
     if not work_left(study, store):  # nor is a job submitted for a refused or finished store
         return nullcontext(None)
-    return slurm_cluster(args.jobs or 1, study)
+    return slurm_cluster(args.jobs or 1, study, store=store)
 
 
 def _cmd_reduce(args) -> int:
@@ -320,29 +338,19 @@ def _cmd_accuracy(args) -> int:
 
 
 def _cmd_plan(args) -> int:
-    from .execute.pilot import benchmark_rate, pilot_rates
-    from .execute.plan import plan_table, predict
+    from .execute.pilot import plan_rates
+    from .execute.scale_plan import plan_report
     from .workflow.load import load_workflow
 
     study = load_workflow(args.workflow)
-    rate = None
-    if args.kernel_rate:
-        try:
-            rate = benchmark_rate(args.kernel_rate)
-        except OSError as e:
-            raise UsageError(f"--kernel-rate {args.kernel_rate}: {e.strerror}; allowed: a "
-                             "kernel benchmark table, e.g. benchmarks/results/kernel-*.txt") from None
-        except ValueError as e:
-            raise UsageError(f"--kernel-rate {e}") from None
-    rates = pilot_rates(study, particles=args.pilot_particles, lines=args.pilot_lines,
-                        echo=lambda m: print(m, file=sys.stderr))
-    if rate is not None:
-        rates = rates.with_rate(rate, Path(args.kernel_rate).name)
-    print(plan_table(predict(study, rates, args.workers or os.cpu_count() or 1)))
-    if study.refine is not None or study.grid_refine is not None:
-        which = "[grid.refine]" if study.grid_refine is not None else "[frequencies] refine"
-        print(f"not priced: the points refinement ({which}) adds where D changes -- the plan "
-              "covers the points the workflow lists; a refined run costs more")
+    try:
+        rates = plan_rates(study, args.pilot_particles, args.pilot_lines, args.kernel_rate,
+                           echo=lambda m: print(m, file=sys.stderr))
+    except ValueError as e:  # a --kernel-rate file that is no kernel benchmark table
+        raise UsageError(str(e)) from None
+    print(plan_report(study, rates, list(args.workers or (os.cpu_count() or 1,)),
+                      kind=args.cluster or "local", cores=os.cpu_count() or 1,
+                      per_job=args.cores_per_job))
     return 0
 
 

@@ -47,7 +47,7 @@ from ..store.layout import CAP, OPEN, STOP_LEGEND, TARGET, ZERO
 from ..workflow.identity import f_key
 
 __all__ = ["OPEN", "TARGET", "ZERO", "CAP", "STOP_LEGEND", "StoppingRule", "UnitState",
-           "advance", "decide", "chunks_needed", "remaining", "refine_frequencies", "split_gaps"]
+           "advance", "decide", "chunks_needed", "remaining", "wave_ends", "refine_frequencies", "split_gaps"]
 
 #: the stop_reason codes and their legend are stored values: defined with the store's layout
 #: (pipeline.store.layout) and importable from here as before
@@ -151,11 +151,20 @@ def predicted_waves(first: int, n_needed: int, cap: int) -> int:
     """Waves the rule takes when every half-width follows hw ~ 1/sqrt(N) exactly and the
     target needs ``n_needed`` chunks: doubling from ``first`` until the prediction is in
     reach, then one wave to it."""
-    n, waves = first, 1
+    return len(wave_ends(first, n_needed, cap))
+
+
+def wave_ends(first: int, n_needed: int, cap: int) -> list[int]:
+    """The chunks wanted after each wave, under the same exact law as
+    :func:`predicted_waves`: [first, 2 first, 4 first, ..., n_needed] (capped).  Wave k
+    submits ``ends[k] - ends[k - 1]`` chunks once wave k - 1 is complete (waves.py); what
+    ``bbb plan --workers`` simulates (pipeline/execute/scaling.py)."""
+    n = min(first, cap)
+    ends = [n]
     while n < min(n_needed, cap):
         n = min(2 * n, cap, max(n + 1, n_needed))
-        waves += 1
-    return waves
+        ends.append(n)
+    return ends
 
 
 # -- refinement ---------------------------------------------------------------------------------

@@ -24,6 +24,7 @@ nothing: the way to check a configuration on a login node.
 from __future__ import annotations
 
 import fcntl
+import functools
 import os
 import re
 import shutil
@@ -201,39 +202,74 @@ def work_left(study, store_path) -> bool:
 
 
 @contextmanager
-def slurm_cluster(jobs: int, study=None, echo: Callable[[str], None] = print) -> Iterator[str]:
-    """A Dask cluster of ``jobs`` SLURM jobs; yields its scheduler address once the first
-    worker has joined (so the run sees a worker to check the store with), keeps ``jobs`` jobs
-    while it runs (a job that ends, e.g. at its walltime, is replaced: JobKeeper), and cancels
-    every job on exit, whatever happened.
+def slurm_cluster(jobs: int | tuple[int, int], study=None, echo: Callable[[str], None] = print,
+                  store: str | None = None) -> Iterator[str]:
+    """A Dask cluster of SLURM jobs; yields its scheduler address once the first worker has
+    joined (so the run sees a worker to check the store with), and cancels every job on exit,
+    whatever happened.
 
+    jobs  -- N: keep N jobs while it runs (a job that ends, e.g. at its walltime, is
+             replaced: JobKeeper); (MIN, MAX): elastic, as many single-threaded workers as the
+             run has chunks queued, between MIN and MAX jobs (pipeline.execute.elastic),
+             a job that ends early replaced too
     study -- if given, every worker loads its numba kernel as it joins (WarmNumba)
+    store -- if given, the jobs are recorded beside it while they run, for ``bbb status``
+             (pipeline.store.jobs): every job of the run is named ``bbb-`` + 8 hex digits
     """
+    import datetime
+    import socket
+    import uuid
+
     import dask.config
     from distributed import Client
 
+    from ..store.jobs import clear_jobs, record_jobs
+    from .elastic import WaveAdaptive
+
     processes = slurm_settings()["processes"]  # what make_slurm_cluster passes to SLURMCluster
-    cluster = make_slurm_cluster()
+    job_name = f"bbb-{uuid.uuid4().hex[:8]}"
+    cluster = make_slurm_cluster(job_name=job_name)
+    elastic = isinstance(jobs, tuple)
     try:
-        cluster.scheduler.add_plugin(JobKeeper(cluster, jobs, echo))
+        retiring: set[str] = set()  # workers elastic scaling retires: their jobs stay ended
+        cluster.scheduler.add_plugin(JobKeeper(cluster, None if elastic else jobs, echo,
+                                               retiring))
+        if store is not None:
+            record_jobs(store, {
+                "cluster": "slurm", "job_name": job_name, "host": socket.gethostname(),
+                "pid": os.getpid(), "jobs": f"{jobs[0]}-{jobs[1]} (elastic)" if elastic else jobs,
+                "started": datetime.datetime.now(datetime.UTC).isoformat(timespec="seconds")})
         with Client(cluster) as client:
             if study is not None:
                 client.register_plugin(WarmNumba(study), name=WarmNumba.name)
-            cluster.scale(jobs=jobs)
-            echo(f"SLURM: {jobs} jobs of {dask.config.get(f'{SECTION}.cores')} cores "
-                 f"({processes} workers each) submitted; scheduler "
-                 f"{cluster.scheduler_address}, dashboard {_dashboard(cluster)}; waiting for the "
-                 "first to start (squeue --me)")
-            client.wait_for_workers(1)
+            cores = dask.config.get(f"{SECTION}.cores")
+            if elastic:
+                cluster.adapt(Adaptive=functools.partial(WaveAdaptive, retiring=retiring),
+                              minimum_jobs=jobs[0], maximum_jobs=jobs[1])
+                what = (f"elastic: {jobs[0]} to {jobs[1]} jobs of {cores} cores ({processes} "
+                        "workers each), one worker per chunk queued")
+            else:
+                cluster.scale(jobs=jobs)
+                what = f"{jobs} jobs of {cores} cores ({processes} workers each) submitted"
+            echo(f"SLURM: {what}; job name {job_name}; scheduler {cluster.scheduler_address}, "
+                 f"dashboard {_dashboard(cluster)}"
+                 + ("; waiting for the first to start (squeue --me)"
+                    if not elastic or jobs[0] else ""))
+            if not elastic or jobs[0]:
+                client.wait_for_workers(1)
         yield cluster.scheduler_address
     finally:
         cluster.close()  # cancels every job still queued or running (scancel)
+        if store is not None:
+            clear_jobs(store)
 
 
-def replace_ended_job(cluster, left: str, present: Iterable[str], jobs: int) -> str | None:
+def replace_ended_job(cluster, left: str, present: Iterable[str], jobs: int | None) -> str | None:
     """The worker named ``left`` has left the cluster: if it was the last of its job's workers
     (none of them is among the worker names ``present``), forget that job and submit a new one
-    in its place.  Returns the ended job's name, or None if nothing was done.
+    in its place (then ``jobs`` jobs in all; None: as many as before, for elastic scaling, whose
+    own scale-down removes a job from ``worker_spec`` before its workers leave, so that job is
+    not replaced).  Returns the ended job's name, or None if nothing was done.
 
     The one function of bbb that touches a cluster's internal state.  dask-jobqueue has no API
     to replace a job whose workers all left (its issues #122 and #611; the documented answer,
@@ -267,7 +303,7 @@ def replace_ended_job(cluster, left: str, present: Iterable[str], jobs: int) -> 
     replacement = cluster.new_worker_spec()
     del spec[job]
     spec.update(replacement)
-    cluster.scale(jobs=jobs)
+    cluster.scale(jobs=len(spec) if jobs is None else jobs)
     return job
 
 
@@ -281,8 +317,10 @@ class JobKeeper(SchedulerPlugin):
 
     name = "bbb-job-keeper"
 
-    def __init__(self, cluster, jobs: int, echo: Callable[[str], None] = print):
+    def __init__(self, cluster, jobs: int | None, echo: Callable[[str], None] = print,
+                 retiring: set[str] | None = None):
         self.cluster, self.jobs, self.echo = cluster, jobs, echo
+        self.retiring = set() if retiring is None else retiring  # left on purpose: not replaced
         self.names: dict[str, str] = {}  # worker address -> worker name
 
     def add_worker(self, scheduler=None, worker=None, **kwargs) -> None:
@@ -293,6 +331,9 @@ class JobKeeper(SchedulerPlugin):
 
         name = self.names.pop(worker, None)
         if name is None or self.cluster.status in (Status.closing, Status.closed):
+            return
+        if name in self.retiring:  # elastic scaling retired it
+            self.retiring.discard(name)
             return
         job = replace_ended_job(self.cluster, name, self.names.values(), self.jobs)
         if job is not None:

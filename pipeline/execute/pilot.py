@@ -39,7 +39,8 @@ from ..workflow.identity import PILOT_CHUNK, f_key, pilot_seed  # noqa: F401
 from ..workflow.study import Study
 from .plan import Cell, Rates
 
-__all__ = ["pilot_rates", "probe_lines", "benchmark_rate", "PILOT_PARTICLES", "TIMING_FLOOR_S"]
+__all__ = ["pilot_rates", "probe_lines", "benchmark_rate", "plan_rates", "PILOT_PARTICLES",
+           "TIMING_FLOOR_S"]
 
 #: pilot particles per (frequency, family)
 PILOT_PARTICLES = 8
@@ -161,6 +162,23 @@ def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str) -> Ra
         "from them by inverse-square distance" if lines == "probes" else
         f"every line of the grid ({len(todo)})"))
     return Rates(cells, source=src, scales=scales)
+
+
+def plan_rates(study: Study, particles: int, lines: str, kernel_rate: str | None,
+               echo=None) -> Rates:
+    """`bbb plan`'s cost table: the pilot's, with the kernel rate of the benchmark table
+    ``kernel_rate`` if given (ValueError, one line, if it cannot be read as one)."""
+    rate = None
+    if kernel_rate:
+        try:
+            rate = benchmark_rate(kernel_rate)
+        except OSError as e:
+            raise ValueError(f"--kernel-rate {kernel_rate}: {e.strerror}; allowed: a kernel "
+                             "benchmark table, e.g. benchmarks/results/kernel-*.txt") from None
+        except ValueError as e:
+            raise ValueError(f"--kernel-rate {e}") from None
+    rates = pilot_rates(study, particles=particles, lines=lines, echo=echo)
+    return rates if rate is None else rates.with_rate(rate, Path(kernel_rate).name)
 
 
 def benchmark_rate(path: str | os.PathLike) -> float:

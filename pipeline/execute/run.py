@@ -27,6 +27,7 @@ from ..store.lock import run_lock
 from ..store.study_store import StudyStore, is_local, normalize_path
 from ..workflow.identity import f_key
 from ..workflow.study import Study
+from .elastic import QueueGauge
 from .task import (  # the task and what it reports, importable from here as before the split
     FAIL_ENV,
     ChunkKey,
@@ -308,6 +309,8 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
                             priority=len(todo) - i, retries=0, pure=False)
         futures[fut] = (fi, mi, ci)
     report.submit_seconds = time.perf_counter() - t0
+    gauge = QueueGauge(client)  # the queue's length, which elastic workers follow
+    gauge.publish(len(futures), force=True)
     bar = tqdm(total=len(todo), unit="chunk", disable=not progress, file=sys.stderr,
                desc=study.name, smoothing=0.1)
     try:
@@ -322,7 +325,9 @@ def _execute(client, store: StudyStore, todo, fails, report: RunReport, progress
             report.task_seconds += res.seconds
             report.write_seconds += res.write_seconds
             bar.update(1)
+            gauge.publish(len(futures) - len(report.computed))
     finally:
+        gauge.publish(len(futures) - len(report.computed), force=True)
         bar.close()
 
 

@@ -34,6 +34,7 @@ from .adaptive import (
     refine_frequencies,
     remaining,
 )
+from .elastic import QueueGauge
 from .intervals import (  # importable from here, as before the split
     interval_of,
     pair_units,
@@ -230,6 +231,7 @@ class Waves:
             done_counts.update({(fi, mi): int(done[fi, mi].sum()) for fi, mi in self.states})
 
         handle = {}  # the store as the tasks get it, anew when refinement grows it
+        gauge = QueueGauge(client)  # the queue's length, which elastic workers follow
 
         def submit(chunks) -> None:
             study = self.store.study
@@ -244,6 +246,7 @@ class Waves:
                 outstanding.setdefault((fi, mi), set()).add(ci)
                 ac.add(fut)
             bar.total += len(chunks)
+            gauge.publish(len(pending), force=True)
             self._postfix(bar, done_counts)
             bar.refresh()
 
@@ -265,6 +268,7 @@ class Waves:
                     report.task_seconds += res.seconds
                     report.write_seconds += res.write_seconds
                     bar.update(1)
+                    gauge.publish(len(pending))
                     done_counts[(fi, mi)] = done_counts.get((fi, mi), 0) + 1
                     outstanding[(fi, mi)].discard(ci)
                     if not outstanding[(fi, mi)]:  # its wave is complete: decide
@@ -282,6 +286,7 @@ class Waves:
                 count_done()  # the store grew by the refined frequencies
                 submit(self.missing())
         finally:
+            gauge.publish(len(pending), force=True)
             bar.close()
 
     def _done(self, fi: int, mi: int, n: int) -> np.ndarray:

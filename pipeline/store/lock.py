@@ -29,7 +29,7 @@ from contextlib import contextmanager
 
 from .study_store import StoreError, is_local, normalize_path
 
-__all__ = ["run_lock", "HEARTBEAT_SECONDS", "STALE_SECONDS"]
+__all__ = ["run_lock", "pid_alive", "HEARTBEAT_SECONDS", "STALE_SECONDS"]
 
 # A URL lock's holder rewrites its heartbeat this often; a lock whose heartbeat is older than
 # STALE_SECONDS is abandoned.  Ten missed heartbeats: a run is never taken over for a slow
@@ -70,7 +70,7 @@ def _local_lock(path: str) -> Iterator[None]:
             fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
         except FileExistsError:
             holder = _read_lock(lock)
-            if holder.get("host") == me["host"] and not _pid_alive(holder.get("pid")):
+            if holder.get("host") == me["host"] and not pid_alive(holder.get("pid")):
                 _remove_stale(lock, holder)  # its run was killed on this machine
                 continue
             raise StoreError(
@@ -121,7 +121,7 @@ def _read_lock(lock: str) -> dict:
         return {}
 
 
-def _pid_alive(pid) -> bool:
+def pid_alive(pid) -> bool:
     if not isinstance(pid, int) or pid <= 0:
         return False
     try:
@@ -244,7 +244,7 @@ def _heartbeat_age(fs, lock: str, holder: dict) -> float | None:
 
 
 def _abandoned(holder: dict, age: float | None) -> bool:
-    if holder.get("host") == socket.gethostname() and not _pid_alive(holder.get("pid")):
+    if holder.get("host") == socket.gethostname() and not pid_alive(holder.get("pid")):
         return True  # its run was killed on this machine
     return age is not None and age > STALE_SECONDS
 

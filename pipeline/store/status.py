@@ -1,8 +1,10 @@
-"""``bbb status``: what a store holds, as text: its done chunks per point and family."""
+"""``bbb status``: what a store holds, as text: its done chunks per point and family, and the
+batch jobs of a run writing it (pipeline/store/jobs.py)."""
 
 from __future__ import annotations
 
 from ..workflow.identity import f_key
+from .jobs import jobs_text
 from .layout import STOP_LEGEND
 from .study_store import StudyStore
 
@@ -41,6 +43,9 @@ def status_text(store: StudyStore) -> str:
     if refined:
         lines.append(f"* added by refinement ({len(refined)} frequencies, to "
                      f"{study.refine.to:g} Hz)")
+    jobs = jobs_text(store.path)  # a run on a batch system: its jobs, with squeue's states
+    if jobs is not None:
+        lines.append(jobs)
     return "\n".join(lines)
 
 

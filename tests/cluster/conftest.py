@@ -6,7 +6,8 @@ never starts SLURM, `make test-slow` or ``pytest -m slurm tests/cluster`` does.
 The cluster runs in a directory and on ports of its own (`RUN_DIR`, `PORT`), so a test cluster
 started by hand with `slurm.sh up` (default bbb-slurm in the temporary directory, port 16817)
 is left alone.  It needs
-root (slurmd, and apt-get if slurm-wlm is missing): as another user the tests are skipped."""
+root (slurmd, and apt-get if slurm-wlm is missing): as another user the tests are skipped, or
+fail if BBB_REQUIRE_SLURM is set (as .ci/run sets it)."""
 
 from __future__ import annotations
 
@@ -22,6 +23,8 @@ import pytest
 SCRIPT = Path(__file__).with_name("slurm.sh")
 RUN_DIR = str(Path(tempfile.gettempdir()) / "bbb-slurm-pytest")
 PORT = 16827  # slurmctld; the nodes listen on the next two
+#: set (e.g. by .ci/run) to fail, not skip, where the cluster cannot be started (not root)
+REQUIRE = "BBB_REQUIRE_SLURM"
 
 
 def read_env_file(path: Path) -> dict[str, str]:
@@ -40,6 +43,9 @@ def slurm_env() -> Iterator[dict[str, str]]:
     """The environment for SLURM's clients (`sinfo`, `sbatch`, ...) to reach the test cluster:
     this process's environment plus SLURM_CONF; pass it as ``env=`` to subprocess."""
     if os.geteuid() != 0:
+        if os.environ.get(REQUIRE):  # CI (.ci/run): these tests must run, not be skipped
+            pytest.fail(f"{REQUIRE} is set but the real SLURM cluster needs root "
+                        "(tests/cluster/slurm.sh)", pytrace=False)
         pytest.skip("a real SLURM cluster needs root (tests/cluster/slurm.sh)")
     script_env = {**os.environ, "BBB_SLURM_DIR": RUN_DIR, "BBB_SLURM_PORT": str(PORT)}
     up = subprocess.run([str(SCRIPT), "up"], env=script_env, capture_output=True, text=True,

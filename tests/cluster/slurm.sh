@@ -12,6 +12,7 @@
 #                   clients source (it exports SLURM_CONF) -- nothing under /etc is written
 #   BBB_SLURM_PORT  slurmctld's port (default 16817); n1 and n2 listen on the next two
 #   BBB_SLURM_WAIT  seconds `up` waits for both nodes to be idle (default 60)
+#   BBB_SLURM_APT_TIMEOUT  seconds each apt-get step may take when installing (default 600)
 #
 # Needs root (slurmd runs jobs as their submitters; apt-get installs the packages).
 # `up` on a directory whose cluster is still running stops that one first: every `up` starts
@@ -22,6 +23,7 @@ set -euo pipefail
 DIR=${BBB_SLURM_DIR:-$(dirname "$(mktemp -u)")/bbb-slurm}
 PORT=${BBB_SLURM_PORT:-16817}
 WAIT=${BBB_SLURM_WAIT:-60}
+APT_TIMEOUT=${BBB_SLURM_APT_TIMEOUT:-600}
 CONF=$DIR/slurm.conf
 DAEMONS=(slurmd-n1 slurmd-n2 slurmctld munged)
 declare -A STARTED=()  # daemon -> pid, of those `up` started
@@ -52,10 +54,12 @@ client() { SLURM_CONF=$CONF "$@"; }
 install_packages() {
     command -v slurmctld >/dev/null && command -v munged >/dev/null && return 0
     say "slurmctld or munged not found: installing slurm-wlm and munge with apt-get"
+    command -v apt-get >/dev/null || die "slurm-wlm and munge are not installed and there is no apt-get: install them by hand"
     export DEBIAN_FRONTEND=noninteractive
-    apt-get update -qq >&2 || die "apt-get update failed"
-    apt-get install -y -qq slurm-wlm munge >"$DIR/log/apt-get.log" 2>&1 ||
-        die "apt-get install slurm-wlm munge failed: read $DIR/log/apt-get.log"
+    timeout "$APT_TIMEOUT" apt-get update -qq >"$DIR/log/apt-get.log" 2>&1 ||
+        die "apt-get update failed or took over ${APT_TIMEOUT}s (the package registry unreachable?): read $DIR/log/apt-get.log"
+    timeout "$APT_TIMEOUT" apt-get install -y -qq slurm-wlm munge >>"$DIR/log/apt-get.log" 2>&1 ||
+        die "apt-get install slurm-wlm munge failed or took over ${APT_TIMEOUT}s: read $DIR/log/apt-get.log"
     # the packages' own services (if an init system started them) are not this cluster's
 }
 

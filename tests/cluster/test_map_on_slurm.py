@@ -125,10 +125,16 @@ def run_env(slurm_env, tmp_path) -> dict[str, str]:
     cancel_all(slurm_env)  # whatever a failed test left
 
 
-def bbb_run(workflow: Path, store: Path, env: dict[str, str]) -> subprocess.Popen:
+def bbb_run(workflow: Path, store: Path, env: dict[str, str], jobs: str = "2"
+            ) -> subprocess.Popen:
     return subprocess.Popen([str(BBB), "run", str(workflow), "--store", str(store),
-                             "--cluster", "slurm", "--jobs", "2", "--no-progress"],
+                             "--cluster", "slurm", "--jobs", jobs, "--no-progress"],
                             env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+def bbb_status(store: Path, env: dict[str, str]) -> str:
+    return subprocess.run([str(BBB), "status", str(store)], env=env, capture_output=True,
+                          text=True, timeout=60, check=True).stdout
 
 
 def finish(proc: subprocess.Popen) -> tuple[str, str]:
@@ -151,6 +157,11 @@ def test_a_map_with_a_worker_job_cancelled_mid_run_finishes_bit_identical_to_a_l
     try:
         wait_for("both jobs running", lambda: list(squeue(run_env).values()) == ["RUNNING"] * 2,
                  run)
+        status = bbb_status(store, run_env)  # bbb status lists the run's jobs, as squeue does
+        rows = {ln.split()[0]: ln.split()[1] for ln in status.splitlines() if ln.split()[:2]}
+        assert {job: rows.get(job) for job in squeue(run_env)} == dict.fromkeys(
+            squeue(run_env), "RUNNING"), status
+        assert "jobs of the run" in status and "2 jobs requested" in status
         wait_for("a quarter of the chunks done, not all", lambda: mid_run(store), run)
         victim = sorted(squeue(run_env))[0]
         subprocess.run(["scancel", victim], env=run_env, check=True, timeout=30)
@@ -163,6 +174,28 @@ def test_a_map_with_a_worker_job_cancelled_mid_run_finishes_bit_identical_to_a_l
     assert not at_cancel.all(), "the run ended before the scancel; make MAP longer"
     assert f"slurm_map: {N_CHUNKS}/{N_CHUNKS} chunks done ({N_CHUNKS} computed" in out
     assert "ended (all its workers left); submitting it anew" in out + err
+    assert_same_store(local_reference, store)
+    wait_for("every job cancelled after the run", lambda: not squeue(run_env), timeout=30)
+    assert not Path(f"{store}.jobs").exists()  # the record of the run's jobs is gone with them
+
+
+def test_a_map_on_elastic_workers_uses_both_nodes_and_ends_bit_identical(
+        map_workflow, local_reference, run_env, tmp_path):
+    """`--jobs 0:2`: no job before a chunk is queued; the map's 32 queued chunks bring up two
+    jobs (the most asked for, and the nodes' limit); the run exits 0, bit-identical to the
+    local run, and no job is left."""
+    store = tmp_path / "slurm_map.zarr"
+    run = bbb_run(map_workflow, store, run_env, jobs="0:2")
+    try:
+        wait_for("two jobs running", lambda: list(squeue(run_env).values()) == ["RUNNING"] * 2,
+                 run)
+        out, err = finish(run)
+    finally:
+        if run.poll() is None:
+            run.kill()
+    assert run.returncode == 0, err
+    assert "elastic: 0 to 2 jobs" in out + err
+    assert f"slurm_map: {N_CHUNKS}/{N_CHUNKS} chunks done ({N_CHUNKS} computed" in out
     assert_same_store(local_reference, store)
     wait_for("every job cancelled after the run", lambda: not squeue(run_env), timeout=30)
 
