@@ -41,7 +41,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .stats.fit import DEFAULT_DISCARD
+from .stats.fit import DEFAULT_DISCARD, first_kept
 
 __all__ = ["DEFINITIONS", "BLOCK", "analysed_start", "window", "displaced", "moving_blocks",
            "moving_share", "still_bound", "synthetic_positions"]
@@ -55,9 +55,9 @@ _FLOAT = NDArray[np.float64]
 
 
 def analysed_start(n_samples: int, discard: float = DEFAULT_DISCARD) -> int:
-    """Index of the first analysed sample of a window of ``n_samples`` samples: the same
-    rounding as :func:`bbb.analysis.stats.fit.fit_regime`."""
-    return math.ceil(discard * (n_samples - 1) - 1e-9)
+    """Index of the first analysed sample of a window of ``n_samples`` samples: the sample
+    :func:`bbb.analysis.stats.fit.fit_regime` keeps first."""
+    return first_kept(n_samples, discard)
 
 
 def window(x: ArrayLike, dt: float, T: float) -> _FLOAT:

@@ -34,7 +34,7 @@ from typing import NamedTuple
 import numpy as np
 from numpy.typing import ArrayLike
 
-from .moving import DEFINITIONS, displaced, moving_blocks, still_bound, window
+from .moving import DEFINITIONS, displaced, moving_share, still_bound, window
 from .stats.bootstrap import bootstrap_mean_unchecked
 from .stats.fit import DEFAULT_DISCARD, fit_regime, per_particle_fit
 from .stats.interval import FAILED, OK, d_interval
@@ -129,7 +129,7 @@ def decompose(x: ArrayLike, dt: float, S: float, T: float, *, n_resamples: int, 
     out.append(Decomposition("displaced", n, k, *share, *D, status, *D_all, res, bound,
                              bool(abs(res) <= bound)))
 
-    phi = moving_blocks(xw, dt, S, discard=discard).mean(axis=1)
+    phi = moving_share(xw, dt, S, discard=discard)
     tshare = _time_share(phi, n_resamples, ci, rngs[2])
     k_t = int(np.count_nonzero(phi > 0))
     if tshare[0] <= 0 or k_t < 2:  # nothing to decompose: not checked (residual NaN)

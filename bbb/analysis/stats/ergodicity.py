@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .bootstrap import bootstrap_mean_unchecked
-from .fit import DEFAULT_DISCARD, fit_regime, per_particle_fit
+from .fit import DEFAULT_DISCARD, first_kept, fit_regime, per_particle_fit
 from .inputs import as_positions, as_times, sample_spacing
 from .interval import NO_MOVER, DInterval, d_interval
 from .msd import tamsd_unchecked
@@ -205,7 +205,7 @@ def _eb_lag(times: _FLOAT, lag: float, discard: float) -> tuple[int, int]:
     dt = sample_spacing(times, n_samples)
     if not (math.isfinite(discard) and 0.0 <= discard < 1.0):
         raise ValueError(f"discard = {discard!r} must be a fraction of the run in [0, 1)")
-    start = math.ceil(discard * (n_samples - 1) - 1e-9)
+    start = first_kept(n_samples, discard)
     lag_idx = round(float(lag) / dt)
     if not 1 <= lag_idx < n_samples - start:
         raise ValueError(

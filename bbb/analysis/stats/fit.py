@@ -22,6 +22,7 @@ __all__ = [
     "DEFAULT_FIT_TO",
     "DiffusionEstimate",
     "fit_diffusion",
+    "first_kept",
     "diffusion_coefficient",
     "per_particle_D",
 ]
@@ -117,6 +118,12 @@ class FitRegime:
         return np.arange(self.lag_lo, self.lag_hi + 1, dtype=np.int64)
 
 
+def first_kept(n_samples: int, discard: float) -> int:
+    """Index of the first sample kept after dropping the fraction ``discard`` of a run of
+    ``n_samples`` samples as a transient (rounded up, within rounding of the fraction)."""
+    return math.ceil(discard * (n_samples - 1) - 1e-9)
+
+
 def fit_regime(
     n_samples: int,
     sample_times: _FLOAT,
@@ -129,7 +136,7 @@ def fit_regime(
     dt = sample_spacing(sample_times, n_samples)
     if not (math.isfinite(discard) and 0.0 <= discard < 1.0):
         raise ValueError(f"discard = {discard!r} must be a fraction of the run in [0, 1)")
-    start = math.ceil(discard * (n_samples - 1) - 1e-9)
+    start = first_kept(n_samples, discard)
     n_kept = n_samples - start
     duration = (n_kept - 1) * dt
     lo = DEFAULT_FIT_FROM * duration if fit_from is None else float(fit_from)
