@@ -25,6 +25,26 @@ def test_the_own_study_example_ends_within_the_first_60_lines():
     assert line <= 60
 
 
+def test_the_first_screen_holds_install_the_two_commands_and_no_issue_numbers_or_dates():
+    screen = "\n".join(README.splitlines()[:60])
+    for needed in ("## Install", "pip install .", "make venv", "make figures", "make test",
+                   "## Your own study", "bbb plot"):
+        assert needed in screen, needed
+    assert not re.search(r"\bissue \d+|#\d+\b|\b20\d\d-\d\d-\d\d\b", screen)
+
+
+def test_user_facing_text_names_no_issue_of_ours():
+    """Docs, scenes, docstrings and the README speak to users: no "issue 12" (an upstream
+    project's "numba issue #4807" is a reference, not ours)."""
+    files = [ROOT / "README.md", *ROOT.glob("docs/*.md"), *ROOT.glob("workflows/*.toml"),
+             *ROOT.glob("pipeline/**/*.toml"), *ROOT.glob("pipeline/**/*.py"),
+             *ROOT.glob("pipeline/**/*.md"), *ROOT.glob("bbb/**/*.py"), ROOT / "figures" / "REPORT.md"]
+    hits = [f"{f.relative_to(ROOT)}:{i}" for f in files
+            for i, line in enumerate(f.read_text(encoding="utf-8").splitlines(), 1)
+            if re.search(r"\bissues? \d+", line, flags=re.I)]
+    assert not hits, hits
+
+
 def test_the_readme_own_study_example_runs_as_written(tmp_path):
     (toml,), (sh,), (py,) = blocks("toml"), blocks("sh"), blocks("python")
     name = re.search(r'`([\w.]+\.toml)`', SECTION).group(1)

@@ -11,8 +11,8 @@ The cost model, and where each number comes from:
   numba cache load, store creation).  Wall = START_UP_S + the makespan of the tasks placed
   in submission order on the first free worker (what Dask does with run.py's priorities):
   that accounts for the tail, the longest single task at the end.
-* A target-driven scene (``[accuracy] target_ci``, ``d_resolved``, ``max_particles``,
-  issue 12): the particles per (frequency, family) from the measured law "95 % CI
+* A target-driven scene (``[accuracy] target_ci``, ``d_resolved``, ``max_particles``):
+  the particles per (frequency, family) from the measured law "95 % CI
   half-width of D = 1.6 D / sqrt(N)" (docs/accuracy.md, fact 1, measured at f >= 58 Hz:
   N = (1.6 / target_ci)^2), unless the pilot's own bootstrap half-width, scaled by
   1/sqrt(N), reaches ``d_resolved`` sooner (D = 0 from rest in the creeping regime is

@@ -2,7 +2,7 @@
 
 A workflow names a preset (``accuracy = "draft"``) or a preset plus single-knob overrides
 (``[accuracy] preset = "standard"`` and e.g. ``n_particles = 2048``).  The numbers are chosen
-from the measured trade (issue 5; ``bbb accuracy``, ``docs/accuracy.md``).
+from the measured trade (``bbb accuracy``, ``docs/accuracy.md``).
 
 Knobs and units:
 

@@ -345,8 +345,7 @@ CLAIMS = [
                "(a maximum and a minimum) per conveyor scene, none counted where it is not "
                "diffusive")),
     Claim("Below lift-off a vibratory conveyor transports by sliding only: the stick model "
-          "carries no current there, Coulomb friction does (conveyor theory's sliding regime; "
-          "issue 13)", sliding, "",
+          "carries no current there, Coulomb friction does (conveyor theory's sliding regime)", sliding, "",
           Band(-math.inf, math.inf, "rule: below the lift-off frequency (bbb.analysis.liftoff) the "
                "number of frequencies with a significant v (Bonferroni over the curve) is 0 "
                "under stick and ≥ 1 under Coulomb friction")),
