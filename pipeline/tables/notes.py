@@ -8,8 +8,9 @@ estimator failed   D (pooled or a family's) significantly below 0: its 95 % CI l
                    frequency with an ``x`` ("estimator failed").
 D_drift failed     the same for D about the drift (D_drift_status).
 drift included     on a floor that drifts (a row with a significant v: its CI excludes 0) the
-                   column D is the raw MSD's slope, v² lag included (e.g. 2.2e7 mm²/s on a
-                   5° floor); the diffusion coefficient about the drift is D_drift.
+                   column D is the raw MSD's slope, drift included (9.8e3 mm²/s where
+                   D_drift = 0.12 mm²/s: throw 30°, Coulomb, 80 Hz); the diffusion
+                   coefficient about the drift is D_drift.
 """
 
 from __future__ import annotations
