@@ -191,8 +191,10 @@ def work_left(study, store_path) -> bool:
     leaves no (frequency, family) open and refinement adds nothing."""
     from ..store.lock import run_lock
     from ..store.study_store import StudyStore, normalize_path
+    from ..workflow.sanity import refuse_nothing_moves
     from .waves import Waves
 
+    refuse_nothing_moves(study)  # pipeline.workflow.sanity: no job for a scene that cannot move
     path = normalize_path(store_path)
     with run_lock(path):
         store = StudyStore.create_or_open(path, study)

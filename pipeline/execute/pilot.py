@@ -36,6 +36,7 @@ from pathlib import Path
 # PILOT_CHUNK, the pilot's chunk index in the seed (no real chunk has it): importable from here
 # as before pipeline.workflow.identity
 from ..workflow.identity import PILOT_CHUNK, f_key, pilot_seed  # noqa: F401
+from ..workflow.sanity import check_scene
 from ..workflow.study import Study
 from .plan import Cell, Rates
 
@@ -168,6 +169,7 @@ def plan_rates(study: Study, particles: int, lines: str, kernel_rate: str | None
                echo=None) -> Rates:
     """`bbb plan`'s cost table: the pilot's, with the kernel rate of the benchmark table
     ``kernel_rate`` if given (ValueError, one line, if it cannot be read as one)."""
+    check_scene(study, echo)  # pipeline.workflow.sanity: warnings; nothing moves -> refused
     rate = None
     if kernel_rate:
         try:

@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 from ..store.lock import run_lock
 from ..store.study_store import StudyStore, is_local, normalize_path
 from ..workflow.identity import f_key
+from ..workflow.sanity import check_scene
 from ..workflow.study import Study
 from .elastic import QueueGauge
 from .task import (  # the task and what it reports, importable from here as before the split
@@ -129,6 +130,7 @@ def run_study(
     fail_chunks: str | None = None,
     dashboard: bool = True,
     echo: Callable[[str], None] = print,
+    checks: bool = True,
 ) -> RunReport:
     """Compute every chunk of ``study`` not yet done in the store at ``store_path``.
 
@@ -137,8 +139,14 @@ def run_study(
     fail_chunks -- fault injection, as BBB_FAIL_CHUNKS (default: read from the environment)
     dashboard -- serve the Dask dashboard of a LocalCluster (needs bokeh) and print its link
 
+    checks -- before anything runs, warn (stderr) and refuse a scene in which nothing can move
+              (:mod:`pipeline.workflow.sanity`); False only for tests of the engine on such
+              a scene (bbb run always checks)
+
     Raises RunFailed naming the chunk if a task fails; finished chunks stay done.
     """
+    if checks:
+        check_scene(study)
     t_start = time.perf_counter()
     store_path = normalize_path(store_path)
     fails = parse_fail_chunks(os.environ.get(FAIL_ENV) if fail_chunks is None else fail_chunks)

@@ -50,9 +50,14 @@ def unit_of(ds: xr.Dataset | xr.DataArray, name: str) -> str | None:
 
 
 def axis_label(ds: xr.Dataset | xr.DataArray, name: str) -> str:
-    """``"<symbol> (<unit>)"``, or the bare symbol for a dimensionless ``name``."""
+    """``"<symbol> (<unit>)"``, or the bare symbol for a dimensionless ``name``; D of a
+    Dataset that also has D_drift (a tilted or thrown floor, where D is the raw MSD's slope)
+    reads ``"D, drift included (mm²/s)"``."""
     u = pretty_unit(unit_of(ds, name))
-    return f"{symbol(name)} ({u})" if u else symbol(name)
+    sym = symbol(name)
+    if name == "D" and isinstance(ds, xr.Dataset) and "D_drift" in ds.data_vars:
+        sym += ", drift included"
+    return f"{sym} ({u})" if u else sym
 
 
 def _number(value) -> str:

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import os
+import sys
 from collections.abc import Callable, Iterable
 from pathlib import Path
 
@@ -30,6 +31,7 @@ from ..store.layout import OPEN
 from ..store.study_store import StudyStore, package_version
 from ..workflow.study import Study
 from .catalog import tables
+from .notes import reduce_notes
 from .units import column_unit, units
 
 __all__ = ["reduce_store", "default_out_dir", "column_unit", "table_metadata", "write_table"]
@@ -46,11 +48,14 @@ def default_out_dir(store_path: str, study: Study) -> str:
 def reduce_store(store_path: str | os.PathLike | StudyStore,
                  out_dir: str | os.PathLike | None = None,
                  *, names: Iterable[str] | None = None,
-                 echo: Callable[[str], None] = print) -> dict[str, pd.DataFrame]:
+                 echo: Callable[[str], None] = print,
+                 warn: Callable[[str], None] | None = None) -> dict[str, pd.DataFrame]:
     """Write the tables of one store (``names``, default: those of
     :func:`pipeline.tables.catalog.table_names`) to ``out_dir`` (default: beside the store);
     returns them.  A StudyStore may carry other reduce settings than the stored ones
-    (`bbb reduce --workflow`)."""
+    (`bbb reduce --workflow`).  ``warn`` (default: stderr) gets one line per kind of D that
+    must not be read as a value (:mod:`pipeline.tables.notes`: failed estimators, D with the
+    drift included)."""
     store = store_path if isinstance(store_path, StudyStore) else StudyStore.open(store_path)
     study = store.study
     out = Path(out_dir if out_dir is not None else default_out_dir(store.path, study))
@@ -66,7 +71,14 @@ def reduce_store(store_path: str | os.PathLike | StudyStore,
         write_table(df, out / f"{name}.parquet", {**provenance, "table": name})
         df.to_csv(out / f"{name}.csv", index=False)
     echo(f"{study.name}: wrote {', '.join(f'{n}.parquet/.csv' for n in made)} to {out}")
+    if "diffusion" in made:
+        for line in reduce_notes(study.name, made["diffusion"]):
+            (warn or _stderr)(line)
     return made
+
+
+def _stderr(line: str) -> None:
+    print(line, file=sys.stderr)
 
 
 def write_table(df: pd.DataFrame, path: str | os.PathLike, provenance: dict) -> None:

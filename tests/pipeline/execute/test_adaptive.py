@@ -249,7 +249,9 @@ def test_a_frequency_where_nothing_moves_reports_the_mover_share_bound_not_zero_
     from pipeline.tables.reduce import reduce_store
 
     store = tmp_path / "still.zarr"
-    run_study(parse_workflow(STILL, "still.toml"), store, workers=1, **QUIET)
+    # bbb run refuses a scene where nothing can move (pipeline.workflow.sanity); the engine
+    # still handles such a unit, as it meets one inside a wider scene
+    run_study(parse_workflow(STILL, "still.toml"), store, workers=1, checks=False, **QUIET)
     assert _stops(store)[0].tolist() == [[4]] and _stops(store)[1].tolist() == [[CAP]]
     row = reduce_store(store, tmp_path / "out", echo=lambda _: None)["diffusion"].iloc[0]
     assert row["n_moving"] == 0 and row["D"] == 0.0 and row["D_lo"] == 0.0
@@ -264,13 +266,13 @@ def test_a_store_that_recorded_no_mover_as_resolved_zero_is_reopened_and_finishe
     by the next run and ends where a fresh run ends."""
     study = parse_workflow(STILL, "still.toml")
     fresh, old = tmp_path / "fresh.zarr", tmp_path / "old.zarr"
-    run_study(study, fresh, workers=1, **QUIET)
-    run_study(study, old, workers=1, **QUIET)
+    run_study(study, fresh, workers=1, checks=False, **QUIET)  # still: see above
+    run_study(study, old, workers=1, checks=False, **QUIET)
     g = zarr.open_group(str(old), mode="r+")
     g["done"][0, 0, 1:] = False
     g["n_chunks_used"][0, 0] = 1
     g["stop_reason"][0, 0] = ZERO
-    run_study(study, old, workers=1, **QUIET)
+    run_study(study, old, workers=1, checks=False, **QUIET)
     assert_same_store(old, fresh)
 
 

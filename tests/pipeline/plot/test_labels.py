@@ -32,3 +32,11 @@ def test_a_value_is_written_with_its_symbol_and_unit_and_a_name_as_itself():
 def test_a_file_token_holds_only_safe_characters():
     assert file_token("alpha", 0.5) == "alpha=0.5"
     assert file_token("contact", "stick slide/x") == "contact=stick-slide-x"
+
+
+def test_d_on_a_floor_that_drifts_is_labelled_drift_included():
+    ds = xr.Dataset({"D": ("frequency", [1.0], {"units": "mm^2/s"})}, coords={"frequency": [60.0]})
+    assert axis_label(ds, "D") == "D (mm²/s)"
+    ds["D_drift"] = ("frequency", [0.5], {"units": "mm^2/s"})
+    assert axis_label(ds, "D") == "D, drift included (mm²/s)"
+    assert axis_label(ds, "D_drift").endswith("(mm²/s)") and "included" not in axis_label(ds, "D_drift")
