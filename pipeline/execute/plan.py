@@ -11,14 +11,16 @@ The cost model, and where each number comes from:
   numba cache load, store creation).  Wall = START_UP_S + the makespan of the tasks placed
   in submission order on the first free worker (what Dask does with run.py's priorities):
   that accounts for the tail, the longest single task at the end.
-* A target-driven scene (``[accuracy] target_ci``, ``d_resolved``, ``max_particles``,
-  issue 12): the particles per (frequency, family) from the measured law "95 % CI
-  half-width of D = 1.6 D / sqrt(N)" (docs/accuracy.md, fact 1, measured at f >= 58 Hz:
-  N = (1.6 / target_ci)^2), unless the pilot's own bootstrap half-width, scaled by
-  1/sqrt(N), reaches ``d_resolved`` sooner (D = 0 from rest in the creeping regime is
-  resolved by the first wave) or the pilot's relative spread is more than twice the law's
-  (mixed creeping/bouncing frequencies, where the law was not measured); rounded up to
-  whole chunks (the wave rule of pipeline/execute/adaptive.py ends there when the law holds) and
+* A target-driven scene (``[accuracy] target_ci``, ``d_resolved``, ``max_particles``):
+  the particles per (frequency, family) from the law "95 % CI half-width of D = k D /
+  sqrt(N)" (docs/accuracy.md, fact 1) with k from the scene's own pilot
+  (:meth:`Rates.ci_law`: the particles' relative spread of D pooled over a line's cells; 1.6,
+  measured on the paper's arcs at f >= 58 Hz, without a pool): N = (k D / goal)^2 with the
+  stopping rule's goal max(target_ci D, d_resolved), where the pilot's own bootstrap
+  half-width stands in for k D when it saw one mover or none (D = 0 from rest in the
+  creeping regime is resolved by the first wave), and the pilot's own relative spread for k
+  when it is more than twice k (mixed creeping/bouncing frequencies); rounded up to whole
+  chunks (the wave rule of pipeline/execute/adaptive.py ends there when the law holds) and
   capped at ``max_particles``.  The wall time ignores the waits between waves.
 
 This module is the pure part: ``predict`` and ``plan_table`` take a workflow and a
@@ -147,16 +149,17 @@ class Rates:
     def ci_law(self, family: str, grid: tuple, target: float | None, d_resolved: float | None,
                z: float) -> tuple[float, int]:
         """(k, cells): the CI-law constant -- 95 % half-width of D = k D / sqrt(N) -- from this
-        pilot's own spread, k = z sqrt(mean cv2), pooled over the piloted cells of ``family``
-        on the line ``grid`` (the whole scene's if the line has fewer than POOL_MIN) where the
-        relative target decides (target D >= d_resolved) and at least two particles move
-        (cv2 < n / 2: one mover of n has cv2 = n); (CI_LAW, 0) without such cells.  Pooling
-        is what makes 8 particles enough: one cell's spread from 8 is biased low, their mean
-        variance is not."""
+        pilot's own spread, k = z sqrt(mean of cv2 / (1 - cv2 / n)) (each cell's var(D_i) over
+        mean(D_i)^2 - var / n, the unbiased estimate of the squared mean), pooled over the
+        piloted cells of ``family`` on the line ``grid`` (the whole scene's if the line has
+        fewer than POOL_MIN) where the relative target decides (target D >= d_resolved) and
+        at least two particles move (cv2 < n / 2: one mover of n has cv2 = n); (CI_LAW, 0)
+        without such cells.  Pooling is what makes 8 particles enough: one cell's spread from
+        8 is biased low, the mean of many cells' unbiased ratios much less."""
         def pool(cells) -> list[float]:
             floor = (d_resolved or 0.0) / target if target else 0.0
-            return [c.cv2 for c in cells if math.isfinite(c.cv2) and c.cv2 < c.n / 2
-                    and c.D > 0 and c.D >= floor]
+            return [c.cv2 / (1 - c.cv2 / c.n) for c in cells if math.isfinite(c.cv2)
+                    and c.cv2 < c.n / 2 and c.D > 0 and c.D >= floor]
         own = [c for k, c in self.cells.items() if k[1] == family and k[2:] == ((grid,) if grid
                                                                                else ())]
         values = pool(own)

@@ -266,19 +266,21 @@ def _spread_rates(lines: dict) -> Rates:
 
 
 def test_the_ci_law_is_pooled_from_the_lines_own_pilot_spread():
-    """k = z sqrt(mean cv2) over the line's cells where the target decides and two or more
-    particles move: a rare-mover cell (cv2 = n) and one below d_resolved / target are left out;
-    a line with fewer than POOL_MIN such cells takes the scene's pool; no pool: CI_LAW."""
+    """k = z sqrt(mean u), u = cv2 / (1 - cv2 / n) (cv2 = 1 of 8 particles: u = 8 / 7), over
+    the line's cells where the target decides and two or more particles move: a rare-mover
+    cell (cv2 = n) and one below d_resolved / target are left out; a line with fewer than
+    POOL_MIN such cells takes the scene's pool; no pool: CI_LAW."""
     from pipeline.execute.plan import CI_LAW, POOL_MIN
 
     a, b = (("alpha", 0.5),), (("alpha", 0.7),)
     rates = _spread_rates({a: [(100.0, 1.0)] * POOL_MIN + [(100.0, 8.0), (1.0, 3.0)],
                            b: [(100.0, 3.0)] * 2})
     k, cells = rates.ci_law("rest", a, 0.05, 2.0, 1.96)
-    assert (round(k, 6), cells) == (1.96, POOL_MIN)
+    assert (k, cells) == (pytest.approx(1.96 * math.sqrt(8 / 7)), POOL_MIN)
     k, cells = rates.ci_law("rest", b, 0.05, 2.0, 1.96)
     assert cells == POOL_MIN + 2
-    assert k == pytest.approx(1.96 * math.sqrt((POOL_MIN + 6.0) / (POOL_MIN + 2)))
+    assert k == pytest.approx(1.96 * math.sqrt((POOL_MIN * 8 / 7 + 2 * 3 / (1 - 3 / 8))
+                                               / (POOL_MIN + 2)))
     assert _spread_rates({a: [(100.0, 1.0)] * (POOL_MIN - 1)}).ci_law(
         "rest", a, 0.05, 2.0, 1.96) == (CI_LAW, 0)
 
