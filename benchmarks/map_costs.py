@@ -33,6 +33,8 @@ RESULTS = Path(__file__).resolve().parent / "results"
 #: the plans before it are in map-costs-2026-11-25.md
 MAPS = {name: (f"plan-{name}-*-pilot-model.txt",) for name in (
     "dissipation", "dissipation_locking", "dissipation_r25", "protocol", "transport_reversal")}
+for name in ("dissipation", "dissipation_r25"):  # and with --pilot-particles 16
+    MAPS[name] += (f"plan-{name}-*-pilot-model-16.txt",)
 
 
 def planned(pattern: str) -> dict[str, float] | None:
@@ -46,7 +48,8 @@ def planned(pattern: str) -> dict[str, float] | None:
             "cpu_s": float(total.group(3)), "file": files[-1].name,
             "all": "--pilot-lines all" in text.splitlines()[0],
             "pilot_s": float(pilot.group(1)) if pilot else None,
-            "every_line": "every line of the grid" in text}
+            "every_line": "every line of the grid" in text,
+            "particles": re.search(r"--pilot-particles (\d+)", text.splitlines()[0])}
 
 
 def measured(runs: Path, name: str) -> dict[str, float]:
@@ -82,7 +85,8 @@ def main() -> None:
             c = cpu.get(name)
             cpu_text = (f"{p['cpu_s']:.0f} / {c:.0f} ({c / p['cpu_s']:.2f})" if c is not None
                         else f"{p['cpu_s']:.0f} / not measured")
-            label = f"`{name}`" + (" (every line piloted)" if p["every_line"] else "")
+            label = (f"`{name}`" + (" (every line piloted)" if p["every_line"] else "")
+                     + (f" ({p['particles'].group(1)} pilot particles)" if p["particles"] else ""))
             pilot = (f"{p['pilot_s']:.1f} ({100 * p['pilot_s'] / p['cpu_s']:.1f} %)"
                      if p["pilot_s"] is not None else "-")
             print(f"| {label} | {m['points']} ({m['listed']}) | {p['chunks']:.0f} / "

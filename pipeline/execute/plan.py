@@ -214,6 +214,8 @@ class Plan:
     t_max: float
     #: the pilot's simulation time, CPU-s (its cells' fastest timings)
     pilot_cpu_s: float = 0.0
+    #: a target scene's CI-law constants k, one per (family, line) (Rates.ci_law)
+    laws: tuple[float, ...] = ()
 
     @property
     def cpu_s(self) -> float:
@@ -313,7 +315,7 @@ def predict(study: Study, rates: Rates, workers: int, overheads: Overheads = Ove
               f"{fams}, accuracy {acc.preset}: {size}, t_max {acc.t_max:g} s")
     return Plan(study.name, tuple(rows), workers, r, overheads, makespan(durations, workers),
                 max(durations, default=0.0), rates.source, header, acc.t_max,
-                sum(c.cpu_s for c in rates.cells.values()))
+                sum(c.cpu_s for c in rates.cells.values()), tuple(k for k, _ in laws.values()))
 
 
 def _band(f: float) -> str:
@@ -336,6 +338,10 @@ def plan_table(plan: Plan) -> str:
             f"{'coll/particle-s':>15} {'collisions':>10} {'CPU-s':>8} {'share':>6}  stop")
     lines = [plan.header, f"cost model: {plan.source}; {plan.rate:.3g} collisions per task-s "
              f"(kernel rate x {plan.overheads.in_task:g} inside pipeline tasks)", "", head]
+    if plan.laws:
+        lines.insert(2, f"CI law: half-width = k D / sqrt(N), k {min(plan.laws):.2f}-"
+                     f"{max(plan.laws):.2f} pooled from the pilot's spread ({CI_LAW:g} without "
+                     "a pool)")
     total_cpu = plan.cpu_s or 1.0
     for (band, fam), rows in groups.items():
         ns = [r.particles for r in rows]

@@ -314,3 +314,19 @@ def test_target_driven_particles_scale_with_the_pools_law():
     assert particles_needed(study, near, 1.6) == (512, "resolved")
     assert particles_needed(study, near, 3.2) == (1024, "resolved")
     assert particles_needed(study, _spread_cell(20.0, 8.0), 3.2) == (512, "resolved")
+
+
+def test_a_target_plan_states_its_pooled_ci_law():
+    """The plan of a target scene prints the range of its k; a fixed-N scene's prints none."""
+    from pipeline.execute.plan import plan_table
+    from pipeline.workflow.identity import f_key
+
+    six = PLAN_TINY.replace("[54.0, 55.0, 60.0, 72.0]", "[60.0, 62.0, 64.0, 66.0, 68.0, 72.0]")
+    fixed = parse_workflow(six)
+    target = parse_workflow(six.replace("n_particles = 128",
+                                        "target_ci = 0.05\nmax_particles = 1024"))
+    for study, shown in ((target, "k 1.96-1.96 pooled"), (fixed, None)):
+        cells = {(f_key(f), "rest"): Cell(f, "rest", 8, 30.0, 1000, 0.01, 100.0, 50.0, 8 / 9)
+                 for f in study.frequencies}  # cv2 = 8/9 of 8 particles: u = 1, k = z
+        text = plan_table(predict(study, Rates(cells), workers=2))
+        assert ("CI law" in text) == (shown is not None) and (shown is None or shown in text)
