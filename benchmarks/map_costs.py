@@ -8,7 +8,8 @@ For every map scene below with a plan in ``benchmarks/results/plan-<name>-*.txt`
 tasks; the chunks and collisions the store holds at the points the workflow lists (a refined
 map's added points are not priced by the plan, and are counted apart); and the CPU-s measured
 for the run (``--cpu``: user + system time of the ``bbb run`` process tree, e.g. from
-``/usr/bin/time -v``), when one was measured.  Ratios are measured / planned.
+``/usr/bin/time -v``), when one was measured; the pilot's simulation CPU-s (the plan's
+``pilot:`` line) and its share of the planned run.  Ratios are measured / planned.
 """
 
 from __future__ import annotations
@@ -27,12 +28,13 @@ from pipeline.workflow.identity import point_key  # noqa: E402
 from pipeline.workflow.scenes import load_scene  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"
-#: {map scene: the plans of it (``bbb plan`` outputs in benchmarks/results/), one row each}
-MAPS = {"dissipation": ("plan-dissipation-map-*.txt", "plan-dissipation-all-lines-*.txt"),
-        "dissipation_locking": ("plan-dissipation_locking-*.txt",),
-        "dissipation_r25": ("plan-dissipation_r25-*.txt",),
-        "protocol": ("plan-protocol-*.txt",),
-        "transport_reversal": ("plan-transport_reversal-*.txt",)}
+#: {map scene: the plans of it (``bbb plan`` outputs in benchmarks/results/), one row each}:
+#: the plans of the pilot model (CI law pooled from the pilot, every line piloted when cheap);
+#: the plans before it are in map-costs-2026-11-25.md
+MAPS = {name: (f"plan-{name}-*-pilot-model.txt",) for name in (
+    "dissipation", "dissipation_locking", "dissipation_r25", "protocol", "transport_reversal")}
+for name in ("dissipation", "dissipation_r25"):  # and with --pilot-particles 16
+    MAPS[name] += (f"plan-{name}-*-pilot-model-16.txt",)
 
 
 def planned(pattern: str) -> dict[str, float] | None:
@@ -41,9 +43,13 @@ def planned(pattern: str) -> dict[str, float] | None:
         return None
     text = files[-1].read_text(encoding="utf-8")
     total = re.search(r"^[#\s]*total\s+\d+\s+(\d+)\s+([\d.e+]+)\s+([\d.]+)", text, re.M)
+    pilot = re.search(r"^pilot: ([\d.]+) CPU-s", text, re.M)
     return {"chunks": float(total.group(1)), "collisions": float(total.group(2)),
             "cpu_s": float(total.group(3)), "file": files[-1].name,
-            "all": "--pilot-lines all" in text.splitlines()[0]}
+            "all": "--pilot-lines all" in text.splitlines()[0],
+            "pilot_s": float(pilot.group(1)) if pilot else None,
+            "every_line": "every line of the grid" in text,
+            "particles": re.search(r"--pilot-particles (\d+)", text.splitlines()[0])}
 
 
 def measured(runs: Path, name: str) -> dict[str, float]:
@@ -66,8 +72,8 @@ def main() -> None:
     a = ap.parse_args()
     cpu = {k: float(v) for k, v in (x.split("=", 1) for x in a.cpu)}
     print("| map | points (listed) | chunks planned / measured | collisions planned / measured "
-          "| CPU-s planned / measured | plan |")
-    print("| --- | --- | --- | --- | --- | --- |")
+          "| CPU-s planned / measured | pilot CPU-s | plan |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
     for name, patterns in MAPS.items():
         if not (a.runs / f"{name}.zarr").exists():
             continue
@@ -79,11 +85,14 @@ def main() -> None:
             c = cpu.get(name)
             cpu_text = (f"{p['cpu_s']:.0f} / {c:.0f} ({c / p['cpu_s']:.2f})" if c is not None
                         else f"{p['cpu_s']:.0f} / not measured")
-            label = f"`{name}`" + (" (every line piloted)" if p["all"] else "")
+            label = (f"`{name}`" + (" (every line piloted)" if p["every_line"] else "")
+                     + (f" ({p['particles'].group(1)} pilot particles)" if p["particles"] else ""))
+            pilot = (f"{p['pilot_s']:.1f} ({100 * p['pilot_s'] / p['cpu_s']:.1f} %)"
+                     if p["pilot_s"] is not None else "-")
             print(f"| {label} | {m['points']} ({m['listed']}) | {p['chunks']:.0f} / "
                   f"{m['chunks']:.0f} ({m['chunks'] / p['chunks']:.2f}) | {p['collisions']:.3g} / "
                   f"{m['collisions']:.3g} ({m['collisions'] / p['collisions']:.2f}) | {cpu_text} | "
-                  f"{p['file']}{added} |")
+                  f"{pilot} | {p['file']}{added} |")
 
 if __name__ == "__main__":
     main()

@@ -101,10 +101,10 @@ def _build_parser() -> argparse.ArgumentParser:
                          "one's wall time simulated (default: number of cores)")
     pl.add_argument("--cluster", choices=("slurm",), help="for SLURM jobs (default: this machine)")
     pl.add_argument("--cores-per-job", metavar="K", type=_positive_int, default=32, help="SLURM job size")
-    pl.add_argument("--pilot-lines", choices=("probes", "all"), default="probes",
-                    help="a map: pilot its corner and centre lines and cost the others from "
-                         "them (probes, default), or pilot every line (all: costs the pilot's "
-                         "share of each line, ~pilot particles / the line's particles)")
+    pl.add_argument("--pilot-lines", choices=("auto", "probes", "all"), default="auto",
+                    help="a map: every line when that costs <= 5 %% of the run, else the "
+                         "corner and centre lines, the others costed from them (auto, default); "
+                         "the corner and centre lines (probes); every line (all)")
     pl.add_argument("--pilot-particles", metavar="N", type=_positive_int, default=8,
                     help="pilot particles per (frequency, family) (default: 8)")
     pl.add_argument("--kernel-rate", metavar="FILE",

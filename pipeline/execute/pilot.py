@@ -40,8 +40,8 @@ from ..workflow.sanity import check_scene
 from ..workflow.study import Study
 from .plan import Cell, Rates
 
-__all__ = ["pilot_rates", "probe_lines", "benchmark_rate", "plan_rates", "PILOT_PARTICLES",
-           "TIMING_FLOOR_S"]
+__all__ = ["pilot_rates", "probe_lines", "pilot_share", "benchmark_rate", "plan_rates",
+           "PILOT_PARTICLES", "PILOT_SHARE", "TIMING_FLOOR_S"]
 
 #: pilot particles per (frequency, family)
 PILOT_PARTICLES = 8
@@ -50,18 +50,22 @@ PILOT_PARTICLES = 8
 #: timed once can read slow enough to push the tiny scene of tests/pipeline/execute/test_plan.py past
 #: its band (benchmarks/results/pilot-timing-2026-11-24.md)
 TIMING_FLOOR_S = 1.5
-#: a cached pilot older than its format is recomputed
-CACHE_VERSION = 1
+#: a map's every line is piloted (``lines="auto"``) when that costs at most this share of the run
+#: the probe lines price
+PILOT_SHARE = 0.05
+#: a cached pilot older than its format is recomputed (2: cells hold cv2, the per-particle spread)
+CACHE_VERSION = 2
 
 
 def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
                 cache_dir: str | os.PathLike | None = "runs/plan-cache",
-                echo=None, lines: str = "probes") -> Rates:
+                echo=None, lines: str = "auto") -> Rates:
     """Measure (or read from the cache) a pilot :class:`Cell` at every (frequency, family)
     of ``study``: ``particles`` particles, at most half the study's, over its t_max.  A grid
     is piloted along its probe lines (:func:`probe_lines`: the corners and the centre of its
     axes), every other point costed from them (:meth:`Rates.cell`), or with ``lines="all"``
-    along every line."""
+    along every line; ``lines="auto"`` (default) pilots every line when that is cheap
+    (:data:`PILOT_SHARE` of the run), else the probes."""
     from bbb.provenance import kernel_hash
 
     if study.grid:
@@ -147,7 +151,20 @@ def probe_lines(study: Study) -> list[tuple[tuple[str, object], ...]]:
 
 def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str) -> Rates:
     """The pilot of a grid scene: the 1-D pilot of each probe line, or of every line
-    (``lines="all"``), each cached as that line's scene's."""
+    (``lines="all"``), each cached as that line's scene's; ``lines="auto"``: the probe lines,
+    then every line if that pilot costs at most PILOT_SHARE of the run they price
+    (:func:`pilot_share`)."""
+    if lines == "auto":
+        probes = _grid_rates(study, particles, cache_dir, echo, "probes")
+        every = list(dict.fromkeys(p.grid for p in study.points))
+        if len(probe_lines(study)) == len(every):
+            return probes
+        share = pilot_share(study, probes)
+        if share > PILOT_SHARE:
+            return replace(probes, source=f"{probes.source} (a pilot of every line would cost "
+                           f"{share:.0%} of the run, more than {PILOT_SHARE:.0%})")
+        rates = _grid_rates(study, particles, cache_dir, echo, "all")
+        return replace(rates, source=f"{rates.source} (its pilot costs {share:.1%} of the run)")
     cells, sources = {}, set()
     todo = (probe_lines(study) if lines == "probes"
             else list(dict.fromkeys(p.grid for p in study.points)))
@@ -163,6 +180,19 @@ def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str) -> Ra
         "from them by inverse-square distance" if lines == "probes" else
         f"every line of the grid ({len(todo)})"))
     return Rates(cells, source=src, scales=scales)
+
+
+def pilot_share(study: Study, rates: Rates) -> float:
+    """What a pilot of every line of the grid scene ``study`` costs, as a share of the run
+    ``rates`` prices: its particles times each point's collisions per particle over the run's
+    collisions.  Interpolated lines are guesses (the collision rate changes irregularly
+    along an axis, as along f), so every line is piloted when this is small."""
+    from .plan import predict
+
+    plan = predict(study, rates, 1)
+    n = next(iter(rates.cells.values())).n
+    pilot = sum(n * r.collisions / r.particles for r in plan.rows if r.particles)
+    return pilot / plan.collisions if plan.collisions else 1.0
 
 
 def plan_rates(study: Study, particles: int, lines: str, kernel_rate: str | None,
@@ -243,12 +273,15 @@ def _pilot_cell(study: Study, f: float, fam, n: int) -> Cell:
     positions = bool(study.observables.positions)
     times = study.sample_times()
     run, cpu, seed = _pilot_run(study, f, fam, n)
-    D = hw = math.nan
+    D = hw = cv2 = math.nan
     if positions and n >= 2:
         T = an.duration(acc.t_max)
+        fit = {"fit_from": an.fit_from * T, "fit_to": an.fit_to * T, "discard": an.discard}
         ci = stats.bootstrap_D(run.positions, times, n_resamples=400, ci=an.ci, seed=seed,
-                               fit_from=an.fit_from * T, fit_to=an.fit_to * T,
-                               discard=an.discard)
+                               **fit)
         D, hw = ci.D, (ci.hi - ci.lo) / 2
+        d_i = stats.per_particle_D(run.positions, times, **fit)
+        if d_i.mean() > 0:  # the particles' relative spread of D, unbiased variance
+            cv2 = float(d_i.var(ddof=1) / d_i.mean() ** 2)
     return Cell(float(f), fam.name, n, acc.t_max, int(run.counters["collisions"].sum()),
-                cpu, float(D), float(hw))
+                cpu, float(D), float(hw), cv2)

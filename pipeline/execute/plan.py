@@ -12,13 +12,15 @@ The cost model, and where each number comes from:
   in submission order on the first free worker (what Dask does with run.py's priorities):
   that accounts for the tail, the longest single task at the end.
 * A target-driven scene (``[accuracy] target_ci``, ``d_resolved``, ``max_particles``):
-  the particles per (frequency, family) from the measured law "95 % CI
-  half-width of D = 1.6 D / sqrt(N)" (docs/accuracy.md, fact 1, measured at f >= 58 Hz:
-  N = (1.6 / target_ci)^2), unless the pilot's own bootstrap half-width, scaled by
-  1/sqrt(N), reaches ``d_resolved`` sooner (D = 0 from rest in the creeping regime is
-  resolved by the first wave) or the pilot's relative spread is more than twice the law's
-  (mixed creeping/bouncing frequencies, where the law was not measured); rounded up to
-  whole chunks (the wave rule of pipeline/execute/adaptive.py ends there when the law holds) and
+  the particles per (frequency, family) from the law "95 % CI half-width of D = k D /
+  sqrt(N)" (docs/accuracy.md, fact 1) with k from the scene's own pilot
+  (:meth:`Rates.ci_law`: the particles' relative spread of D pooled over a line's cells; 1.6,
+  measured on the paper's arcs at f >= 58 Hz, without a pool): N = (k D / goal)^2 with the
+  stopping rule's goal max(target_ci D, d_resolved), where the pilot's own bootstrap
+  half-width stands in for k D when it saw one mover or none (D = 0 from rest in the
+  creeping regime is resolved by the first wave), and the pilot's own relative spread for k
+  when it is more than twice k (mixed creeping/bouncing frequencies); rounded up to whole
+  chunks (the wave rule of pipeline/execute/adaptive.py ends there when the law holds) and
   capped at ``max_particles``.  The wall time ignores the waits between waves.
 
 This module is the pure part: ``predict`` and ``plan_table`` take a workflow and a
@@ -30,15 +32,19 @@ from __future__ import annotations
 import heapq
 import math
 from dataclasses import dataclass, replace
+from statistics import NormalDist
 
 from ..workflow.identity import f_key
 from ..workflow.study import Study
 
 __all__ = ["Cell", "Rates", "Overheads", "TaskRow", "Plan", "predict", "plan_table",
-           "particles_needed", "makespan", "CI_LAW", "BAND_EDGES"]
+           "particles_needed", "makespan", "CI_LAW", "POOL_MIN", "BAND_EDGES"]
 
-#: relative 95 % CI half-width of D times sqrt(N), measured at f >= 58 Hz (docs/accuracy.md)
+#: relative 95 % CI half-width of D times sqrt(N), measured at f >= 58 Hz (docs/accuracy.md):
+#: the plan's constant when the pilot has no spread to pool (Rates.ci_law)
 CI_LAW = 1.6
+#: fewest pilot cells the CI-law constant is pooled from
+POOL_MIN = 5
 #: frequency bands of the table, Hz (the creeping band, the VHO and destroyed resonances,
 #: the two-loop and the three/four-loop spirals of Fig. 2)
 BAND_EDGES = (50.0, 58.0, 66.0, 80.0, 100.0)
@@ -71,6 +77,9 @@ class Cell:
     collisions -- summed over the n particles;  cpu_s -- process CPU time of the simulation
     D, D_hw    -- D (mm^2/s) and its absolute 95 % bootstrap half-width at n particles
                   (NaN without positions)
+    cv2        -- the particles' relative spread of D: var(D_i) / mean(D_i)^2 over the n
+                  particles' own MSD slopes D_i (unbiased variance; NaN without positions or
+                  when mean(D_i) <= 0), pooled over a line into the CI-law constant
     """
 
     f: float
@@ -81,6 +90,7 @@ class Cell:
     cpu_s: float
     D: float = math.nan
     D_hw: float = math.nan
+    cv2: float = math.nan
 
     @property
     def per_particle_s(self) -> float:
@@ -136,6 +146,29 @@ class Rates:
                     mean("cpu_s") * first.n, mean("D") * first.n,
                     mean("D_hw") * first.n)
 
+    def ci_law(self, family: str, grid: tuple, target: float | None, d_resolved: float | None,
+               z: float) -> tuple[float, int]:
+        """(k, cells): the CI-law constant -- 95 % half-width of D = k D / sqrt(N) -- from this
+        pilot's own spread, k = z sqrt(mean of cv2 / (1 - cv2 / n)) (each cell's var(D_i) over
+        mean(D_i)^2 - var / n, the unbiased estimate of the squared mean), pooled over the
+        piloted cells of ``family`` on the line ``grid`` (the whole scene's if the line has
+        fewer than POOL_MIN) where the relative target decides (target D >= d_resolved) and
+        at least two particles move (cv2 < n / 2: one mover of n has cv2 = n); (CI_LAW, 0)
+        without such cells.  Pooling is what makes 8 particles enough: one cell's spread from
+        8 is biased low, the mean of many cells' unbiased ratios much less."""
+        def pool(cells) -> list[float]:
+            floor = (d_resolved or 0.0) / target if target else 0.0
+            return [c.cv2 / (1 - c.cv2 / c.n) for c in cells if math.isfinite(c.cv2)
+                    and c.cv2 < c.n / 2 and c.D > 0 and c.D >= floor]
+        own = [c for k, c in self.cells.items() if k[1] == family and k[2:] == ((grid,) if grid
+                                                                               else ())]
+        values = pool(own)
+        if len(values) < POOL_MIN:
+            values = pool(c for k, c in self.cells.items() if k[1] == family)
+        if len(values) < POOL_MIN:
+            return CI_LAW, 0
+        return z * math.sqrt(sum(values) / len(values)), len(values)
+
     @property
     def kernel_rate(self) -> float:
         if self.rate is not None:
@@ -179,6 +212,10 @@ class Plan:
     source: str
     header: str
     t_max: float
+    #: the pilot's simulation time, CPU-s (its cells' fastest timings)
+    pilot_cpu_s: float = 0.0
+    #: a target scene's CI-law constants k, one per (family, line) (Rates.ci_law)
+    laws: tuple[float, ...] = ()
 
     @property
     def cpu_s(self) -> float:
@@ -203,13 +240,16 @@ class Plan:
 
 
 # -- the model (pure) -------------------------------------------------------------------------
-def particles_needed(study: Study, cell: Cell) -> tuple[int, str]:
+def particles_needed(study: Study, cell: Cell, law: float = CI_LAW) -> tuple[int, str]:
     """(particles, why) one (frequency, family) is expected to end with.
 
     Fixed-N scene: (n_particles, "fixed").  Target-driven (``accuracy.target_ci``): the
-    chunks the 1/sqrt(N) law asks for -- the wave rule of pipeline/execute/adaptive.py doubles until
-    that number is in reach, then goes to it, so with an exact law it ends there -- capped at
-    ``max_particles`` (default n_particles); ``why`` says which rule decided.
+    chunks the 1/sqrt(N) law (half-width ``law`` D / sqrt(N): :meth:`Rates.ci_law`) asks for to
+    reach the rule's goal max(target_ci D, d_resolved) -- the wave rule of
+    pipeline/execute/adaptive.py doubles until that number is in reach, then goes to it, so
+    with an exact law it ends there -- capped at ``max_particles`` (default n_particles);
+    ``why`` says which rule decided.  Where the pilot saw one mover or none (D ~ 0, or a rare
+    mover) the point's own bootstrap half-width stands in for law D.
     """
     acc = study.accuracy
     target = getattr(acc, "target_ci", None)
@@ -217,14 +257,18 @@ def particles_needed(study: Study, cell: Cell) -> tuple[int, str]:
         return acc.n_particles, "fixed"
     d_resolved = getattr(acc, "d_resolved", None)
     cap = getattr(acc, "max_particles", None) or acc.n_particles
-    k, why = CI_LAW, "target"
+    k, why = law, "target"
     if cell.D > 0 and math.isfinite(cell.D_hw):
         k_pilot = cell.D_hw / cell.D * math.sqrt(cell.n)
-        if k_pilot > 2 * CI_LAW:  # far outside the measured law: trust the pilot's spread
+        if k_pilot > 2 * law:  # far outside the law: trust the point's own spread
             k, why = k_pilot, "law?"
     need = (k / target) ** 2 if cell.D > 0 or not math.isfinite(cell.D) else math.inf
     if d_resolved is not None and math.isfinite(cell.D_hw):
-        need_abs = (cell.D_hw * math.sqrt(cell.n) / d_resolved) ** 2
+        # the half-width times sqrt(N), mm^2/s: the law's k D where the pilot's particles move
+        # alike (two or more movers), the point's own bootstrap spread where one or none does
+        alike = cell.D > 0 and math.isfinite(cell.cv2) and cell.cv2 < cell.n / 2
+        spread = k * cell.D if alike else cell.D_hw * math.sqrt(cell.n)
+        need_abs = (spread / d_resolved) ** 2
         if need_abs <= need:
             need, why = need_abs, "resolved"
     cap_chunks = max(1, cap // acc.chunk_size)
@@ -247,18 +291,21 @@ def predict(study: Study, rates: Rates, workers: int, overheads: Overheads = Ove
     """CPU and wall time of ``study`` on ``workers`` cores from the cost table ``rates``."""
     acc = study.accuracy
     r = rates.kernel_rate * overheads.in_task
-    rows, durations = [], []
+    rows, durations, laws = [], [], {}
+    target = getattr(acc, "target_ci", None)
+    z = NormalDist().inv_cdf(0.5 + study.analysis.ci / 2) if target is not None else 0.0
     for point in study.points:
         f = point.f
         for fam in study.families:
             cell = rates.cell(f, fam.name, point.grid)
-            n, why = particles_needed(study, cell)
+            law = CI_LAW if target is None else laws.setdefault((fam.name, point.grid), rates.ci_law(
+                fam.name, point.grid, target, getattr(acc, "d_resolved", None), z))[0]
+            n, why = particles_needed(study, cell, law)
             chunk_cpu = acc.chunk_size * acc.t_max * cell.per_particle_s / r
             chunks = n // acc.chunk_size
             rows.append(TaskRow(f, fam.name, n, chunks, n * acc.t_max * cell.per_particle_s,
                                 chunks * chunk_cpu, why, point.grid))
             durations += [chunk_cpu + overheads.per_task] * chunks
-    target = getattr(acc, "target_ci", None)
     size = (f"target_ci {target:g} (chunks of {acc.chunk_size})" if target is not None else
             f"{acc.n_particles} particles in chunks of {acc.chunk_size}")
     fams = "family" if len(study.families) == 1 else "families"
@@ -267,7 +314,8 @@ def predict(study: Study, rates: Rates, workers: int, overheads: Overheads = Ove
     header = (f"{study.name}: {where} x {len(study.families)} "
               f"{fams}, accuracy {acc.preset}: {size}, t_max {acc.t_max:g} s")
     return Plan(study.name, tuple(rows), workers, r, overheads, makespan(durations, workers),
-                max(durations, default=0.0), rates.source, header, acc.t_max)
+                max(durations, default=0.0), rates.source, header, acc.t_max,
+                sum(c.cpu_s for c in rates.cells.values()), tuple(k for k, _ in laws.values()))
 
 
 def _band(f: float) -> str:
@@ -290,6 +338,10 @@ def plan_table(plan: Plan) -> str:
             f"{'coll/particle-s':>15} {'collisions':>10} {'CPU-s':>8} {'share':>6}  stop")
     lines = [plan.header, f"cost model: {plan.source}; {plan.rate:.3g} collisions per task-s "
              f"(kernel rate x {plan.overheads.in_task:g} inside pipeline tasks)", "", head]
+    if plan.laws:
+        lines.insert(2, f"CI law: half-width = k D / sqrt(N), k {min(plan.laws):.2f}-"
+                     f"{max(plan.laws):.2f} pooled from the pilot's spread ({CI_LAW:g} without "
+                     "a pool)")
     total_cpu = plan.cpu_s or 1.0
     for (band, fam), rows in groups.items():
         ns = [r.particles for r in rows]
@@ -312,4 +364,6 @@ def plan_table(plan: Plan) -> str:
                  f"workers {plan.cpu_s / plan.workers:.0f} s, {plan.chunks} x "
                  f"{plan.overheads.per_task:g} s per task, the tail); longest task "
                  f"{plan.longest_task:.1f} s")
+    lines.append(f"pilot: {plan.pilot_cpu_s:.1f} CPU-s of simulation, "
+                 f"{100 * plan.pilot_cpu_s / total_cpu:.1f} % of the run's")
     return "\n".join(lines)

@@ -93,3 +93,48 @@ def test_with_this_machines_timings_each_cell_keeps_its_fastest_timing(monkeypat
         cell = rates.cells[(round(f * 1000), "rest")]
         assert cell.cpu_s == min([first[f].cpu_s, *repeats.get(f, [])])
         assert (cell.collisions, cell.D) == (first[f].collisions, first[f].D)
+
+
+def _grid_scene(n_particles: int) -> str:
+    """Five alpha lines (probes: 0.5, 0.6, 0.7), two bouncing frequencies, fixed N."""
+    return (PLAN_TINY.replace("values = [54.0, 55.0, 60.0, 72.0]", "values = [60.0, 72.0]")
+            .replace("t_max = 30.0", "t_max = 5.0")
+            .replace("n_particles = 128", f"n_particles = {n_particles}")
+            .replace("[families.rest]", "[grid]\nalpha = [0.5, 0.55, 0.6, 0.65, 0.7]\n\n"
+                     "[families.rest]"))
+
+
+def test_the_pilots_share_of_a_run_is_its_particles_over_the_points():
+    """A pilot of 8 particles per point of a fixed-N map costs 8 / N of the run: 5 % at 160."""
+    from pipeline.execute.plan import Cell, Rates
+    from pipeline.workflow.identity import f_key
+
+    study = parse_workflow(_grid_scene(160))
+    cells = {(f_key(p.f), "rest", p.grid): Cell(p.f, "rest", 8, 5.0, 1000 * (1 + i), 0.01)
+             for i, p in enumerate(study.points)}
+    assert pilot.pilot_share(study, Rates(cells, scales=(("alpha", 0.5, 0.7),))) == (
+        pytest.approx(0.05))
+
+
+@pytest.mark.parametrize("n_particles, every", [(256, True), (32, False)])
+def test_auto_pilots_every_line_of_a_map_when_that_is_cheap(n_particles, every, tmp_path):
+    """2 pilot particles per point: 0.8 % of 256 particles -> every line is piloted; 6.25 % of
+    32 -> the probe lines only, the others interpolated (and the plan says why)."""
+    study = parse_workflow(_grid_scene(n_particles))
+    rates = pilot.pilot_rates(study, particles=2, cache_dir=tmp_path)
+    lines = {k[2] for k in rates.cells}
+    assert (len(lines) == 5) == every and len(lines) >= 3
+    assert ("every line of the grid (5)" in rates.source) == every
+    assert ("would cost 6%" in rates.source) == (not every)
+
+
+def test_the_docs_quote_the_plans_settings():
+    """docs/maps.md and docs/accuracy.md state the share below which every line is piloted
+    and the fewest cells a line's CI law is pooled from: the code's values."""
+    from pathlib import Path
+
+    from pipeline.execute.plan import POOL_MIN
+
+    docs = Path(__file__).resolve().parents[3] / "docs"
+    assert f"at most {100 * pilot.PILOT_SHARE:g} % of the run" in (docs / "maps.md").read_text()
+    assert f"fewer than {POOL_MIN})" in (docs / "accuracy.md").read_text()

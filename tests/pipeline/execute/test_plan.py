@@ -250,3 +250,83 @@ def test_a_map_with_a_conditional_axis_probes_and_prices_every_contact_model():
     assert {dict(line)["contact"] for line in probed} == {"stick", "coulomb"}
     assert {dict(line)["mu"] for line in probed if dict(line)["contact"] == "coulomb"} == {0.05, 0.3}
     assert all(line in {p.grid for p in study.points} for line in probed)
+
+
+# -- the CI-law constant from the scene's own pilot -------------------------------------------
+def _spread_cell(D, cv2, n=8, f=60.0):
+    return Cell(f, "rest", n, 50.0, 10_000, 0.01, D, D * 0.5, cv2)
+
+
+def _spread_rates(lines: dict) -> Rates:
+    """Cells keyed (f, family, line) from {line: [(D, cv2), ...]}, one frequency each."""
+    from pipeline.workflow.identity import f_key
+
+    return Rates({(f_key(60.0 + i), "rest", line): _spread_cell(D, cv2, f=60.0 + i)
+                  for line, cells in lines.items() for i, (D, cv2) in enumerate(cells)})
+
+
+def test_the_ci_law_is_pooled_from_the_lines_own_pilot_spread():
+    """k = z sqrt(mean u), u = cv2 / (1 - cv2 / n) (cv2 = 1 of 8 particles: u = 8 / 7), over
+    the line's cells where the target decides and two or more particles move: a rare-mover
+    cell (cv2 = n) and one below d_resolved / target are left out; a line with fewer than
+    POOL_MIN such cells takes the scene's pool; no pool: CI_LAW."""
+    from pipeline.execute.plan import CI_LAW, POOL_MIN
+
+    a, b = (("alpha", 0.5),), (("alpha", 0.7),)
+    rates = _spread_rates({a: [(100.0, 1.0)] * POOL_MIN + [(100.0, 8.0), (1.0, 3.0)],
+                           b: [(100.0, 3.0)] * 2})
+    k, cells = rates.ci_law("rest", a, 0.05, 2.0, 1.96)
+    assert (k, cells) == (pytest.approx(1.96 * math.sqrt(8 / 7)), POOL_MIN)
+    k, cells = rates.ci_law("rest", b, 0.05, 2.0, 1.96)
+    assert cells == POOL_MIN + 2
+    assert k == pytest.approx(1.96 * math.sqrt((POOL_MIN * 8 / 7 + 2 * 3 / (1 - 3 / 8))
+                                               / (POOL_MIN + 2)))
+    assert _spread_rates({a: [(100.0, 1.0)] * (POOL_MIN - 1)}).ci_law(
+        "rest", a, 0.05, 2.0, 1.96) == (CI_LAW, 0)
+
+
+def test_pooling_small_pilots_recovers_the_spread_one_pilot_underestimates():
+    """8 particles per cell whose D_i are exponential (relative variance 1, so k = z = 1.96):
+    the pool of 200 cells' unbiased cv2 gives k within 5 %, where the typical single cell's
+    spread (median of z sd / mean, as one pilot's bootstrap sees it) is biased low by > 10 %."""
+    import numpy as np
+
+    rng = np.random.default_rng(5)
+    d = rng.exponential(1.0, size=(200, 8))
+    cv2 = d.var(axis=1, ddof=1) / d.mean(axis=1) ** 2
+    rates = _spread_rates({(("alpha", 0.5),): [(100.0, float(c)) for c in cv2]})
+    k, _ = rates.ci_law("rest", (("alpha", 0.5),), 0.05, None, 1.96)
+    assert k == pytest.approx(1.96, rel=0.05)
+    single = np.median(1.96 * d.std(axis=1) / d.mean(axis=1))
+    assert single < 0.9 * 1.96
+
+
+def test_target_driven_particles_scale_with_the_pools_law():
+    """5 % with the law's 1.6: (1.6 / 0.05)^2 = 1024 = 2 chunks of 512; a pool's k = 2.4 asks
+    (2.4 / 0.05)^2 = 2304 = 5 chunks.  Near d_resolved the goal is max(target D, d_resolved):
+    D = 20, d_resolved 2 -> (k 20 / 2)^2 = 256 (k 1.6: one chunk), 1024 (k 3.2: two); a pilot
+    with one mover (cv2 = n) keeps its own half-width (D_hw sqrt(8) = 28.3 -> 200: one chunk)."""
+    law = _cell(300.0, 1.6 / math.sqrt(8))
+    assert particles_needed(_target_study(0.05), law, 1.6) == (1024, "target")
+    assert particles_needed(_target_study(0.05), law, 2.4) == (2560, "target")
+    near = _spread_cell(20.0, 0.5)
+    study = _target_study(0.05, d_resolved=2.0)
+    assert particles_needed(study, near, 1.6) == (512, "resolved")
+    assert particles_needed(study, near, 3.2) == (1024, "resolved")
+    assert particles_needed(study, _spread_cell(20.0, 8.0), 3.2) == (512, "resolved")
+
+
+def test_a_target_plan_states_its_pooled_ci_law():
+    """The plan of a target scene prints the range of its k; a fixed-N scene's prints none."""
+    from pipeline.execute.plan import plan_table
+    from pipeline.workflow.identity import f_key
+
+    six = PLAN_TINY.replace("[54.0, 55.0, 60.0, 72.0]", "[60.0, 62.0, 64.0, 66.0, 68.0, 72.0]")
+    fixed = parse_workflow(six)
+    target = parse_workflow(six.replace("n_particles = 128",
+                                        "target_ci = 0.05\nmax_particles = 1024"))
+    for study, shown in ((target, "k 1.96-1.96 pooled"), (fixed, None)):
+        cells = {(f_key(f), "rest"): Cell(f, "rest", 8, 30.0, 1000, 0.01, 100.0, 50.0, 8 / 9)
+                 for f in study.frequencies}  # cv2 = 8/9 of 8 particles: u = 1, k = z
+        text = plan_table(predict(study, Rates(cells), workers=2))
+        assert ("CI law" in text) == (shown is not None) and (shown is None or shown in text)
