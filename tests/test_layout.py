@@ -51,7 +51,7 @@ BBB_REEXPORT_TESTS = ("tests/bbb/test_old_kernel_paths.py", "tests/bbb/analysis/
 ENTRY_POINTS = {
     "pipeline/make_figures.py": "the shim of `python -m pipeline.make_figures`, which runs the "
                                 "paper's study (pipeline.studies.klages2004.make_figures)",
-    "pipeline/cli.py": "`bbb accuracy` runs the accuracy study (a lazy import in its command)",
+    "pipeline/commands/run.py": "`bbb accuracy` runs the accuracy study (a lazy import in its command)",
 }
 #: over 400 lines without a 'Size:' line yet, being changed on other branches (the lead splits
 #: them or states their reason when merging, then removes them here:

@@ -55,16 +55,16 @@ CACHE_VERSION = 1
 
 def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
                 cache_dir: str | os.PathLike | None = "runs/plan-cache",
-                echo=None, lines: str = "probes") -> Rates:
+                echo=None, lines: str = "probes", cached_only: bool = False) -> Rates | None:
     """Measure (or read from the cache) a pilot :class:`Cell` at every (frequency, family)
     of ``study``: ``particles`` particles, at most half the study's, over its t_max.  A grid
     is piloted along its probe lines (:func:`probe_lines`: the corners and the centre of its
     axes), every other point costed from them (:meth:`Rates.cell`), or with ``lines="all"``
-    along every line."""
+    along every line.  ``cached_only``: None unless every cell is in the cache (`bbb scenes`)."""
     from bbb.provenance import kernel_hash
 
     if study.grid:
-        return _grid_rates(study, particles, cache_dir, echo, lines)
+        return _grid_rates(study, particles, cache_dir, echo, lines, cached_only)
     acc = study.accuracy
     n = max(1, min(particles, acc.n_particles // 2))
     cells: dict[tuple[int, str], Cell] = {}
@@ -87,6 +87,8 @@ def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
             else:
                 todo.append((f, fam))
     when = {s.get("_measured") for _, s in caches.values() if s}
+    if todo and cached_only:
+        return None
     if todo:
         from .task import warm_numba
 
@@ -144,7 +146,8 @@ def probe_lines(study: Study) -> list[tuple[tuple[str, object], ...]]:
     return out
 
 
-def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str) -> Rates:
+def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str,
+                cached_only: bool = False) -> Rates | None:
     """The pilot of a grid scene: the 1-D pilot of each probe line, or of every line
     (``lines="all"``), each cached as that line's scene's."""
     cells, sources = {}, set()
@@ -152,7 +155,9 @@ def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str) -> Ra
             else list(dict.fromkeys(p.grid for p in study.points)))
     for line in todo:
         rates = pilot_rates(study.line(dict(line)), particles=particles, cache_dir=cache_dir,
-                            echo=echo)
+                            echo=echo, cached_only=cached_only)
+        if rates is None:
+            return None
         cells.update({(mhz, fam, line): c for (mhz, fam), c in rates.cells.items()})
         sources.add(rates.source)
     scales = tuple((a, float(min(v)), float(max(v))) for a, v in study.grid

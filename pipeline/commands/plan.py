@@ -1,0 +1,108 @@
+"""``bbb plan`` (what a workflow will cost on this machine, from a cached pilot) and ``bbb
+scenes`` (the shipped scenes: name, study, description, and their cost where a pilot of
+them is cached, or with ``--cost`` for every one)."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+from .common import WORKFLOW_HELP, UsageError, load, positive_int, positive_ints
+
+__all__ = ["add_parsers", "cmd_plan", "cmd_scenes", "scene_cost"]
+
+
+def add_parsers(sub) -> None:
+    pl = sub.add_parser("plan", help="predict CPU and wall time of a workflow before it runs "
+                                     "(a cached pilot of a few particles; pipeline/execute/pilot.py)")
+    pl.add_argument("workflow", metavar="WORKFLOW", help=WORKFLOW_HELP)
+    pl.add_argument("--workers", metavar="N[,N...]", type=positive_ints,
+                    help="worker counts, e.g. 2,8,64,256: the table at the first, and each "
+                         "one's wall time simulated (default: number of cores)")
+    pl.add_argument("--cluster", choices=("slurm",), help="for SLURM jobs (default: this machine)")
+    pl.add_argument("--cores-per-job", metavar="K", type=positive_int, default=32, help="SLURM job size")
+    pl.add_argument("--pilot-lines", choices=("probes", "all"), default="probes",
+                    help="a map: pilot its corner and centre lines and cost the others from "
+                         "them (probes, default), or pilot every line (all: costs the pilot's "
+                         "share of each line, ~pilot particles / the line's particles)")
+    pl.add_argument("--pilot-particles", metavar="N", type=positive_int, default=8,
+                    help="pilot particles per (frequency, family) (default: 8)")
+    pl.add_argument("--kernel-rate", metavar="FILE",
+                    help="take the kernel rate (collisions/s/core) from a kernel benchmark table "
+                         "(benchmarks/results/kernel-*.txt) instead of the pilot's CPU time")
+    pl.set_defaults(handler=cmd_plan)
+
+    sc = sub.add_parser(
+        "scenes", help="the shipped scenes (usable wherever a WORKFLOW is asked for): name, "
+                       "study, description, and the planned cost on this machine where a "
+                       "pilot is cached (runs/plan-cache, by `bbb plan NAME`)",
+        description="One line per shipped scene: name, study, description, cost.  The cost "
+                    "is `bbb plan NAME`'s prediction (CPU time, and wall time on this "
+                    "machine's cores), read from the pilot cache runs/plan-cache below the "
+                    "current directory; a scene without a cached pilot shows `bbb plan NAME`. "
+                    "Listing takes about a second.  --cost pilots every scene first: about 3 "
+                    "min on 2 cores with an empty cache (a second each once cached).")
+    sc.add_argument("--cost", action="store_true",
+                    help="pilot every scene whose pilot is not cached (minutes; cached after)")
+    sc.set_defaults(handler=cmd_scenes)
+
+
+def cmd_plan(args) -> int:
+    from ..execute.pilot import plan_rates
+    from ..execute.scale_plan import plan_report
+
+    study = load(args.workflow)
+    try:
+        rates = plan_rates(study, args.pilot_particles, args.pilot_lines, args.kernel_rate,
+                           echo=lambda m: print(m, file=sys.stderr))
+    except ValueError as e:  # a --kernel-rate file that is no kernel benchmark table
+        raise UsageError(str(e)) from None
+    print(plan_report(study, rates, list(args.workers or (os.cpu_count() or 1,)),
+                      kind=args.cluster or "local", cores=os.cpu_count() or 1,
+                      per_job=args.cores_per_job))
+    return 0
+
+
+def scene_cost(name: str, measure: bool = False, echo=None) -> str:
+    """The planned cost of shipped scene ``name`` on this machine's cores, as `bbb scenes`
+    shows it: "CPU 12 min, wall 6.5 min on 2 cores" from `bbb plan`'s default pilot (read
+    from its cache; run first if ``measure``), else "? (bbb plan NAME)"."""
+    from ..execute.pilot import pilot_rates
+    from ..execute.plan import predict
+    from ..workflow.scenes import load_scene
+
+    study = load_scene(name)
+    rates = pilot_rates(study, echo=echo, cached_only=not measure)
+    if rates is None:
+        return f"? (bbb plan {name})"
+    cores = os.cpu_count() or 1
+    plan = predict(study, rates, cores)
+    more = "+" if study.refine is not None or study.grid_refine is not None else ""
+    return (f"CPU {_duration(plan.cpu_s)}{more}, wall {_duration(plan.wall_s)}{more} "
+            f"on {cores} cores")
+
+
+def _duration(s: float) -> str:
+    if s < 120:
+        return f"{s:.0f} s"
+    if s < 7200:
+        return f"{s / 60:.1f} min"
+    return f"{s / 3600:.1f} h"
+
+
+def cmd_scenes(args) -> int:
+    from ..workflow.scenes import scene_description, scene_names, scene_study
+
+    names = scene_names()
+    studies = {n: scene_study(n) for n in names}
+    wn, ws = max(map(len, names)), max(map(len, studies.values()))
+    echo = (lambda m: print(m, file=sys.stderr)) if args.cost else None
+    costs = {n: scene_cost(n, measure=args.cost, echo=echo) for n in names}
+    wc = max(map(len, costs.values()))
+    for name in names:
+        print(f"{name:<{wn}}  {studies[name]:<{ws}}  {costs[name]:<{wc}}  "
+              f"{scene_description(name)}")
+    print("a scene's name works wherever a WORKFLOW is asked for (bbb run NAME, bbb plan "
+          "NAME, ...); cost: `bbb plan NAME`'s prediction on this machine (+: refinement adds "
+          "points, not priced)", file=sys.stderr)
+    return 0
