@@ -9,7 +9,7 @@ import sys
 
 from .common import WORKFLOW_HELP, UsageError, load, positive_int, positive_ints
 
-__all__ = ["add_parsers", "cmd_plan", "cmd_scenes", "scene_cost"]
+__all__ = ["add_parsers", "cmd_plan", "cmd_scenes", "scene_cost", "study_cost"]
 
 
 def add_parsers(sub) -> None:
@@ -64,17 +64,23 @@ def cmd_plan(args) -> int:
 
 
 def scene_cost(name: str, measure: bool = False, echo=None) -> str:
-    """The planned cost of shipped scene ``name`` on this machine's cores, as `bbb scenes`
-    shows it: "CPU 12 min, wall 6.5 min on 2 cores" from `bbb plan`'s default pilot (read
-    from its cache; run first if ``measure``), else "? (bbb plan NAME)"."""
-    from ..execute.pilot import pilot_rates
-    from ..execute.plan import predict
+    """The planned cost of shipped scene ``name`` as `bbb scenes` shows it (:func:`study_cost`)."""
     from ..workflow.scenes import load_scene
 
-    study = load_scene(name)
+    return study_cost(load_scene(name), measure, echo, hint=f"bbb plan {name}")
+
+
+def study_cost(study, measure: bool = False, echo=None, hint: str = "bbb plan") -> str:
+    """A study's planned cost on this machine's cores, e.g. "CPU 12 min, wall 6.5 min on 2
+    cores": `bbb plan`'s prediction from its default pilot, read from the pilot cache
+    (runs/plan-cache below the current directory; the pilot run first if ``measure``), else
+    "? (HINT)".  "+" marks a scene whose refinement adds points the plan does not price."""
+    from ..execute.pilot import pilot_rates
+    from ..execute.plan import predict
+
     rates = pilot_rates(study, echo=echo, cached_only=not measure)
     if rates is None:
-        return f"? (bbb plan {name})"
+        return f"? ({hint})"
     cores = os.cpu_count() or 1
     plan = predict(study, rates, cores)
     more = "+" if study.refine is not None or study.grid_refine is not None else ""
