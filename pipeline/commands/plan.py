@@ -34,9 +34,9 @@ def add_parsers(sub) -> None:
 
     sc = sub.add_parser(
         "scenes", help="the shipped scenes (usable wherever a WORKFLOW is asked for): name, "
-                       "study, description, and the planned cost on this machine where a "
-                       "pilot is cached (runs/plan-cache, by `bbb plan NAME`)",
-        description="One line per shipped scene: name, study, description, cost.  The cost "
+                       "study, the planned cost on this machine where a pilot is cached "
+                       "(runs/plan-cache, by `bbb plan NAME`), description",
+        description="One line per shipped scene: name, study, cost, description.  The cost "
                     "is `bbb plan NAME`'s prediction (CPU time, and wall time on this "
                     "machine's cores), read from the pilot cache runs/plan-cache below the "
                     "current directory; a scene without a cached pilot shows `bbb plan NAME`. "

@@ -35,7 +35,7 @@ def add_parsers(sub) -> None:
                    help="one JSON object instead of the table: keys name, path, chunks_done, "
                         "chunks_total, axes, families, points (f, grid, per family done/total "
                         "and stop), jobs (null, or the record and squeue's listing of a run's "
-                        "batch jobs); docs/cli.md")
+                        "batch jobs); pipeline/README.md")
     s.set_defaults(handler=cmd_status)
 
     v = sub.add_parser("verify", help="re-check every done chunk and the attributes of a store; "

@@ -100,3 +100,15 @@ def test_status_json_of_a_map_gives_each_points_grid_values(tmp_path, capsys):
     assert got["axes"] == ["contact", "f"]
     assert [(p["grid"]["contact"], p["f"], p["families"]["rest"]["done"]) for p in got["points"]] == [
         ("stick", 54.0, 0), ("stick", 60.0, 0), ("slide", 54.0, 0), ("slide", 60.0, 1)]
+
+
+def test_every_status_json_key_is_documented_in_the_pipeline_readme():
+    from pathlib import Path
+
+    from pipeline.store.status import STATUS_KEYS
+
+    readme = (Path(__file__).resolve().parents[3] / "pipeline" / "README.md").read_text()
+    table = readme[readme.index("`bbb status STORE --json` prints"):].split("\n\n")[1]
+    rows = [ln for ln in table.splitlines() if ln.startswith("| `")]
+    documented = {k.strip("` ") for ln in rows for k in ln.split("|")[1].split(",")}
+    assert set(STATUS_KEYS) <= documented
