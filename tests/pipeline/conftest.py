@@ -138,8 +138,9 @@ def dask_processes(tmp_path, n_workers: int = 2):
 def installed(tmp_path_factory) -> Path:
     """The python of a fresh venv holding bbb installed from a wheel (`pip install .`, not
     editable); the dependencies come from this test's environment through a .pth file.  One
-    wheel per session (4 s in `make test` here, 25 s on a loaded machine): studies/klages2004/test_make_figures.py and
-    test_installed_cli.py use it."""
+    wheel per session (4 s in `make test` here, 25 s on a loaded machine), used by
+    studies/klages2004/test_make_figures.py, studies/contact/test_scenes.py and
+    test_installed_cli.py."""
     base = tmp_path_factory.mktemp("installed")
     # built from a copy without build/ and egg-info: setuptools would reuse a stale build/lib
     src = base / "src"
