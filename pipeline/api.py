@@ -48,17 +48,14 @@ def load_study(workflow: str | os.PathLike | Study) -> Study:
     """A Study from a workflow file path, a scene name (``"smoke"``, ``"figure2"``: the
     workflows shipped with the package, see ``pipeline.workflow.scenes.scene_names()``), TOML
     text, or a Study (returned as is).  Bad input raises WorkflowError naming file, line, key."""
-    from .workflow.load import Study, load_workflow, parse_workflow
-    from .workflow.scenes import scene_label, scene_names, scene_path
+    from .workflow.load import Study, parse_workflow
+    from .workflow.scenes import load_named
 
     if isinstance(workflow, Study):
         return workflow
     if isinstance(workflow, str) and "\n" in workflow:
         return parse_workflow(workflow)
-    if isinstance(workflow, str) and not Path(workflow).exists() and workflow in scene_names():
-        return parse_workflow(scene_path(workflow).read_text(encoding="utf-8"),
-                              source=scene_label(workflow))
-    return load_workflow(workflow)
+    return load_named(workflow)
 
 
 def run_study(workflow: str | os.PathLike | Study, store: str | os.PathLike | None = None, *,

@@ -41,10 +41,14 @@ from ..workflow.study import Study
 from .plan import Cell, Rates
 
 __all__ = ["pilot_rates", "probe_lines", "pilot_share", "benchmark_rate", "plan_rates",
-           "PILOT_PARTICLES", "PILOT_SHARE", "TIMING_FLOOR_S"]
+           "PILOT_PARTICLES", "PILOT_PARTICLES_TARGET", "PILOT_SHARE", "pilot_particles", "TIMING_FLOOR_S"]
 
-#: pilot particles per (frequency, family)
+#: pilot particles per (frequency, family) of a fixed-size scene, whose cost is its collision rates
 PILOT_PARTICLES = 8
+#: ... of a scene with a CI target, whose cost is set by the particles' spread of D: 8 particles
+#: under-read it where the spread is wide (the R = 25 mm map's collisions 1.32 of the plan with 8,
+#: 1.04 with 16: benchmarks/results/map-costs-2026-11-25-pilot-model.md)
+PILOT_PARTICLES_TARGET = 16
 #: a pilot that measured less CPU than this, s, is timed again (same seeds) until its repeats
 #: add up to it, and each cell keeps its fastest repeat: on a shared 2-core VM a 0.3 s pilot
 #: timed once can read slow enough to push the tiny scene of tests/pipeline/execute/test_plan.py past
@@ -57,19 +61,28 @@ PILOT_SHARE = 0.05
 CACHE_VERSION = 2
 
 
-def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
+def pilot_particles(study: Study) -> int:
+    """The default pilot size per (frequency, family): :data:`PILOT_PARTICLES_TARGET` for a
+    scene with a CI target (``[accuracy] target_ci``), else :data:`PILOT_PARTICLES`."""
+    return PILOT_PARTICLES_TARGET if study.accuracy.adaptive else PILOT_PARTICLES
+
+
+def pilot_rates(study: Study, *, particles: int | None = None,
                 cache_dir: str | os.PathLike | None = "runs/plan-cache",
-                echo=None, lines: str = "auto") -> Rates:
+                echo=None, lines: str = "auto", cached_only: bool = False) -> Rates | None:
     """Measure (or read from the cache) a pilot :class:`Cell` at every (frequency, family)
-    of ``study``: ``particles`` particles, at most half the study's, over its t_max.  A grid
+    of ``study``: ``particles`` particles (default :func:`pilot_particles`), at most half the
+    study's, over its t_max.  A grid
     is piloted along its probe lines (:func:`probe_lines`: the corners and the centre of its
     axes), every other point costed from them (:meth:`Rates.cell`), or with ``lines="all"``
     along every line; ``lines="auto"`` (default) pilots every line when that is cheap
-    (:data:`PILOT_SHARE` of the run), else the probes."""
+    (:data:`PILOT_SHARE` of the run), else the probes.  ``cached_only``: None unless every
+    cell is in the cache (`bbb scenes`)."""
     from bbb.provenance import kernel_hash
 
+    particles = pilot_particles(study) if particles is None else particles
     if study.grid:
-        return _grid_rates(study, particles, cache_dir, echo, lines)
+        return _grid_rates(study, particles, cache_dir, echo, lines, cached_only)
     acc = study.accuracy
     n = max(1, min(particles, acc.n_particles // 2))
     cells: dict[tuple[int, str], Cell] = {}
@@ -92,6 +105,8 @@ def pilot_rates(study: Study, *, particles: int = PILOT_PARTICLES,
             else:
                 todo.append((f, fam))
     when = {s.get("_measured") for _, s in caches.values() if s}
+    if todo and cached_only:
+        return None
     if todo:
         from .task import warm_numba
 
@@ -149,13 +164,16 @@ def probe_lines(study: Study) -> list[tuple[tuple[str, object], ...]]:
     return out
 
 
-def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str) -> Rates:
+def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str,
+                cached_only: bool = False) -> Rates | None:
     """The pilot of a grid scene: the 1-D pilot of each probe line, or of every line
     (``lines="all"``), each cached as that line's scene's; ``lines="auto"``: the probe lines,
     then every line if that pilot costs at most PILOT_SHARE of the run they price
     (:func:`pilot_share`)."""
     if lines == "auto":
-        probes = _grid_rates(study, particles, cache_dir, echo, "probes")
+        probes = _grid_rates(study, particles, cache_dir, echo, "probes", cached_only)
+        if probes is None:
+            return None
         every = list(dict.fromkeys(p.grid for p in study.points))
         if len(probe_lines(study)) == len(every):
             return probes
@@ -163,14 +181,16 @@ def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str) -> Ra
         if share > PILOT_SHARE:
             return replace(probes, source=f"{probes.source} (a pilot of every line would cost "
                            f"{share:.0%} of the run, more than {PILOT_SHARE:.0%})")
-        rates = _grid_rates(study, particles, cache_dir, echo, "all")
-        return replace(rates, source=f"{rates.source} (its pilot costs {share:.1%} of the run)")
+        rates = _grid_rates(study, particles, cache_dir, echo, "all", cached_only)
+        return None if rates is None else replace(rates, source=f"{rates.source} (its pilot costs {share:.1%} of the run)")
     cells, sources = {}, set()
     todo = (probe_lines(study) if lines == "probes"
             else list(dict.fromkeys(p.grid for p in study.points)))
     for line in todo:
         rates = pilot_rates(study.line(dict(line)), particles=particles, cache_dir=cache_dir,
-                            echo=echo)
+                            echo=echo, cached_only=cached_only)
+        if rates is None:
+            return None
         cells.update({(mhz, fam, line): c for (mhz, fam), c in rates.cells.items()})
         sources.add(rates.source)
     scales = tuple((a, float(min(v)), float(max(v))) for a, v in study.grid
@@ -195,7 +215,7 @@ def pilot_share(study: Study, rates: Rates) -> float:
     return pilot / plan.collisions if plan.collisions else 1.0
 
 
-def plan_rates(study: Study, particles: int, lines: str, kernel_rate: str | None,
+def plan_rates(study: Study, particles: int | None, lines: str, kernel_rate: str | None,
                echo=None) -> Rates:
     """`bbb plan`'s cost table: the pilot's, with the kernel rate of the benchmark table
     ``kernel_rate`` if given (ValueError, one line, if it cannot be read as one)."""

@@ -20,7 +20,7 @@ import subprocess
 from .lock import pid_alive
 from .study_store import is_local, normalize_path
 
-__all__ = ["jobs_path", "record_jobs", "read_jobs", "clear_jobs", "squeue", "jobs_text"]
+__all__ = ["jobs_path", "record_jobs", "read_jobs", "clear_jobs", "squeue", "jobs_dict", "jobs_text"]
 
 
 def jobs_path(store: str) -> str:
@@ -89,26 +89,44 @@ def squeue(job_name: str, timeout: float = 30.0) -> list[list[str]] | str:
     return [line.split("|") for line in res.stdout.splitlines() if line.strip()]
 
 
-def jobs_text(store: str) -> str | None:
-    """What ``bbb status`` prints of the run's jobs; None if no run with jobs is recorded."""
+def jobs_dict(store: str) -> dict | None:
+    """The run's jobs as `bbb status --json` gives them; None if no run with jobs is recorded:
+    {"record": the record (cluster, job_name, host, pid, jobs, started), "run_alive": whether
+    the run's process is alive (true when it runs on another host: not checkable here),
+    "queue": [{"job_id", "state", "time", "nodes_or_reason"}, ...] from squeue, or null with
+    "queue_error": why squeue could not list them}."""
     rec = read_jobs(store)
     if rec is None:
         return None
-    name = rec.get("job_name", "?")
     alive = rec.get("host") != socket.gethostname() or pid_alive(rec.get("pid"))
+    listed = squeue(rec.get("job_name", "?"))
+    if isinstance(listed, str):
+        return {"record": rec, "run_alive": alive, "queue": None, "queue_error": listed}
+    queue = [{"job_id": j[0], "state": j[1], "time": j[2],
+              "nodes_or_reason": j[3] if len(j) > 3 else ""} for j in listed]
+    return {"record": rec, "run_alive": alive, "queue": queue, "queue_error": None}
+
+
+def jobs_text(store: str) -> str | None:
+    """What ``bbb status`` prints of the run's jobs; None if no run with jobs is recorded."""
+    d = jobs_dict(store)
+    if d is None:
+        return None
+    rec = d["record"]
+    name = rec.get("job_name", "?")
     lines = [f"{rec.get('cluster', 'batch')} jobs of the run on host {rec.get('host', '?')} "
              f"(pid {rec.get('pid', '?')}, since {rec.get('started', '?')}): job name {name}, "
              f"{rec.get('jobs', '?')} jobs requested"]
-    if not alive:
+    if not d["run_alive"]:
         lines.append(f"that run is gone (killed?): its jobs may remain; cancel them with "
                      f"scancel --name={name}")
-    listed = squeue(name)
-    if isinstance(listed, str):
-        lines.append(f"{listed}; on the login node: squeue --name={name}")
+    if d["queue"] is None:
+        lines.append(f"{d['queue_error']}; on the login node: squeue --name={name}")
         return "\n".join(lines)
-    if not listed:
+    if not d["queue"]:
         lines.append("no job in the queue")
         return "\n".join(lines)
     lines.append(f"{'JOBID':>10} {'STATE':<11} {'TIME':>10}  NODELIST(REASON)")
-    lines += [f"{j[0]:>10} {j[1]:<11} {j[2]:>10}  {j[3] if len(j) > 3 else ''}" for j in listed]
+    lines += [f"{j['job_id']:>10} {j['state']:<11} {j['time']:>10}  {j['nodes_or_reason']}"
+              for j in d["queue"]]
     return "\n".join(lines)

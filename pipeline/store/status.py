@@ -1,14 +1,31 @@
-"""``bbb status``: what a store holds, as text: its done chunks per point and family, and the
-batch jobs of a run writing it (pipeline/store/jobs.py)."""
+"""``bbb status``: what a store holds, as text or as JSON (``--json``): its done chunks per
+point and family, and the batch jobs of a run writing it (pipeline/store/jobs.py)."""
 
 from __future__ import annotations
 
 from ..workflow.identity import f_key
-from .jobs import jobs_text
+from .jobs import jobs_dict, jobs_text
 from .layout import STOP_LEGEND
 from .study_store import StudyStore
 
-__all__ = ["status_text"]
+__all__ = ["status_text", "status_dict", "STATUS_KEYS"]
+
+#: the keys of :func:`status_dict` (``bbb status --json``), each with its meaning
+STATUS_KEYS = {
+    "name": "the study's name",
+    "path": "the store's path or URL",
+    "chunks_done": "chunks done in the whole store",
+    "chunks_total": "chunks the store holds (points x families x chunks per family)",
+    "chunk_size": "particles per chunk",
+    "axes": "the point's coordinates: [\"f\"] or the grid's axes with f",
+    "families": "the families' names, in store order",
+    "target_ci": "relative CI half-width of D a target-driven store stops at, else null",
+    "points": "one object per point: f (Hz), grid ({axis: value}, {} without a grid), refined "
+              "(added by refinement), families ({name: {done, total, stop}}; stop: why a "
+              "target-driven family stopped -- open, target met, resolved zero, cap -- else null)",
+    "jobs": "null, or the batch jobs of a run writing the store: record, run_alive, queue "
+            "([{job_id, state, time, nodes_or_reason}] from squeue, or null), queue_error",
+}
 
 
 def status_text(store: StudyStore) -> str:
@@ -47,6 +64,28 @@ def status_text(store: StudyStore) -> str:
     if jobs is not None:
         lines.append(jobs)
     return "\n".join(lines)
+
+
+def status_dict(store: StudyStore) -> dict:
+    """`bbb status --json`: what :func:`status_text` shows, as JSON-able data (keys: see
+    :data:`STATUS_KEYS`)."""
+    study = store.study
+    done = store.done()
+    stops = store.stops()
+    refined = {f_key(f) for f in study.refined}
+    names = [fam.name for fam in study.families]
+    points = []
+    for fi, point in enumerate(study.points):
+        fams = {name: {"done": int(done[fi, mi].sum()), "total": int(done.shape[2]),
+                       "stop": STOP_LEGEND[int(stops[1][fi, mi])] if stops is not None else None}
+                for mi, name in enumerate(names)}
+        grid = {a: v if isinstance(v, str) else float(v) for a, v in point.grid}
+        points.append({"f": float(point.f), "grid": grid,
+                       "refined": f_key(point.f) in refined, "families": fams})
+    return {"name": study.name, "path": str(store.path), "chunks_done": int(done.sum()),
+            "chunks_total": int(done.size), "chunk_size": study.accuracy.chunk_size,
+            "axes": [a for a, _ in study.axes], "families": names,
+            "target_ci": study.accuracy.target_ci, "points": points, "jobs": jobs_dict(store.path)}
 
 
 def _cell(v) -> str:

@@ -17,6 +17,7 @@ import re
 from .keys import GRID_AXES, GridRefine, GridRefineTable, GridTable, ParamsTable
 from .point import Grid, Point, combinations, resolve_params
 from .schema import Key, Reader, declared, tname
+from .suggest import did_you_mean
 
 __all__ = ["Grid", "read_grid", "check_points"]
 
@@ -38,7 +39,8 @@ def read_grid(r: Reader, doc: dict) -> tuple[Grid, str, GridRefine | None]:
         if name in settings:
             continue
         if name not in GRID_AXES:
-            r.fail(path, "unknown key", "an axis named by a [params] key (" + ", ".join(GRID_AXES)
+            r.fail(path, "unknown key" + did_you_mean(name, [*GRID_AXES, *settings]),
+                   "an axis named by a [params] key (" + ", ".join(GRID_AXES)
                    + "), or " + ", ".join(sorted(settings)))
         if name in params:
             r.fail(path, "given in both [params] and [grid]",
@@ -75,7 +77,8 @@ def _read_refine(r: Reader, raw, axes: list) -> GridRefine:
         if name != "f" and name not in numeric:
             why = ("a string axis is not refined" if name in dict(axes)
                    else "not an axis of this grid")
-            r.fail(path + (name,), f"unknown key ({why})", allowed)
+            r.fail(path + (name,), f"unknown key ({why})"
+                   + did_you_mean(name, ["f", *numeric, *settings]), allowed)
         least = 0.002 if name == "f" else 0.0
         if isinstance(value, bool) or not isinstance(value, int | float) or not (
                 value > least or (name == "f" and value == least)):

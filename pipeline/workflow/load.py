@@ -79,6 +79,7 @@ from .study import (  # the validated workflow; importable from here as before t
     WorkflowError,
     resolve_params,
 )
+from .suggest import did_you_mean
 
 __all__ = [
     "WorkflowError",
@@ -115,7 +116,8 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
     doc = r.doc
     for k in doc:
         if k not in TABLES:
-            r.fail((k,), "unknown top-level key", ", ".join(TABLES))
+            r.fail((k,), f"unknown {'section' if isinstance(doc[k], dict) else 'top-level key'}"
+                   + did_you_mean(k, TABLES), ", ".join(TABLES))
     st = r.table(doc.get("study"), ("study",), StudyTable)
     name = st["name"]
     if name is None:  # the file name, which must then be a valid name too

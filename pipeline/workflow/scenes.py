@@ -12,13 +12,15 @@ from __future__ import annotations
 
 import json
 import math
+import os
 import tomllib
 from importlib import resources
 from importlib.resources.abc import Traversable
 from pathlib import Path
 
-__all__ = ["ROOT", "scene_names", "scene_path", "scene_label", "toml_dump", "draft_text",
-           "load_scene", "shipped_draft", "DRAFT_COLLISIONS", "DRAFT_RECORD", "DRAFT_TARGET"]
+__all__ = ["ROOT", "scene_names", "scene_path", "scene_label", "scene_study", "scene_description",
+           "workflow_file", "load_named", "toml_dump", "draft_text", "load_scene", "shipped_draft",
+           "DRAFT_COLLISIONS", "DRAFT_RECORD", "DRAFT_TARGET"]
 
 #: the source tree (the repository): labels and run logs are relative to it
 ROOT = Path(__file__).resolve().parents[2]  # pipeline/workflow/scenes.py -> the repository
@@ -51,6 +53,54 @@ def _find_scene(name: str) -> tuple[str, Traversable]:
             return f"{label}/{name}.toml", p
     raise FileNotFoundError(f"no scene {name!r} in {' or '.join(lab for lab, _ in _scene_folders())}; "
                             f"allowed: {', '.join(scene_names())}")
+
+
+def _unknown(workflow: str):
+    """The WorkflowError of a workflow argument that is neither a file nor a scene's name."""
+    from .study import WorkflowError
+    from .suggest import did_you_mean
+
+    near = did_you_mean(Path(workflow).name.removesuffix(".toml"), scene_names(), n=3)
+    return WorkflowError(workflow, "", f"no such workflow file or shipped scene{near}",
+                         "a TOML file, or a scene name that `bbb scenes` lists")
+
+
+def workflow_file(workflow: str | os.PathLike) -> Path:
+    """The file of a workflow argument: a path that exists (it wins over a scene of the same
+    name), else the shipped scene of that name (:func:`scene_path`, a file of the installed
+    package); WorkflowError naming the closest scene names if it is neither."""
+    if Path(workflow).exists():
+        return Path(workflow)
+    if str(workflow) in scene_names():
+        return Path(str(scene_path(str(workflow))))
+    raise _unknown(os.fspath(workflow))
+
+
+def load_named(workflow: str | os.PathLike):
+    """The Study of a workflow argument (:func:`workflow_file`): a scene read by its name is
+    labelled by its place in the source tree (``workflows/smoke.toml``), as in make_figures."""
+    from .load import load_workflow, parse_workflow
+
+    if Path(workflow).exists():
+        return load_workflow(workflow)
+    if str(workflow) in scene_names():
+        return parse_workflow(scene_path(str(workflow)).read_text(encoding="utf-8"),
+                              source=scene_label(str(workflow)))
+    raise _unknown(os.fspath(workflow))
+
+
+def scene_study(name: str) -> str:
+    """The study a shipped scene belongs to: its folder pipeline/studies/<study>/, or
+    "workflows" for the top-level workflows/ (the paper's and the pipeline's own scenes)."""
+    label = scene_label(name)
+    return label.split("/")[2] if label.startswith("pipeline/studies/") else "workflows"
+
+
+def scene_description(name: str) -> str:
+    """The scene's ``[study] description`` (one line), or "" if it has none."""
+    doc = tomllib.loads(scene_path(name).read_text(encoding="utf-8"))
+    study = doc.get("study")
+    return " ".join(str(study.get("description", "")).split()) if isinstance(study, dict) else ""
 
 
 def scene_path(name: str) -> Traversable:

@@ -41,6 +41,8 @@ import typing
 from dataclasses import dataclass, field
 from typing import Any
 
+from .suggest import did_you_mean
+
 __all__ = ["InputError", "Key", "key", "declared", "Reader", "reference", "REQUIRED", "tname"]
 
 
@@ -241,7 +243,9 @@ class Reader:
                       f"[{'.'.join(path)}] with keys {', '.join(names)}")
         for name in raw:
             if name not in names:
-                self.fail(path + (name,), "unknown key", ", ".join(names) or "no keys")
+                self.fail(path + (name,), "unknown " + ("section" if isinstance(raw[name], dict)
+                                                        else "key") + did_you_mean(name, names),
+                          ", ".join(names) or "no keys")
         out: dict[str, Any] = {}
         for k in keys:
             out[k.name] = self.value(raw, path + (k.name,), k, {**(ctx or {}), **out})
@@ -371,6 +375,8 @@ def line_of(text: str, path: tuple[str, ...]) -> int | None:
             table = tuple(p.strip().strip("\"'") for p in m.group(1).split("."))
             if table == path:
                 return i
+            if best is None and table[: len(path)] == path:
+                best = i  # a table given only by the headers of its sub-tables
             continue
         m = key_re.match(line)
         if m:

@@ -1,10 +1,11 @@
 """Fixtures: the tiny workflow as a file and as a parsed study with an empty store on disk,
-and a real dask scheduler with two workers."""
+a real dask scheduler with two workers, and bbb installed from a wheel into a fresh venv."""
 
 from __future__ import annotations
 
 import json
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -17,6 +18,8 @@ from pipeline.store.study_store import StudyStore
 from pipeline.workflow.load import parse_workflow
 
 from .helpers import FAULT, QUIET, TINY
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 @pytest.fixture
@@ -129,3 +132,36 @@ def dask_processes(tmp_path, n_workers: int = 2):
             except subprocess.TimeoutExpired:
                 p.kill()
                 p.wait()
+
+
+@pytest.fixture(scope="session")
+def installed(tmp_path_factory) -> Path:
+    """The python of a fresh venv holding bbb installed from a wheel (`pip install .`, not
+    editable); the dependencies come from this test's environment through a .pth file.  One
+    wheel per session (4 s in `make test` here, 25 s on a loaded machine), used by
+    studies/klages2004/test_make_figures.py, studies/contact/test_scenes.py and
+    test_installed_cli.py."""
+    base = tmp_path_factory.mktemp("installed")
+    # built from a copy without build/ and egg-info: setuptools would reuse a stale build/lib
+    src = base / "src"
+    shutil.copytree(ROOT, src, ignore=shutil.ignore_patterns(
+        ".git", ".venv", "build", "*.egg-info", "runs", "figures", "__pycache__", ".*_cache",
+        ".hypothesis", "dask-worker-space"))
+    wheels = base / "wheels"
+    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(wheels),
+                    str(src)], check=True, capture_output=True, cwd=base)
+    venv = base / "venv"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
+    py = venv / "bin" / "python"
+    site = Path(subprocess.run([str(py), "-c", "import sysconfig; print(sysconfig.get_paths()"
+                                "['purelib'])"], check=True, capture_output=True, text=True
+                               ).stdout.strip())
+    # the wheel into the new venv's site-packages (pip, run from this environment, targets it)
+    subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target",
+                    str(site), str(next(wheels.glob("bbb-*.whl")))], check=True,
+                   capture_output=True)
+    # the dependencies: this environment's site-packages, after the new venv's own; .pth files
+    # there (this checkout's editable install) are not read, so `pipeline` is the wheel's
+    deps = [p for p in sys.path if p.endswith("site-packages")]
+    (site / "zz_deps.pth").write_text("\n".join(deps) + "\n")
+    return py

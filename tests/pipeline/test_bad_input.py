@@ -43,6 +43,13 @@ WORKFLOWS = {
                     "allowed: preset, n_particles, chunk_size, t_max"),
     "unknown table": (lambda t: t + "[extras]\nx = 1\n", 31, "extras",
                       "allowed: study, params, frequencies"),
+    "misspelled section": (_sub("[accuracy]", "[acuracy]"), 18, "acuracy",
+                           "unknown section (did you mean 'accuracy'?); allowed: study, params"),
+    "misspelled section of sub-tables only": (
+        _sub("[observables.positions]", "[observablse.positions]"), 26, "observablse",
+        "(did you mean 'observables'?); allowed: study, params"),
+    "misspelled key": (_sub("record = 40", "recrd = 40"), 29, "observables.collisions.recrd",
+                       "unknown key (did you mean 'record'?); allowed: record, record_from"),
     "string for an integer": (_sub("n_particles = 8", 'n_particles = "8"'), 20,
                               "accuracy.n_particles", "allowed: an integer > 0"),
     "float seed": (_sub("seed = 7", "seed = 1.5"), 3, "study.seed", "allowed: an integer 0 <= seed"),
@@ -258,6 +265,15 @@ COMMAND_LINES = {
     "--cluster with --workers": (["run", "{GOOD}", "--store", "{STORE}", "--cluster", "slurm",
                                   "--workers", "2"],
                                  ["--cluster slurm starts its own scheduler and workers"]),
+    "unknown scene name to run": (["run", "smok", "--store", "{STORE}"], [
+        "smok: no such workflow file or shipped scene (did you mean 'smoke'?); allowed: a TOML "
+        "file, or a scene name that `bbb scenes` lists"]),
+    "unknown scene name to plan": (["plan", "figure"], ["figure: no such workflow file or "
+                                                        "shipped scene (did you mean 'figure"]),
+    "unknown scene name to accuracy": (["accuracy", "acuracy", "--out", "{DIR}"],
+                                       ["(did you mean 'accuracy'?)", "`bbb scenes`"]),
+    "unknown scene name to reduce --workflow": (["reduce", "{STORE}", "--workflow", "smok"],
+                                                ["(did you mean 'smoke'?)"]),
     "malformed BBB_FAIL_CHUNKS": (["run", "{GOOD}", "--store", "{STORE}"],
                                   ["BBB_FAIL_CHUNKS: bad item '60-rest-1'; allowed: F:FAMILY:CHUNK"],
                                   {"BBB_FAIL_CHUNKS": "60-rest-1"}),

@@ -202,14 +202,14 @@ def test_reduce_of_a_frequency_subset_accepts_the_whole_workflow(reference, tiny
                                                                  tmp_path):
     """A --frequencies store (here: made by copying the full one's workflow at 60 Hz only)
     reduces with the workflow it was cut from."""
-    from pipeline.cli import _store_with_analysis_of
+    from pipeline.commands.store import store_with_analysis_of
 
-    store = _store_with_analysis_of(str(reference[0]), str(tiny_workflow))
+    store = store_with_analysis_of(str(reference[0]), str(tiny_workflow))
     assert store.study.frequencies == (54.0, 60.0)
     sub = tmp_path / "sub.toml"
     sub.write_text(TINY.replace("[54.0, 60.0]", "[60.0]"))
     with pytest.raises(UsageError, match=r"frequencies: store has 54 Hz, the workflow does not"):
-        _store_with_analysis_of(str(reference[0]), str(sub))
+        store_with_analysis_of(str(reference[0]), str(sub))
 
 
 @pytest.mark.parametrize("edit, needle", [

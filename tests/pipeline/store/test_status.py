@@ -52,3 +52,63 @@ def test_status_lists_a_runs_batch_jobs_or_says_why_it_cannot(tmp_path, monkeypa
             "scancel --name=bbb-0123abcd") in status_text(store)
     clear_jobs(store.path)
     assert read_jobs(store.path) is None and "jobs of the run" not in status_text(store)
+
+
+def test_status_json_gives_done_and_total_chunks_per_point_and_family_and_the_jobs(
+        tmp_path, monkeypatch, capsys):
+    """`bbb status STORE --json`: one JSON object with the documented keys (STATUS_KEYS,
+    docs/cli.md); the jobs section is null without a run's record, else the record."""
+    import json
+    import socket
+
+    from pipeline.cli import main
+    from pipeline.store.jobs import record_jobs
+    from pipeline.store.status import STATUS_KEYS
+
+    study = parse_workflow(TINY, source="t.toml")
+    store = StudyStore.create_or_open(tmp_path / "t.zarr", study)
+    compute_chunk(store, 1, 0, 1)  # 60 Hz, rest, chunk 1
+    assert main(["status", str(store.path), "--json"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    assert set(got) == set(STATUS_KEYS)
+    assert (got["name"], got["chunks_done"], got["chunks_total"]) == ("tiny", 1, 8)
+    assert got["axes"] == ["f"] and got["families"] == ["rest", "launched"]
+    assert [(p["f"], p["grid"], p["families"]["rest"]["done"], p["families"]["launched"]["done"])
+            for p in got["points"]] == [(54.0, {}, 0, 0), (60.0, {}, 1, 0)]
+    assert got["points"][0]["families"]["rest"] == {"done": 0, "total": 2, "stop": None}
+    assert got["jobs"] is None
+    record = {"cluster": "slurm", "job_name": "bbb-0123abcd", "host": socket.gethostname(),
+              "pid": 2**22 + 12345, "jobs": 2, "started": "2026-11-25T12:00:00+00:00"}
+    record_jobs(store.path, record)
+    monkeypatch.setenv("PATH", str(tmp_path))  # no squeue here
+    assert main(["status", str(store.path), "--json"]) == 0
+    jobs = json.loads(capsys.readouterr().out)["jobs"]
+    assert jobs == {"record": record, "run_alive": False, "queue": None,
+                    "queue_error": "squeue not found on this machine"}
+
+
+def test_status_json_of_a_map_gives_each_points_grid_values(tmp_path, capsys):
+    import json
+
+    from pipeline.cli import main
+
+    study = parse_workflow(TINY + '[grid]\ncontact = ["stick", "slide"]\n', source="m.toml")
+    store = StudyStore.create_or_open(tmp_path / "m.zarr", study)
+    compute_chunk(store, 3, 0, 1)  # slide, 60 Hz, rest, chunk 1
+    assert main(["status", str(store.path), "--json"]) == 0
+    got = json.loads(capsys.readouterr().out)
+    assert got["axes"] == ["contact", "f"]
+    assert [(p["grid"]["contact"], p["f"], p["families"]["rest"]["done"]) for p in got["points"]] == [
+        ("stick", 54.0, 0), ("stick", 60.0, 0), ("slide", 54.0, 0), ("slide", 60.0, 1)]
+
+
+def test_every_status_json_key_is_documented_in_the_pipeline_readme():
+    from pathlib import Path
+
+    from pipeline.store.status import STATUS_KEYS
+
+    readme = (Path(__file__).resolve().parents[3] / "pipeline" / "README.md").read_text()
+    table = readme[readme.index("`bbb status STORE --json` prints"):].split("\n\n")[1]
+    rows = [ln for ln in table.splitlines() if ln.startswith("| `")]
+    documented = {k.strip("` ") for ln in rows for k in ln.split("|")[1].split(",")}
+    assert set(STATUS_KEYS) <= documented

@@ -224,3 +224,34 @@ def test_a_declared_key_is_validated_with_its_range_in_one_line():
                                       Target)
     assert str(e.value) == ("wf.toml:2: accuracy.target_ci: 1.5 is out of range; allowed: "
                             "fraction of D, 0 < target_ci < 1")
+
+
+# -- "did you mean": the closest allowed name, and the line of a misspelled section ----------
+@pytest.mark.parametrize("edit, where, message", [
+    (("[accuracy]", "[acuracy]"), "[acuracy]",
+     "acuracy: unknown section (did you mean 'accuracy'?); allowed: study, params, frequencies"),
+    (("[observables.collisions]", "[observables.colisions]"), "[observables.colisions]",
+     "observables.colisions: unknown section (did you mean 'collisions'?); allowed: positions, "
+     "collisions"),
+    (("record = 40", "recrd = 40"), "recrd = 40",
+     "observables.collisions.recrd: unknown key (did you mean 'record'?); allowed: record, "
+     "record_from"),
+    (("t_max = 10.0", "tmax = 10.0"), "tmax = 10.0",
+     "accuracy.tmax: unknown key (did you mean 't_max'?); allowed: preset, n_particles"),
+])
+def test_an_unknown_key_or_section_names_its_line_and_the_closest_allowed_one(edit, where, message):
+    text = TINY.replace(*edit)
+    line = text.splitlines().index(where) + 1
+    assert str(error_of(text)).startswith(f"wf.toml:{line}: {message}")
+
+
+def test_a_misspelled_section_given_only_by_an_empty_sub_table_header_has_its_line():
+    # [observablse.positions] holds no key: the section's line is its sub-table's header
+    text = TINY.replace("[observables.positions]", "[observablse.positions]")
+    e = error_of(text)
+    assert e.key == "observablse" and e.line == text.splitlines().index("[observablse.positions]") + 1
+    assert "(did you mean 'observables'?)" in str(e)
+
+
+def test_an_unknown_key_far_from_every_allowed_one_suggests_nothing():
+    assert "did you mean" not in str(error_of(TINY.replace("t_max = 10.0", "t_max = 10.0\nxyz = 1")))

@@ -43,3 +43,13 @@ def test_family_description_is_kept_but_not_part_of_the_fingerprint():
     s = parse(TINY)
     d = parse(TINY.replace('initial = "rest"', 'initial = "rest"\ndescription = "from rest"'))
     assert d.families[0].description == "from rest" and s.fingerprint() == d.fingerprint()
+
+
+def test_a_scenes_description_is_not_part_of_its_fingerprint():
+    from pipeline.workflow.scenes import scene_path
+
+    text = scene_path("smoke").read_text(encoding="utf-8")
+    line = next(ln for ln in text.splitlines() if ln.startswith("description = "))
+    without = text.replace(line + "\n", "")
+    other = text.replace(line, 'description = "another text"')
+    assert parse(text).fingerprint() == parse(without).fingerprint() == parse(other).fingerprint()

@@ -12,7 +12,7 @@ from pipeline.studies.contact import SCENES
 from pipeline.studies.contact.claims import LINES
 from pipeline.workflow.scenes import load_scene, scene_label, shipped_draft
 
-from ..klages2004.test_make_figures import _run_outside, installed  # noqa: F401 (fixture)
+from ...helpers import run_outside
 
 
 @pytest.mark.parametrize("name", SCENES)
@@ -44,9 +44,9 @@ def test_scenes_without_a_shipped_draft_keep_the_generic_draft():
         assert load_scene(name, fast=True).source == scene_label(name)
 
 
-def test_the_wheel_ships_the_contact_scenes_and_their_drafts(installed, tmp_path):  # noqa: F811
+def test_the_wheel_ships_the_contact_scenes_and_their_drafts(installed, tmp_path):
     code = ("import json; from pipeline.workflow.scenes import load_scene\n"
             "from pipeline.studies.contact import SCENES\n"
             "print(json.dumps([load_scene(n, fast=True).source for n in SCENES]))")
-    got = json.loads(_run_outside(installed, code, tmp_path).strip().splitlines()[-1])
+    got = json.loads(run_outside(installed, code, tmp_path).strip().splitlines()[-1])
     assert got == [f"pipeline/studies/contact/scenes/draft/{n}.toml" for n in SCENES]

@@ -5,9 +5,6 @@ from __future__ import annotations
 import importlib.metadata
 import json
 import os
-import shutil
-import subprocess
-import sys
 import tomllib
 from pathlib import Path
 
@@ -16,6 +13,8 @@ import pytest
 from pipeline.make_figures import SCENES
 from pipeline.workflow.scenes import draft_text, load_scene, scene_label, scene_names, scene_path
 from pipeline.workflow.scenes import toml_dump as _toml_dump
+
+from ...helpers import run_outside
 
 
 @pytest.mark.parametrize("name", SCENES)
@@ -59,7 +58,6 @@ def test_the_draft_of_a_target_driven_scene_keeps_a_loose_target():
 
 
 def test_the_run_log_records_paths_relative_to_the_repository(tmp_path):
-    import os
 
     from pipeline.make_figures import run_log_entry
     from pipeline.workflow.scenes import ROOT
@@ -88,51 +86,13 @@ def test_the_committed_run_log_holds_no_absolute_path():
 ROOT = Path(__file__).resolve().parents[4]
 
 
-@pytest.fixture(scope="module")
-def installed(tmp_path_factory) -> Path:
-    """The python of a fresh venv holding bbb installed from a wheel (`pip install .`, not
-    editable); the dependencies come from this test's environment through a .pth file."""
-    base = tmp_path_factory.mktemp("installed")
-    # built from a copy without build/ and egg-info: setuptools would reuse a stale build/lib
-    src = base / "src"
-    shutil.copytree(ROOT, src, ignore=shutil.ignore_patterns(
-        ".git", ".venv", "build", "*.egg-info", "runs", "figures", "__pycache__", ".*_cache",
-        ".hypothesis", "dask-worker-space"))
-    wheels = base / "wheels"
-    subprocess.run([sys.executable, "-m", "pip", "wheel", "--no-deps", "-q", "-w", str(wheels),
-                    str(src)], check=True, capture_output=True, cwd=base)
-    venv = base / "venv"
-    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
-    py = venv / "bin" / "python"
-    site = Path(subprocess.run([str(py), "-c", "import sysconfig; print(sysconfig.get_paths()"
-                                "['purelib'])"], check=True, capture_output=True, text=True
-                               ).stdout.strip())
-    # the wheel into the new venv's site-packages (pip, run from this environment, targets it)
-    subprocess.run([sys.executable, "-m", "pip", "install", "--no-deps", "-q", "--target",
-                    str(site), str(next(wheels.glob("bbb-*.whl")))], check=True,
-                   capture_output=True)
-    # the dependencies: this environment's site-packages, after the new venv's own; .pth files
-    # there (this checkout's editable install) are not read, so `pipeline` is the wheel's
-    deps = [p for p in sys.path if p.endswith("site-packages")]
-    (site / "zz_deps.pth").write_text("\n".join(deps) + "\n")
-    return py
-
-
-def _run_outside(py: Path, code: str, cwd: Path) -> str:
-    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONSAFEPATH")}
-    out = subprocess.run([str(py), "-c", code], cwd=cwd, env=env, capture_output=True,
-                         text=True, timeout=600)
-    assert out.returncode == 0, out.stderr[-3000:]
-    return out.stdout
-
-
 def test_a_wheel_ships_every_scene_and_module(installed, tmp_path):
     code = ("import pipeline, bbb, json; from pipeline.make_figures import SCENES; "
             "from pipeline.workflow.scenes import load_scene, scene_names\n"
             "[load_scene(n, fast=f) for n in SCENES for f in (False, True)]\n"
             "print(json.dumps({'file': pipeline.__file__, 'scenes': scene_names(), "
             "'version': bbb.__version__}))")
-    got = json.loads(_run_outside(installed, code, tmp_path).strip().splitlines()[-1])
+    got = json.loads(run_outside(installed, code, tmp_path).strip().splitlines()[-1])
     assert not Path(got["file"]).is_relative_to(ROOT)  # the installed copy, not this checkout
     assert set(SCENES) | {"smoke", "accuracy"} <= set(got["scenes"])
     assert set(scene_names()) <= set(got["scenes"])  # every study's scenes/ is package data
@@ -153,7 +113,7 @@ def test_a_wheel_ships_every_scene_and_module(installed, tmp_path):
 def test_the_installed_make_figures_fast_runs_from_outside_the_repository(installed, tmp_path):
     # every scene at draft accuracy, every figure and REPORT.md: 7.4 min measured on this
     # shared 2-core machine (2026-11-23, numba compiling cold in the new environment)
-    _run_outside(installed, "import sys; from pipeline.make_figures import main; "
+    run_outside(installed, "import sys; from pipeline.make_figures import main; "
                  "sys.exit(main(['--fast', '--no-progress', '--out', 'figs', '--runs', 'runs']))",
                  tmp_path)
     assert (tmp_path / "figs" / "REPORT.md").exists()
