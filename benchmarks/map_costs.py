@@ -29,12 +29,13 @@ from pipeline.workflow.scenes import load_scene  # noqa: E402
 
 RESULTS = Path(__file__).resolve().parent / "results"
 #: {map scene: the plans of it (``bbb plan`` outputs in benchmarks/results/), one row each}:
-#: the plans of the pilot model (CI law pooled from the pilot, every line piloted when cheap);
-#: the plans before it are in map-costs-2026-11-25.md
-MAPS = {name: (f"plan-{name}-*-pilot-model.txt",) for name in (
+#: the plan with bbb plan's defaults (pilot size by scene, --pilot-lines auto) first; for the two
+#: target-driven maps also the same model with 8 pilot particles, the size a target scene piloted
+#: before; the plans before the pilot model are in map-costs-2026-11-25.md
+MAPS = {name: (f"plan-{name}-*-default.txt",) for name in (
     "dissipation", "dissipation_locking", "dissipation_r25", "protocol", "transport_reversal")}
-for name in ("dissipation", "dissipation_r25"):  # and with --pilot-particles 16
-    MAPS[name] += (f"plan-{name}-*-pilot-model-16.txt",)
+for name in ("dissipation", "dissipation_r25"):
+    MAPS[name] += (f"plan-{name}-*-pilot-model.txt",)
 
 
 def planned(pattern: str) -> dict[str, float] | None:
@@ -49,7 +50,7 @@ def planned(pattern: str) -> dict[str, float] | None:
             "all": "--pilot-lines all" in text.splitlines()[0],
             "pilot_s": float(pilot.group(1)) if pilot else None,
             "every_line": "every line of the grid" in text,
-            "particles": re.search(r"--pilot-particles (\d+)", text.splitlines()[0])}
+            "particles": re.search(r"pilot (?:of )?(\d+) particles", text)}
 
 
 def measured(runs: Path, name: str) -> dict[str, float]:
@@ -86,7 +87,8 @@ def main() -> None:
             cpu_text = (f"{p['cpu_s']:.0f} / {c:.0f} ({c / p['cpu_s']:.2f})" if c is not None
                         else f"{p['cpu_s']:.0f} / not measured")
             label = (f"`{name}`" + (" (every line piloted)" if p["every_line"] else "")
-                     + (f" ({p['particles'].group(1)} pilot particles)" if p["particles"] else ""))
+                     + (f" ({p['particles'].group(1)} pilot particles)" if p["particles"] else "")
+                     + ("" if "-default" in p["file"] else " (not the default)"))
             pilot = (f"{p['pilot_s']:.1f} ({100 * p['pilot_s'] / p['cpu_s']:.1f} %)"
                      if p["pilot_s"] is not None else "-")
             print(f"| {label} | {m['points']} ({m['listed']}) | {p['chunks']:.0f} / "

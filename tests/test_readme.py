@@ -83,9 +83,20 @@ def test_the_readmes_map_numbers_are_the_committed_benchmarks():
 
 def test_the_readmes_map_costs_are_the_committed_results():
     """The maps' planned and measured costs are copied from their results file, row by row."""
-    results = (ROOT / "benchmarks" / "results" / "map-costs-2026-11-25-pilot-model.md").read_text(
+    results = (ROOT / "benchmarks" / "results" / "map-costs-2026-11-25-default.md").read_text(
         encoding="utf-8")
     rows = [ln for ln in results.splitlines() if ln.startswith("|")]
     assert len(rows) >= 4
     shown = README.split("<!-- map costs:", 1)[1].split("\n\n", 1)[0].splitlines()[1:]
     assert shown == rows
+
+
+def test_every_maps_default_plan_is_within_30_percent_of_what_it_cost():
+    """The README says so: every ratio measured / planned of the default plans' rows."""
+    results = (ROOT / "benchmarks" / "results" / "map-costs-2026-11-25-default.md").read_text(
+        encoding="utf-8")
+    rows = [ln for ln in results.splitlines()
+            if ln.startswith("| `") and "not the default" not in ln]
+    ratios = [float(r) for ln in rows for r in re.findall(r"\((\d+\.\d+)\)", ln)]
+    assert len(rows) == 5 and len(ratios) == 15
+    assert all(0.7 <= r <= 1.3 for r in ratios), ratios

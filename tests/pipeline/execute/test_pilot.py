@@ -138,3 +138,12 @@ def test_the_docs_quote_the_plans_settings():
     docs = Path(__file__).resolve().parents[3] / "docs"
     assert f"at most {100 * pilot.PILOT_SHARE:g} % of the run" in (docs / "maps.md").read_text()
     assert f"fewer than {POOL_MIN})" in (docs / "accuracy.md").read_text()
+
+
+def test_a_scene_with_a_ci_target_pilots_more_particles_than_a_fixed_size_one():
+    """A target's cost is the particles' spread of D, which a small pilot under-reads."""
+    from pipeline.workflow.scenes import load_scene
+
+    assert pilot.pilot_particles(load_scene("dissipation_r25")) == pilot.PILOT_PARTICLES_TARGET
+    assert pilot.pilot_particles(load_scene("protocol")) == pilot.PILOT_PARTICLES
+    assert pilot.PILOT_PARTICLES_TARGET > pilot.PILOT_PARTICLES
