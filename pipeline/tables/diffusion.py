@@ -88,6 +88,7 @@ from ..store.layout import STOP_LEGEND
 from ..store.study_store import StudyStore
 from ..workflow.identity import child_seed, reduce_seed
 from ..workflow.study import Study
+from .notes import DRIFT_TEXT
 
 __all__ = ["diffusion_table"]
 
@@ -156,6 +157,8 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
         if conveyor:  # a conveyor (even at tilt = 0), at every point of a grid
             row.update(_transport_columns(x, times, point.params.S, study, seed, fit, pairing,
                                           units))
+            if row["v_lo"] > 0 or row["v_hi"] < 0:  # D is the raw MSD's slope: v² t included
+                row["D_status"] += f"; {DRIFT_TEXT}"
         rows.append(row)
     df = pd.DataFrame(rows)
     for col in ("ergodic", "families_agree", "eb_ok", "stationary", "steady", "diffusive"):

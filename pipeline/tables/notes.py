@@ -10,17 +10,20 @@ D_drift failed     the same for D about the drift (D_drift_status).
 drift included     on a floor that drifts (a row with a significant v: its CI excludes 0) the
                    column D is the raw MSD's slope, drift included (9.8e3 mm²/s where
                    D_drift = 0.12 mm²/s: throw 30°, Coulomb, 80 Hz); the diffusion
-                   coefficient about the drift is D_drift.
+                   coefficient about the drift is D_drift.  D_status says so on the row
+                   (:data:`DRIFT_TEXT`), so the table cannot be misread without the note.
 """
 
 from __future__ import annotations
 
 import pandas as pd
 
-__all__ = ["FAILED_TEXT", "failed_points", "drift_points", "reduce_notes"]
+__all__ = ["FAILED_TEXT", "DRIFT_TEXT", "failed_points", "drift_points", "reduce_notes"]
 
 #: the words of bbb.analysis.stats.interval's note for a CI below 0
 FAILED_TEXT = "estimator failed"
+#: what D_status adds on a row whose v is significant: D there is not the diffusion coefficient
+DRIFT_TEXT = "drift included (v significant): read D_drift"
 
 
 def _labels(df: pd.DataFrame, rows: pd.Series) -> list[str]:

@@ -152,7 +152,8 @@ TABLE_COLUMNS: dict[str, tuple[tuple[str, bool, str], ...]] = {
          "with v²): the diffusion coefficient there is D_drift"),
         ("D_status", False, "what D's CI means: \"ok\", \"rare movers\" (calibrated coverage), "
          "\"no mover\" (with the mover-share bound) or \"estimator failed\" (D < 0 "
-         "significantly: the fit's numbers; D left blank), per family where they differ"),
+         "significantly: the fit's numbers; D left blank), per family where they differ; "
+         "and, where v is significant, \"drift included (v significant): read D_drift\""),
         ("D_cover", False, "the coverage of D's CI: the nominal level, or the rare-mover "
          "rule's calibrated coverage; blank with no mover or a failed estimator"),
         ("mover_share_hi", False, "no mover only: one-sided upper bound on the share of "

@@ -14,7 +14,7 @@ import pandas as pd
 from pipeline.execute.task import compute_chunk
 from pipeline.store.layout import COUNTERS
 from pipeline.store.study_store import StudyStore
-from pipeline.tables.notes import reduce_notes
+from pipeline.tables.notes import DRIFT_TEXT, reduce_notes
 from pipeline.tables.reduce import reduce_store
 from pipeline.workflow.load import parse_workflow
 
@@ -92,6 +92,13 @@ def test_d_with_the_drift_included_points_to_d_drift(tmp_path):
     assert df["v_hi"][0] < 0 and df["D"][0] > 10 * df["D_drift"][0]
     (line,) = lines
     assert "D includes the drift" in line and "about the drift is D_drift" in line
+    assert df["D_status"][0].endswith(DRIFT_TEXT)  # the row says so too, without the note
+
+
+def test_a_conveyor_without_a_significant_drift_keeps_d_status_plain(tmp_path):
+    steps = np.random.default_rng(1).standard_normal((64, 201)) * 0.3
+    df, lines = _reduce(_store(tmp_path, np.cumsum(steps, axis=1), "tilt = 5.0"), tmp_path)
+    assert df["v_lo"][0] < 0 < df["v_hi"][0] and df["D_status"][0] == "ok" and lines == []
 
 
 def test_reducing_a_store_where_nothing_moves_warns_nothing(tmp_path):
