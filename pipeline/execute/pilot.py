@@ -182,7 +182,9 @@ def _grid_rates(study: Study, particles: int, cache_dir, echo, lines: str,
             return replace(probes, source=f"{probes.source} (a pilot of every line would cost "
                            f"{share:.0%} of the run, more than {PILOT_SHARE:.0%})")
         rates = _grid_rates(study, particles, cache_dir, echo, "all", cached_only)
-        return None if rates is None else replace(rates, source=f"{rates.source} (its pilot costs {share:.1%} of the run)")
+        if rates is None:
+            return None
+        return replace(rates, source=f"{rates.source} (its pilot costs {share:.1%} of the run)")
     cells, sources = {}, set()
     todo = (probe_lines(study) if lines == "probes"
             else list(dict.fromkeys(p.grid for p in study.points)))
