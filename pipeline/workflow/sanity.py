@@ -18,7 +18,7 @@ below lift-off  (warning) every point is below lift-off but sliding (contact = "
                 particles: sliding transport below lift-off is a regime of its own; a bouncing
                 particle may decay onto the floor for good.
 Γ > 50          (warning) at some point: far beyond the scenes this model is checked on (the
-                paper's floor reaches Γ = 4.1 at 100 Hz); A is in mm, f in Hz.
+                paper's floor reaches Γ = 4.03 at 100 Hz); A is in mm, f in Hz.
 radians         (warning) an angle (tilt, throw; in [params] or a [grid] axis) whose value is
                 nonzero, below π/2 in magnitude and no multiple of 0.5°: it reads like radians
                 (tilt = 0.1 is 0.1°, not 5.7°).  Every shipped scene is silent
@@ -37,6 +37,7 @@ import sys
 from collections.abc import Callable
 
 from bbb.analysis.liftoff import liftoff_frequency
+from bbb.params import Params
 
 from .schema import line_of
 from .study import Study, WorkflowError
@@ -46,6 +47,8 @@ __all__ = ["GAMMA_HIGH", "ANGLE_KEYS", "NothingMoves", "scene_warnings", "nothin
 
 #: above this Γ at some point a scene is warned about
 GAMMA_HIGH = 50.0
+#: the paper's floor at its highest frequency (Fig. 2 ends at 100 Hz), for the warning's scale
+PAPER_GAMMA = Params.preset("klages2004", f=100.0).gamma
 #: the [params] keys in degrees (pipeline.workflow.keys.PARAM_UNITS)
 ANGLE_KEYS = ("tilt", "throw")
 #: an angle that is a multiple of this (degrees) does not look like radians
@@ -171,7 +174,8 @@ def scene_warnings(study: Study) -> list[str]:
             key, path = _amplitude_key(study)
             out.append(f"{_where(study, path)}: {key}: warning: Γ = {top.params.gamma:.3g} at "
                        f"{top.label().removeprefix('f = ')} is above {GAMMA_HIGH:g} (the paper's "
-                       "floor reaches Γ = 4.1 at 100 Hz); A is in mm, f in Hz; the run continues")
+                       f"floor reaches Γ = {PAPER_GAMMA:.3g} at 100 Hz); A is in mm, f in Hz; "
+                       "the run continues")
     grid = dict(study.grid)
     for name in ANGLE_KEYS:
         where = (("params", name, study.overrides[name]),) if name in study.overrides else ()
