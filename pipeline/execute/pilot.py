@@ -47,7 +47,8 @@ __all__ = ["pilot_rates", "probe_lines", "pilot_share", "benchmark_rate", "plan_
 PILOT_PARTICLES = 8
 #: ... of a scene with a CI target, whose cost is set by the particles' spread of D: 8 particles
 #: under-read it where the spread is wide (the R = 25 mm map's collisions 1.32 of the plan with 8,
-#: 1.04 with 16: benchmarks/results/map-costs-2026-11-25-pilot-model.md)
+#: 1.04 with 16: benchmarks/results/map-costs-2026-11-25-pilot-model.md; on a hold-out scene
+#: written after the choice: benchmarks/results/plan-holdout-2026-11-25.txt)
 PILOT_PARTICLES_TARGET = 16
 #: a pilot that measured less CPU than this, s, is timed again (same seeds) until its repeats
 #: add up to it, and each cell keeps its fastest repeat: on a shared 2-core VM a 0.3 s pilot

@@ -298,8 +298,11 @@ def predict(study: Study, rates: Rates, workers: int, overheads: Overheads = Ove
         f = point.f
         for fam in study.families:
             cell = rates.cell(f, fam.name, point.grid)
-            law = CI_LAW if target is None else laws.setdefault((fam.name, point.grid), rates.ci_law(
-                fam.name, point.grid, target, getattr(acc, "d_resolved", None), z))[0]
+            key = (fam.name, point.grid)
+            if target is not None and key not in laws:  # pooled once per (family, line)
+                laws[key] = rates.ci_law(fam.name, point.grid, target,
+                                         getattr(acc, "d_resolved", None), z)
+            law = laws[key][0] if target is not None else CI_LAW
             n, why = particles_needed(study, cell, law)
             chunk_cpu = acc.chunk_size * acc.t_max * cell.per_particle_s / r
             chunks = n // acc.chunk_size

@@ -130,7 +130,6 @@ def run_study(
     fail_chunks: str | None = None,
     dashboard: bool = True,
     echo: Callable[[str], None] = print,
-    checks: bool = True,
 ) -> RunReport:
     """Compute every chunk of ``study`` not yet done in the store at ``store_path``.
 
@@ -139,14 +138,12 @@ def run_study(
     fail_chunks -- fault injection, as BBB_FAIL_CHUNKS (default: read from the environment)
     dashboard -- serve the Dask dashboard of a LocalCluster (needs bokeh) and print its link
 
-    checks -- before anything runs, warn (stderr) and refuse a scene in which nothing can move
-              (:mod:`pipeline.workflow.sanity`); False only for tests of the engine on such
-              a scene (bbb run always checks)
+    Before anything runs, warns (stderr) about and refuses a scene in which nothing can move
+    (:mod:`pipeline.workflow.sanity`).
 
     Raises RunFailed naming the chunk if a task fails; finished chunks stay done.
     """
-    if checks:
-        check_scene(study)
+    check_scene(study)
     t_start = time.perf_counter()
     store_path = normalize_path(store_path)
     fails = parse_fail_chunks(os.environ.get(FAIL_ENV) if fail_chunks is None else fail_chunks)

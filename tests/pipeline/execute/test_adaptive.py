@@ -237,7 +237,9 @@ def test_a_target_met_row_shows_the_very_ci_that_met_the_target(two_workers, tmp
     assert met >= 2
 
 
-STILL = (SCENE.replace("[54.0, 60.0, 72.0]", "[40.0]").replace("max_particles = 64",
+# 40 Hz (Γ = 0.64 < 1) beside 60 Hz: the engine meets a unit where nothing moves inside a wider
+# scene (a scene with nothing but such units is refused before it runs: pipeline.workflow.sanity)
+STILL = (SCENE.replace("[54.0, 60.0, 72.0]", "[40.0, 60.0]").replace("max_particles = 64",
                                                                   "max_particles = 32")
          .replace('[families.launched]\ninitial = "launched"\n', ""))
 
@@ -249,10 +251,8 @@ def test_a_frequency_where_nothing_moves_reports_the_mover_share_bound_not_zero_
     from pipeline.tables.reduce import reduce_store
 
     store = tmp_path / "still.zarr"
-    # bbb run refuses a scene where nothing can move (pipeline.workflow.sanity); the engine
-    # still handles such a unit, as it meets one inside a wider scene
-    run_study(parse_workflow(STILL, "still.toml"), store, workers=1, checks=False, **QUIET)
-    assert _stops(store)[0].tolist() == [[4]] and _stops(store)[1].tolist() == [[CAP]]
+    run_study(parse_workflow(STILL, "still.toml"), store, workers=1, **QUIET)
+    assert _stops(store)[0][0].tolist() == [4] and _stops(store)[1][0].tolist() == [CAP]
     row = reduce_store(store, tmp_path / "out", echo=lambda _: None)["diffusion"].iloc[0]
     assert row["n_moving"] == 0 and row["D"] == 0.0 and row["D_lo"] == 0.0
     assert math.isnan(row["D_hi"]) and math.isnan(row["D_rest_hi"])
@@ -266,13 +266,13 @@ def test_a_store_that_recorded_no_mover_as_resolved_zero_is_reopened_and_finishe
     by the next run and ends where a fresh run ends."""
     study = parse_workflow(STILL, "still.toml")
     fresh, old = tmp_path / "fresh.zarr", tmp_path / "old.zarr"
-    run_study(study, fresh, workers=1, checks=False, **QUIET)  # still: see above
-    run_study(study, old, workers=1, checks=False, **QUIET)
+    run_study(study, fresh, workers=1, **QUIET)
+    run_study(study, old, workers=1, **QUIET)
     g = zarr.open_group(str(old), mode="r+")
     g["done"][0, 0, 1:] = False
     g["n_chunks_used"][0, 0] = 1
     g["stop_reason"][0, 0] = ZERO
-    run_study(study, old, workers=1, checks=False, **QUIET)
+    run_study(study, old, workers=1, **QUIET)
     assert_same_store(old, fresh)
 
 
