@@ -14,8 +14,9 @@ drift included     on a floor that drifts (a row with a significant v: its CI ex
                    (:data:`DRIFT_TEXT`), so the table cannot be misread without the note.
 accelerating       the drift of the run's second half differs from the first half's beyond
                    the calibrated band (v_status "accelerating": the particles speed up, such
-                   as particles running away down a tilted floor): v is no drift.  The table keeps v (the mean velocity over the
-                   analysed run), leaves v_lo, v_hi and Pe blank and reports the acceleration
+                   as particles running away down a tilted floor): v is no drift.  The table
+                   keeps v (the mean velocity over the analysed run), leaves v_lo, v_hi and Pe
+                   blank and reports the acceleration
                    a [a_lo, a_hi] (mm/s²); D_status says :data:`ACCEL_TEXT`; ``bbb plot``
                    marks the point with a triangle ("accelerating").
 """
