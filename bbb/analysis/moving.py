@@ -25,6 +25,16 @@ measures how far below) leaves its arc within one block):
     particle i's share of moving blocks; D_moving = mean D_i / mean φ_i, the ensemble's
     diffusion per unit of time spent moving; the share is mean φ_i (a time share).
 
+``displaced`` is also what ``bbb reduce`` counts as a mover -- the same function, so its
+meaning here is unchanged: the D(f) table's ``n_moving`` (the displaced particles of a point,
+all families pooled), its "no mover" in ``D_status`` / ``D_drift_status`` / ``v_status`` where
+none is displaced (:mod:`bbb.analysis.transport`, pipeline.tables.diffusion).  Why this
+definition there: a particle farther than S from where it stood has crossed a cusp (an
+interval longer than the period S holds one), so it left its arc; a particle rocking on its
+arc, held still, or changing x by rounding (1e-13 mm on a conveyor below lift-off) never gets
+that far.  It undercounts on purpose: a particle that crossed one cusp and stays within S of
+its start is not counted, as the table cannot tell it from one rocking across a cusp.
+
 The decomposition D_all = share · D_moving holds *exactly* for ``moving_time`` (by
 construction) and for ``displaced`` up to the still particles' own D: D_all = share ·
 D_moving + (1 − share) · D_still, where a still particle never gets farther than S from

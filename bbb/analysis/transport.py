@@ -21,6 +21,26 @@ has v = 0 and dv = 0 exactly (odd in x), and every even quantity (D, the MSD slo
 particles' own: "mirror symmetry".  With simulated pairs ("pairs": a particle and its partner,
 bbb.ensemble.mirror_pairs) every bootstrap resamples pairs (``units``, the pair labels).
 
+What v means on the row, ``v_status`` (:func:`v_status`, in this order):
+
+* "no mover" -- no particle left its cell (:func:`bbb.analysis.moving.displaced`: none got
+  farther than S from its position at the start of the analysed part).  The particles rock
+  on their arcs or sit still, x changing by rounding at most: v's CI, D about the drift,
+  its CI and Pe are NaN (nothing about a drift or a diffusion is measured), ``steady`` and
+  ``diffusive`` untested (None); v keeps the sample's mean (rounding-level);
+* "by construction" -- mirror symmetry (``pairing``): v = 0 exactly, not an estimate;
+* "not measured" -- the halves' drift change dv could not be estimated (NaN), so whether v
+  is a drift is unknown: v's CI and Pe are NaN;
+* "accelerating" -- ``steady`` is False: the halves' drifts differ beyond the calibrated
+  band, so v is no drift.  The row reports the acceleration a = 2 dv / T_a instead (T_a the
+  analysed duration; exact for a uniform acceleration x = a t²/2 + ..., whose mean
+  displacement over a stretch of length T_h starting at t_s has slope a (t_s + T_h/2), so
+  the halves differ by a T_a/2), with dv's paired CI scaled alike.  v is kept: it is the mean
+  velocity over the analysed part (for a uniform acceleration exactly the velocity at its
+  middle), which places the point on a v(f) curve; its CI and Pe are NaN (a CI over
+  particles of a window-dependent number is no drift's CI);
+* "ok" -- a steady drift: v with its CI.
+
 Two checks say when the numbers are transport coefficients (rules calibrated on synthetic
 ensembles by benchmarks/transport_rules.py; their numbers are read from transport_rules.json):
 
@@ -54,17 +74,25 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from . import stats
-from .stats.interval import FAILED, OK, DInterval
+from .moving import displaced
+from .stats.interval import FAILED, NO_MOVER, OK, DInterval
+from .stats.rare import mover_share_bound
 
 __all__ = ["TransportEstimate", "per_particle_drift", "drift_velocity", "drift_change",
            "msd_slope_ratio", "transport", "steady_tolerance", "STEADY_REL", "STEADY_ABS",
-           "STEADY_SE", "CURVATURE_TOL", "RULES", "SYMMETRY", "PAIRS", "INDEPENDENT", "PAIRING"]
+           "STEADY_SE", "CURVATURE_TOL", "RULES", "SYMMETRY", "PAIRS", "INDEPENDENT", "PAIRING",
+           "V_OK", "ACCELERATING", "NO_MOVER", "BY_CONSTRUCTION", "NOT_MEASURED", "V_STATUSES",
+           "v_status", "no_mover_note"]
 
 #: how an estimate counts a family's particles (Study.pairing, the column v_by): images counted
 #: by the floor's mirror symmetry (odd quantities such as v are 0 exactly), simulated mirror
 #: pairs (resampled as units, bbb.ensemble.mirror_pairs), or independent particles
 SYMMETRY, PAIRS, INDEPENDENT = "mirror symmetry", "pairs", "independent"
 PAIRING = (SYMMETRY, PAIRS, INDEPENDENT)
+#: what v means on a row (module docstring); NO_MOVER is bbb.analysis.stats.interval's word
+V_OK, ACCELERATING, BY_CONSTRUCTION, NOT_MEASURED = "ok", "accelerating", "by construction", \
+    "not measured"
+V_STATUSES = (V_OK, ACCELERATING, NO_MOVER, BY_CONSTRUCTION, NOT_MEASURED)
 
 #: the calibrated rules (benchmarks/transport_rules.py wrote them, with their error rates)
 RULES: dict = json.loads(resources.files(__package__).joinpath("transport_rules.json")
@@ -88,14 +116,21 @@ class TransportEstimate:
     v_by           -- how the particles were counted (:data:`PAIRING`)
     D, D_lo, D_hi  -- D of x − v t and its bootstrap CI, mm²/s; NaN where the estimator
                       failed (the CI lies below 0: the MSD about the drift falls with the lag)
-    D_status       -- "ok", or the failed fit's numbers (bbb.analysis.stats.interval's wording)
-    Pe             -- Péclet number v S / D (S the scatterer spacing), dimensionless
+    D_status       -- "ok", or the failed fit's numbers (bbb.analysis.stats.interval's wording),
+                      or the no-mover note (:func:`no_mover_note`)
+    Pe             -- Péclet number v S / D (S the scatterer spacing), dimensionless; NaN
+                      unless v_status is "ok" or "by construction"
     fit_from, fit_to -- lag window of both fits, s
     dv, dv_lo, dv_hi -- v of the analysed run's second half minus its first half (each fitted
                       over the same fractions of a half), paired bootstrap CI, mm/s
     dv_tol         -- the band the CI of dv must leave to flag, mm/s (:func:`steady_tolerance`)
     steady         -- False when the CI of dv lies beyond ±dv_tol: an acceleration, not a drift
-                      (a particle running away downhill has dv ~ a T / 2)
+                      (a particle running away downhill has dv ~ a T / 2); None: untested
+                      (no mover, or dv not measured)
+    a, a_lo, a_hi  -- the acceleration 2 dv / T_a (T_a the analysed duration, s) with dv's CI
+                      scaled alike, mm/s² (module docstring); NaN with dv
+    v_status       -- what v means (module docstring, :data:`V_STATUSES`)
+    n_moving       -- particles that left their cell (:func:`bbb.analysis.moving.displaced`)
     curvature, curvature_lo, curvature_hi -- the slope ratio of the MSD about the drift over
                       the upper / lower half of the fit lags (:func:`msd_slope_ratio`), with
                       its bootstrap CI (NaN: nothing moves)
@@ -115,7 +150,7 @@ class TransportEstimate:
     dv: float = math.nan
     dv_lo: float = math.nan
     dv_hi: float = math.nan
-    steady: bool = True
+    steady: bool | None = True
     v_by: str = INDEPENDENT
     dv_tol: float = math.nan
     curvature: float = math.nan
@@ -123,6 +158,11 @@ class TransportEstimate:
     curvature_hi: float = math.nan
     diffusive: bool | None = None
     D_status: str = OK
+    a: float = math.nan
+    a_lo: float = math.nan
+    a_hi: float = math.nan
+    v_status: str = V_OK
+    n_moving: int = -1
 
 
 def _window(xs: np.ndarray, times: np.ndarray, fit: dict) -> tuple[int, int, int, float]:
@@ -195,19 +235,51 @@ def transport(x: ArrayLike, sample_times: ArrayLike, S: float, *, n_resamples: i
         v = drift_velocity(xs, times, seed=s_v, **kw, **fit)
         dv = drift_change(xs, times, seed=s_dv, **kw, **fit)
         xd = xs - v[0] * times[None, :]
-    d = stats.bootstrap_D(xd, times, seed=s_d, **kw, **fit)
     est = stats.diffusion_coefficient(xs[:1], times, **fit)
-    d, status = _unless_failed(d, xs.shape[0])
-    pe = v[0] * S / d.D if d.D > 0 else math.nan
+    n_moving = int(np.count_nonzero(displaced(xs, S, fit.get("discard", stats.DEFAULT_DISCARD))))
     tol = steady_tolerance(*v, ci=ci)
+    status = v_status(n_moving, pairing, dv, tol)
+    span = times[-1] - est.t_start  # T_a, s: the halves differ by a T_a / 2
+    acc = tuple(2.0 * q / span for q in dv)
+    common = dict(v=v[0], fit_from=est.fit_from, fit_to=est.fit_to, dv=dv[0], dv_lo=dv[1],
+                  dv_hi=dv[2], v_by=pairing, dv_tol=tol, a=acc[0], a_lo=acc[1], a_hi=acc[2],
+                  v_status=status, n_moving=n_moving)
+    if status == NO_MOVER:  # nothing left its cell: no drift, no diffusion measured
+        nan = math.nan
+        return TransportEstimate(v_lo=nan, v_hi=nan, D=nan, D_lo=nan, D_hi=nan, Pe=nan,
+                                 steady=None, D_status=no_mover_note(xs.shape[0], ci),
+                                 **common)
+    d = stats.bootstrap_D(xd, times, seed=s_d, **kw, **fit)
+    d, d_status = _unless_failed(d, xs.shape[0])
+    drift = status in (V_OK, BY_CONSTRUCTION)
+    pe = v[0] * S / d.D if d.D > 0 and drift else math.nan
     a = msd_slope_ratio(xd, times, n_resamples=n_resamples, ci=ci, seed=s_a, units=units, **fit)
-    return TransportEstimate(v=v[0], v_lo=v[1], v_hi=v[2], D=d.D, D_lo=d.lo, D_hi=d.hi, Pe=pe,
-                             fit_from=est.fit_from, fit_to=est.fit_to, dv=dv[0], dv_lo=dv[1],
-                             dv_hi=dv[2], steady=not (dv[1] > tol or dv[2] < -tol), v_by=pairing,
-                             dv_tol=tol, curvature=a[0], curvature_lo=a[1],
-                             curvature_hi=a[2],
+    return TransportEstimate(v_lo=v[1] if drift else math.nan, v_hi=v[2] if drift else math.nan,
+                             D=d.D, D_lo=d.lo, D_hi=d.hi, Pe=pe,
+                             steady=None if status == NOT_MEASURED else status != ACCELERATING,
+                             curvature=a[0], curvature_lo=a[1], curvature_hi=a[2],
                              diffusive=None if math.isnan(a[1]) else not a[1] > 1.0 + CURVATURE_TOL,
-                             D_status=status)
+                             D_status=d_status, **common)
+
+
+def v_status(n_moving: int, pairing: str, dv: tuple[float, float, float], tol: float) -> str:
+    """What v means (module docstring): "no mover" where no particle left its cell, "by
+    construction" under mirror symmetry, "not measured" where the CI of dv (mm/s) is NaN,
+    "accelerating" where it lies beyond ±tol (mm/s, :func:`steady_tolerance`), else "ok"."""
+    if n_moving == 0:
+        return NO_MOVER
+    if pairing == SYMMETRY:
+        return BY_CONSTRUCTION
+    if math.isnan(dv[1]) or math.isnan(dv[2]):
+        return NOT_MEASURED
+    return ACCELERATING if (dv[1] > tol or dv[2] < -tol) else V_OK
+
+
+def no_mover_note(n: int, ci: float = 0.95) -> str:
+    """The status of a D (or v) with no particle that left its cell among ``n``: the
+    one-sided bound on the share of such particles at level ``ci``."""
+    return (f"{NO_MOVER} among {n}: no particle left its cell (moved more than S from its "
+            f"start); mover share < {100 * mover_share_bound(n, ci):.2g} % (one-sided)")
 
 
 def _unless_failed(d: stats.BootstrapCI, n: int) -> tuple[stats.BootstrapCI, str]:

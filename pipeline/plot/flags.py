@@ -7,7 +7,12 @@ flag variable  said in the legend   marker on a curve (open)   map hatch
 ergodic        non-ergodic          circle ``o``               ``////``
 stationary     non-stationary       square ``s``               ``\\\\``
 diffusive      not diffusive        diamond ``D``              ``..``
+steady         accelerating         triangle ``^``             ``xx``
 =============  ===================  =========================  ===========
+
+``steady`` is False where a conveyor's drift accelerates (the table's v_status
+"accelerating", :mod:`bbb.analysis.transport`): v there is a window's mean velocity, not a
+drift, and the triangle says so on every curve and map of the point.
 """
 
 from __future__ import annotations
@@ -32,7 +37,8 @@ class Flag:
 
 FLAGS = (Flag("ergodic", "non-ergodic", "o", "////"),
          Flag("stationary", "non-stationary", "s", "\\\\\\\\"),
-         Flag("diffusive", "not diffusive", "D", ".."))
+         Flag("diffusive", "not diffusive", "D", ".."),
+         Flag("steady", "accelerating", "^", "xx"))
 
 
 def _is_false(x) -> bool:

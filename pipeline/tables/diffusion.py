@@ -12,13 +12,17 @@ D, D_lo, D_hi  D of all families pooled, mm^2/s, from the fit MSD(lag) = 2 D lag
              three NaN where the estimator failed (CI below 0)
 D_status     what the CI means (bbb.analysis.stats.interval): "ok", or per pooled/family the notes
              "rare movers (n_eff ..): calibrated coverage ..", "no mover among N: mover share
-             < .. %", "estimator failed: fit D = .. [.., ..] mm^2/s < 0 significantly"
+             < .. %" (no particle of the pool / family left its cell, see n_moving; a failed
+             estimator stays "estimator failed"), "estimator failed: fit D = .. [.., ..] mm^2/s
+             < 0 significantly"
 D_cover      the pooled CI's coverage: the nominal level, or the rare-mover rule's calibrated
              coverage at the sample's n_eff (bbb/analysis/stats/rare_movers_calibration.json) where it
              applies; NaN where no mover or the estimator failed
 mover_share_hi  (no mover only) the one-sided upper bound on the share of moving particles
 D_last       the single-origin MSD(t_end) / (2 t_end), mm^2/s, over the whole run (paper Eq. 10)
-n_particles, n_moving  particles analysed (of done chunks), and those whose x ever changed
+n_particles, n_moving  particles analysed (of done chunks), and those that left their cell:
+             farther than S from their position at the start of the analysed part at some
+             time of it (bbb.analysis.moving.displaced; rounding-level changes of x never count)
 t_max        simulated time, s
 fit_from, fit_to  lag range of the fit, s;  eb_lag: lag of EB, s
 EB           ergodicity-breaking parameter Var(δ²)/<δ²>² at eb_lag, all families pooled
@@ -27,7 +31,9 @@ EB_decay     EB over the first half of the analysed run / EB over all of it (sam
              ~2 for ergodic motion (EB ~ 1/T), ~1 for a population mixing different D
 EB_decay_threshold  the smallest passing EB_decay, halfway between 1 and the Brownian ratio
 ergodic      bbb.analysis.stats.ergodic_verdict under its rule (docs/statistics.md): by default (a) the
-             families' D agree within their CIs and (b) the spread CV_D <= cv_max
+             families' D agree within their CIs and (b) the spread CV_D <= cv_max; NA (with
+             families_agree .. spread_ok) where n_moving = 0: EB then measures motion within
+             the cells (or rounding), and the verdict column says so
 families_agree, eb_ok  the outcomes of (a) and of the rule's EB part (b) ((a) is true with a
              single family)
 rule         the rule's name;  level_ok, decay_ok, spread_ok  each EB component on its own
@@ -50,7 +56,14 @@ stop         (target-driven stores only) why sampling stopped: "target met", "re
              (D known to +-d_resolved only: quote |D| <= d_resolved there, not D +- its CI,
              docs/accuracy.md), "cap" or "open"; "family: reason; ..." with several families
 v, v_lo, v_hi  (scenes with tilt or throw only) drift velocity, mm/s, with its bootstrap CI
-             over particles (bbb.analysis.transport: slope of the mean displacement over the fit lags)
+             over particles (bbb.analysis.transport: slope of the mean displacement over the fit
+             lags); v_lo, v_hi NaN unless v_status is "ok" or "by construction"
+v_status     what v means (bbb.analysis.transport.v_status): "ok" (a steady drift), "accelerating"
+             (steady False: v is the mean velocity over the analysed run, not a drift; read a),
+             "no mover" (n_moving = 0: v's CI, D_drift and Pe NaN), "by construction" (mirror
+             symmetry: v = 0 exactly), "not measured" (dv could not be estimated)
+a, a_lo, a_hi  the acceleration 2 dv / T_a (T_a the analysed duration), mm/s^2, with dv's CI
+             scaled alike: exact for a uniform acceleration
 v_by         how the particles count (the families' mirror key, Study.pairing): "mirror
              symmetry" -- on a level floor vibrated vertically every particle's mirror image
              counts, so v = v_lo = v_hi = 0 and dv = 0 exactly, by construction (not an
@@ -59,13 +72,14 @@ v_by         how the particles count (the families' mirror key, Study.pairing): 
 D_drift, D_drift_lo, D_drift_hi  D about the drift (MSD of x - v t), mm^2/s, with its CI;
              there the column D still holds the raw MSD's D, drift included; NaN where its CI
              lies below 0 (an estimator failure, as for D)
-D_drift_status  "ok", or the failed fit's numbers
-Pe           Péclet number v S / D_drift
+D_drift_status  "ok", or the failed fit's numbers, or "no mover among N: .."
+Pe           Péclet number v S / D_drift; NaN unless v_status is "ok" or "by construction"
 dv, dv_lo, dv_hi  v of the analysed run's second half minus its first half, mm/s, paired CI
 dv_tol       the band that CI must leave to flag, mm/s: 5 % of |v| + k SE(v) + 1e-6 mm/s
              (k calibrated, bbb/transport_rules.json)
 steady       False where the CI of dv lies beyond +-dv_tol: an acceleration (a particle
-             running away downhill), not a drift -- v and D_drift are then window means
+             running away downhill), not a drift -- v and D_drift are then window means; NA
+             where untested (no mover, dv not measured)
 msd_slope_ratio, msd_slope_ratio_lo, msd_slope_ratio_hi  slope of the MSD about the drift over
              the upper half of the fit lags / over the lower half, with its bootstrap CI: 1
              for diffusion (any intercept), up to ~2 for particles running at different speeds
@@ -88,14 +102,22 @@ from ..store.layout import STOP_LEGEND
 from ..store.study_store import StudyStore
 from ..workflow.identity import child_seed, reduce_seed
 from ..workflow.study import Study
-from .notes import DRIFT_TEXT
+from .notes import ACCEL_TEXT, DRIFT_TEXT
 
 __all__ = ["diffusion_table"]
+
+#: the ergodicity verdict's booleans: NA on a row where no particle left its cell
+_VERDICTS = ("ergodic", "families_agree", "eb_ok", "level_ok", "decay_ok", "spread_ok")
+#: what the verdict column says there
+NO_MOVER_VERDICT = ("no particle left its cell: EB and D agreement of motion within the "
+                    "cells, ergodicity not tested")
 
 
 def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
     """One row per point (columns in the module docstring; a grid's axes follow f)."""
     from bbb.analysis import stats
+    from bbb.analysis.moving import displaced
+    from bbb.analysis.transport import ACCELERATING
 
     study = store.study
     an, acc = study.analysis, study.accuracy
@@ -120,11 +142,16 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
         pairing, units = _pairing(study, fams, point if study.grid else None)
         seed = reduce_seed(study, f)
         est = stats.diffusion_coefficient(x, times, **fit)
+        moved = {name: displaced(xf, point.params.S, an.discard) for name, xf in fams.items()}
+        n_moving = sum(int(m.sum()) for m in moved.values())
         named = {study.families[mi].name: r for mi, r in fam_ci.items()}
+        named = {name: _unless_moved(r, int(moved[name].sum()), an.ci) for name, r in named.items()}
+        pooled = named[next(iter(named))] if len(named) == 1 else _unless_moved(pooled, n_moving,
+                                                                                 an.ci)
         verdict = stats.ergodic_verdict(
             fams, times, lag=eb_lag, tolerance=an.eb_tolerance, ci=an.ci,
             n_resamples=acc.n_resamples, seed=int(seed.generate_state(1)[0]), family_ci=named,
-            **fit)
+            mover_share={name: float(m.mean()) for name, m in moved.items()}, **fit)
         eb_pooled = verdict.eb.get("(pooled)", next(iter(verdict.eb.values())))
         key = "(pooled)" if "(pooled)" in verdict.eb else next(iter(verdict.eb))
         decay = _ratio(verdict.eb_half.get(key, math.nan), verdict.eb[key])
@@ -133,7 +160,7 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
             D_status=_status_text(pooled, named), D_cover=pooled.coverage,
             mover_share_hi=pooled.mover_share_hi,
             D_last=est.D_last, n_particles=x.shape[0],
-            n_moving=int(np.count_nonzero(np.ptp(x, axis=1) > 0)), t_max=acc.t_max,
+            n_moving=n_moving, t_max=acc.t_max,
             fit_from=est.fit_from, fit_to=est.fit_to, eb_lag=verdict.lag, EB=eb_pooled,
             EB_threshold=verdict.eb_threshold, EB_decay=decay,
             EB_decay_threshold=verdict.eb_decay_threshold, ergodic=bool(verdict.ergodic),
@@ -151,6 +178,9 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
                         f"EB_decay_{name}": _ratio(verdict.eb_half.get(name, math.nan),
                                                    verdict.eb.get(name, math.nan))})
         row["verdict"] = "; ".join(verdict.reasons)
+        if n_moving == 0:  # EB of rounding-level motion: no verdict (module docstring)
+            row.update(dict.fromkeys(_VERDICTS, pd.NA))
+            row["verdict"] = f"n/a: {NO_MOVER_VERDICT}; " + row["verdict"]
         if stops is not None:
             row["stop"] = _stop_text(study, stops[1][fi])
         row.update(_stationarity_columns(x, times, an, acc, seed, units))
@@ -159,12 +189,27 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
                                           units))
             if row["v_lo"] > 0 or row["v_hi"] < 0:  # D is the raw MSD's slope: v² t included
                 row["D_status"] += f"; {DRIFT_TEXT}"
+            elif row["v_status"] == ACCELERATING:  # its CI blank; D holds the acceleration
+                row["D_status"] += f"; {ACCEL_TEXT}"
         rows.append(row)
     df = pd.DataFrame(rows)
-    for col in ("ergodic", "families_agree", "eb_ok", "stationary", "steady", "diffusive"):
+    for col in (*_VERDICTS, "stationary", "steady", "diffusive"):
         if col in df:
             df[col] = df[col].astype("boolean")
     return df
+
+
+def _unless_moved(r, n_moving: int, ci: float):
+    """D's interval ``r`` (bbb.analysis.stats.interval.DInterval), or, where none of its
+    particles left its cell (``n_moving`` = 0), the same D with the status "no mover": D_hi
+    NaN, the bound on the share of movers.  A failed estimator stays failed (D blank)."""
+    from bbb.analysis.stats.interval import FAILED, NO_MOVER
+    from bbb.analysis.stats.rare import mover_share_bound
+
+    if r is None or n_moving > 0 or r.status in (FAILED, NO_MOVER):
+        return r
+    return r._replace(hi=math.nan, status=NO_MOVER, coverage=math.nan,
+                      mover_share_hi=mover_share_bound(r.n, ci))
 
 
 def _d_columns(prefix: str, r) -> dict:
@@ -239,7 +284,8 @@ def _transport_columns(x: np.ndarray, times: np.ndarray, S: float, study: Study,
             "D_drift_lo": t.D_lo, "D_drift_hi": t.D_hi, "D_drift_status": t.D_status, "Pe": t.Pe, "dv": t.dv,
             "dv_lo": t.dv_lo, "dv_hi": t.dv_hi, "dv_tol": t.dv_tol, "steady": t.steady,
             "msd_slope_ratio": t.curvature, "msd_slope_ratio_lo": t.curvature_lo,
-            "msd_slope_ratio_hi": t.curvature_hi, "diffusive": t.diffusive}
+            "msd_slope_ratio_hi": t.curvature_hi, "diffusive": t.diffusive,
+            "v_status": t.v_status, "a": t.a, "a_lo": t.a_lo, "a_hi": t.a_hi}
 
 
 def _ratio(a: float, b: float) -> float:

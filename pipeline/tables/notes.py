@@ -12,18 +12,28 @@ drift included     on a floor that drifts (a row with a significant v: its CI ex
                    D_drift = 0.12 mm²/s: throw 30°, Coulomb, 80 Hz); the diffusion
                    coefficient about the drift is D_drift.  D_status says so on the row
                    (:data:`DRIFT_TEXT`), so the table cannot be misread without the note.
+accelerating       the drift of the run's second half differs from the first half's beyond
+                   the calibrated band (v_status "accelerating": the particles speed up, such
+                   as particles running away down a tilted floor): v is no drift.  The table
+                   keeps v (the mean velocity over the analysed run), leaves v_lo, v_hi and Pe
+                   blank and reports the acceleration
+                   a [a_lo, a_hi] (mm/s²); D_status says :data:`ACCEL_TEXT`; ``bbb plot``
+                   marks the point with a triangle ("accelerating").
 """
 
 from __future__ import annotations
 
 import pandas as pd
 
-__all__ = ["FAILED_TEXT", "DRIFT_TEXT", "failed_points", "drift_points", "reduce_notes"]
+__all__ = ["FAILED_TEXT", "DRIFT_TEXT", "ACCEL_TEXT", "failed_points", "drift_points",
+           "accelerating_points", "reduce_notes"]
 
 #: the words of bbb.analysis.stats.interval's note for a CI below 0
 FAILED_TEXT = "estimator failed"
 #: what D_status adds on a row whose v is significant: D there is not the diffusion coefficient
 DRIFT_TEXT = "drift included (v significant): read D_drift"
+#: what D_status adds on a row whose drift accelerates (v_status): D is no diffusion coefficient
+ACCEL_TEXT = "accelerating (v_status): D includes the acceleration"
 
 
 def _labels(df: pd.DataFrame, rows: pd.Series) -> list[str]:
@@ -57,6 +67,15 @@ def drift_points(df: pd.DataFrame) -> pd.Series:
     return ((df["v_lo"] > 0) | (df["v_hi"] < 0)).fillna(False)
 
 
+def accelerating_points(df: pd.DataFrame) -> pd.Series:
+    """Rows whose drift accelerates (``v_status`` "accelerating")."""
+    from bbb.analysis.transport import ACCELERATING
+
+    if "v_status" not in df:
+        return pd.Series(False, index=df.index)
+    return (df["v_status"] == ACCELERATING).fillna(False).astype(bool)
+
+
 def reduce_notes(name: str, df: pd.DataFrame) -> list[str]:
     """The lines ``bbb reduce`` prints about the D(f) table ``df`` of study ``name``."""
     out = []
@@ -77,4 +96,11 @@ def reduce_notes(name: str, df: pd.DataFrame) -> list[str]:
         out.append(f"{name}: note: D includes the drift (v significant) at "
                    f"{_listing(_labels(df, drift))}{size}; the diffusion coefficient about "
                    "the drift is D_drift")
+    acc = accelerating_points(df)
+    if acc.any():
+        lo, hi = df.loc[acc, "a"].abs().min(), df.loc[acc, "a"].abs().max()
+        out.append(f"{name}: warning: the drift accelerates (v of the run's halves differ beyond "
+                   f"their CIs; |a| {lo:.3g}-{hi:.3g} mm/s^2) at {_listing(_labels(df, acc))}; "
+                   "v there is the mean velocity over the run, not a drift: its CI and Pe left "
+                   "blank, the acceleration in a, a_lo, a_hi")
     return out

@@ -57,7 +57,8 @@ UNITS: dict[str, str] = {
     "D_half1": D_UNIT, "D_half2": D_UNIT, "dD": D_UNIT, "dD_tol": D_UNIT, "stationary": _NQ,
     # ... transport (conveyor scenes)
     "v": V_UNIT, "v_by": _NQ, "D_drift": D_UNIT, "D_drift_status": _NQ, "Pe": _1, "dv": V_UNIT,
-    "dv_tol": V_UNIT, "steady": _NQ, "msd_slope_ratio": _1, "diffusive": _NQ,
+    "dv_tol": V_UNIT, "steady": _NQ, "msd_slope_ratio": _1, "diffusive": _NQ, "v_status": _NQ,
+    "a": "mm/s^2",
     # counters (pipeline.tables.counters): <counter>_per_s in FAMILIES
     "task_seconds": "s",
     # contact (pipeline.tables.contact): shares of the run
@@ -153,7 +154,9 @@ TABLE_COLUMNS: dict[str, tuple[tuple[str, bool, str], ...]] = {
         ("D_status", False, "what D's CI means: \"ok\", \"rare movers\" (calibrated coverage), "
          "\"no mover\" (with the mover-share bound) or \"estimator failed\" (D < 0 "
          "significantly: the fit's numbers; D left blank), per family where they differ; "
-         "and, where v is significant, \"drift included (v significant): read D_drift\""),
+         "\"no mover\" where no particle left its cell (n_moving); and, where v is "
+         "significant, \"drift included (v significant): read D_drift\", where the drift "
+         "accelerates, \"accelerating (v_status): D includes the acceleration\""),
         ("D_cover", False, "the coverage of D's CI: the nominal level, or the rare-mover "
          "rule's calibrated coverage; blank with no mover or a failed estimator"),
         ("mover_share_hi", False, "no mover only: one-sided upper bound on the share of "
@@ -161,7 +164,9 @@ TABLE_COLUMNS: dict[str, tuple[tuple[str, bool, str], ...]] = {
         ("D_last", False, "single-origin MSD(t_end) / (2 t_end) over the whole run (the "
          "paper's Eq. 10)"),
         ("n_particles", False, "particles analysed (of done chunks)"),
-        ("n_moving", False, "particles whose x ever changed"),
+        ("n_moving", False, "particles that left their cell: farther than S from their "
+         "position at the start of the analysed part at some time of it (a change of x by "
+         "rounding, or rocking on an arc, never counts)"),
         ("t_max", False, "simulated time per particle"),
         ("fit_from", False, "first lag of the MSD fit"), ("fit_to", False, "last lag of the MSD fit"),
         ("eb_lag", False, "lag of EB"),
@@ -170,7 +175,8 @@ TABLE_COLUMNS: dict[str, tuple[tuple[str, bool, str], ...]] = {
         ("EB_decay", False, "EB of the analysed run's first half / EB of all of it: ~2 "
          "ergodic, ~1 a population mixing different D"),
         ("EB_decay_threshold", False, "the smallest passing EB_decay"),
-        ("ergodic", False, "the ergodicity verdict under its rule (docs/statistics.md)"),
+        ("ergodic", False, "the ergodicity verdict under its rule (docs/statistics.md); blank, "
+         "with its components, where no particle left its cell"),
         ("families_agree", False, "the families' D agree within their CIs (true with one family)"),
         ("eb_ok", False, "the rule's EB part passes"), ("rule", False, "the verdict rule's name"),
         ("level_ok", False, "EB <= EB_threshold"), ("decay_ok", False, "EB_decay passes"),
@@ -194,15 +200,22 @@ TABLE_COLUMNS: dict[str, tuple[tuple[str, bool, str], ...]] = {
         ("dD_tol", False, "what dD's CI must clear to flag: 5 % of D + 1e-6 mm²/s"),
         ("stationary", False, "false where D depends on the run length (dD's CI beyond ±dD_tol)"),
         ("v", True, "tilted or thrown floors: drift velocity, slope of the mean displacement "
-         "over the fit lags"),
+         "over the fit lags; v_lo, v_hi blank unless v_status is ok or by construction (on an "
+         "accelerating row v is the mean velocity over the analysed run, not a drift)"),
+        ("v_status", False, "what v means: ok (a steady drift), accelerating (read a), no "
+         "mover (no particle left its cell: no drift, D_drift or Pe measured), by "
+         "construction (mirror symmetry: v = 0 exactly), not measured (dv unknown)"),
+        ("a", True, "acceleration 2 dv / T_a (T_a the analysed duration) with dv's CI scaled "
+         "alike: exact for a uniform acceleration"),
         ("v_by", False, "how particles count: mirror symmetry (v = 0 exactly), pairs, independent"),
         ("D_drift", True, "tilted or thrown floors: diffusion coefficient about the drift (MSD "
          "of x − v t); blank where its estimator failed"),
-        ("D_drift_status", False, "\"ok\", or the failed fit's numbers"),
-        ("Pe", False, "Péclet number v S / D_drift"),
+        ("D_drift_status", False, "\"ok\", the failed fit's numbers, or \"no mover\""),
+        ("Pe", False, "Péclet number v S / D_drift; blank unless v_status is ok or by construction"),
         ("dv", True, "v of the second half − v of the first half"),
         ("dv_tol", False, "the band dv's CI must leave to flag"),
-        ("steady", False, "false where dv's CI lies beyond ±dv_tol: an acceleration, not a drift"),
+        ("steady", False, "false where dv's CI lies beyond ±dv_tol: an acceleration, not a drift; "
+         "blank where untested (no mover, dv unknown)"),
         ("msd_slope_ratio", True, "slope of the MSD about the drift, upper / lower half of "
          "the fit lags: 1 for diffusion"),
         ("diffusive", False, "false where that ratio's CI lies above 1 + a calibrated "

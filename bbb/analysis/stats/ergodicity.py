@@ -230,6 +230,7 @@ def ergodic_verdict(
     rule: str | None = None,
     cv_max: float = DEFAULT_CV_MAX,
     family_ci: Mapping[str, DInterval] | None = None,
+    mover_share: Mapping[str, float] | None = None,
 ) -> ErgodicVerdict:
     """Is the diffusion ergodic?  A calibrated rule over initial-condition families.
 
@@ -247,6 +248,10 @@ def ergodic_verdict(
     family_ci    -- family name -> the DInterval of its D, if the caller already has it (`bbb
                     reduce` passes the one its stopping rule decided on); else computed here
                     as ``bootstrap_D(..., detail=True)`` does, with the seeds above
+    mover_share  -- family name -> the share of its particles that move, by the caller's
+                    definition of a mover (`bbb reduce`: those that left their cell,
+                    bbb.analysis.moving.displaced), read by (a) for a family with no mover;
+                    default (and for a family not named): the share with D_i > 0
 
     Operationally, "ergodic" means: the initial-condition families diffuse alike, and the
     particles share one D — a spread of the per-particle D_i with coefficient of variation
@@ -321,7 +326,8 @@ def ergodic_verdict(
         if xs.shape[0] < 2:
             raise ValueError(f"family {name!r} has {xs.shape[0]} particle(s); need at least 2")
         d_i, _ = per_particle_fit(xs, reg)
-        movers[name] = float(np.mean(d_i > 0.0))
+        movers[name] = (float(mover_share[name]) if mover_share is not None and name in mover_share
+                        else float(np.mean(d_i > 0.0)))
         if family_ci is not None and name in family_ci:
             d_ci[name] = family_ci[name]
         else:
@@ -438,17 +444,18 @@ def _mark(ok: bool) -> str:
 
 def _agree_movers(d_ci: Mapping[str, DInterval], movers: Mapping[str, float], a: str,
                   b: str) -> tuple[bool, str]:
-    """Rule (a) for a pair with a family that has no mover (no D_i > 0), whose D has no upper
-    bound: it agrees iff the other family's share of particles with D_i > 0 lies within the
-    no-mover family's (one-sided) bound on that share; two no-mover families agree."""
+    """Rule (a) for a pair with a family that has no mover (its D has no upper bound): it
+    agrees iff the other family's share of movers (``movers``: ergodic_verdict's mover_share,
+    by default the share with D_i > 0) lies within the no-mover family's (one-sided) bound
+    on that share; two no-mover families agree."""
     still = [n for n in (a, b) if d_ci[n].status == NO_MOVER]
     if len(still) == 2:
-        return True, f"neither {a!r} nor {b!r} has a particle with D_i > 0"
+        return True, f"neither {a!r} nor {b!r} has a mover"
     other = b if still[0] == a else a
     bound = d_ci[still[0]].mover_share_hi
     ok = movers[other] <= bound
     return ok, (f"no mover in {still[0]!r} (share < {100 * bound:.2g} %) vs "
-                f"{100 * movers[other]:.3g} % of {other!r} with D_i > 0")
+                f"{100 * movers[other]:.3g} % movers in {other!r}")
 
 
 def _cv2_from_eb(eb_full: float, eb_half: float) -> float:

@@ -63,11 +63,12 @@ def reversals(f, signs) -> list[float]:
 
 def steady_rows(t: pd.DataFrame | None) -> pd.DataFrame | None:
     """The rows of a diffusion table with a steady drift, sorted by f (attrs["unsteady"]: the
-    others' f); None without the transport columns."""
+    f of the accelerating ones, whose v's CI is blank); rows without v's CI (no mover) are
+    left out; None without the transport columns."""
     if t is None or "v" not in t:
         return None
-    t = t.dropna(subset=["v", "v_lo", "v_hi"]).sort_values("f")
+    t = t.dropna(subset=["v"]).sort_values("f")
     ok = t["steady"].fillna(True).astype(bool) if "steady" in t else pd.Series(True, t.index)
-    out = t[ok].copy()
+    out = t[ok].dropna(subset=["v_lo", "v_hi"]).copy()
     out.attrs["unsteady"] = t["f"][~ok].tolist()
     return out

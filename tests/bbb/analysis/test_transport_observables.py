@@ -189,3 +189,41 @@ def test_a_d_about_the_drift_significantly_below_zero_is_no_value_but_a_failure(
     # period 20 s: the MSD still rises over the fit lags -- a (small) D with its CI
     ok = transport(_oscillating(20.0), TIMES, 2.0, n_resamples=300, seed=1)
     assert ok.D_status == "ok" and 0.0 < ok.D_lo < ok.D < ok.D_hi
+
+
+# -- what v means: v_status ---------------------------------------------------------------------
+def test_an_ensemble_moving_by_rounding_only_has_no_mover_and_no_drift_d_or_pe():
+    # particles held on a conveyor below lift-off: x changes by 1e-13 mm at most
+    rng = np.random.default_rng(4)
+    x = rng.uniform(-50, 50, (32, 1)) + 1e-13 * rng.standard_normal((32, N_SAMPLES))
+    est = transport(x, TIMES, 2.0, n_resamples=200, seed=0)
+    assert est.n_moving == 0 and est.v_status == "no mover" and est.steady is None
+    assert all(np.isnan([est.v_lo, est.v_hi, est.D, est.D_lo, est.D_hi, est.Pe]))
+    assert est.D_status.startswith("no mover among 32")
+
+
+def test_a_uniform_acceleration_is_recovered_exactly_and_v_is_the_velocity_mid_run():
+    # x = x0 + u t + a t²/2 without noise: a = 2 dv / T_a exactly; v = u + a t_mid
+    a_true, u = -7.0, 3.0
+    x = np.arange(4.0)[:, None] + u * TIMES + 0.5 * a_true * TIMES**2
+    est = transport(x, TIMES, 2.0, n_resamples=50, seed=0)
+    assert est.a == pytest.approx(a_true, rel=1e-9)
+    t_a = 0.1 * TIMES[-1]  # the discarded 10 %
+    assert est.v == pytest.approx(u + a_true * (t_a + TIMES[-1]) / 2, rel=1e-9)
+
+
+def test_an_accelerating_ensemble_reports_its_acceleration_not_v_with_a_ci():
+    x = _walks(0.0, 2.0, 6) - 25.0 * TIMES[None, :] ** 2  # a = -50 mm/s²
+    est = transport(x[:100], TIMES, 2.0, n_resamples=500, seed=1)
+    assert est.v_status == "accelerating" and est.steady is False
+    assert np.isnan(est.v_lo) and np.isnan(est.v_hi) and np.isnan(est.Pe)
+    assert est.a_lo <= -50.0 <= est.a_hi and est.a_hi - est.a_lo < 1.0
+
+
+def test_a_steady_drift_is_ok_and_mirror_symmetry_is_by_construction():
+    from bbb.analysis.transport import SYMMETRY
+
+    x = _walks(3.0, 2.0, 5)[:100]
+    assert transport(x, TIMES, 2.0, n_resamples=300, seed=1).v_status == "ok"
+    assert transport(x, TIMES, 2.0, n_resamples=300, seed=1,
+                     pairing=SYMMETRY).v_status == "by construction"

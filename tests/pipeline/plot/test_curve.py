@@ -130,3 +130,22 @@ def test_drawing_into_a_given_axes_returns_its_figure():
     fig = Figure()
     ax = fig.add_subplot()
     assert plot_curve(reduced(), ax=ax) is fig and fig.axes[0] is ax
+
+
+def test_an_accelerating_conveyor_point_is_marked_on_the_v_curve(tmp_path):
+    """A real conveyor (tests/pipeline/conveyor.py) opened with its tables: the 80 Hz point,
+    whose drift accelerates, carries the triangle; the still 50 Hz one does not."""
+    import warnings
+
+    from pipeline.api import open_study
+
+    from ..conveyor import conveyor_store
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # zarr: no consolidated metadata
+        ds = open_study(conveyor_store(tmp_path / "conveyor.zarr"), reduced=True)
+    fig = plot_curve(ds, var="v")
+    (marks,) = _artists(fig, Line2D, "flag:steady").values()
+    assert marks.get_marker() == "^" and list(marks.get_xdata()) == [80.0]
+    assert _has_point(marks, 80.0, float(ds["v"].sel(frequency=80.0)))
+    assert "accelerating" in _legend(fig)

@@ -142,3 +142,15 @@ def test_drawing_into_given_axes_returns_their_figure():
     ax, ci_ax = fig.subplots(1, 2)
     assert plot_map(reduced(), ax=ax, ci_ax=ci_ax) is fig
     assert "ci" in _by_gid(fig, QuadMesh)
+
+
+def test_an_accelerating_cell_of_a_v_map_is_hatched_with_its_own_hatch():
+    ds = reduced(velocity=True)
+    ds["steady"] = (("frequency", "alpha"), np.ones(ds["v"].shape, dtype=bool),
+                    {"units": "", "long_name": "steady"})
+    ds = flag(flag(ds, "steady", frequency=70.0, alpha=0.8), "diffusive", frequency=62.0, alpha=0.8)
+    fig = plot_map(ds, var="v")
+    assert _hatched_cells(fig, "steady") == {_centre(ds, 70.0, 0.8)}
+    hatches = {c.get_gid(): c.get_hatch() for c in fig.findobj(PatchCollection)}
+    assert hatches["hatch:steady"] == "xx" and len(set(hatches.values())) == 2
+    assert "accelerating" in [t.get_text() for t in fig.axes[0].get_legend().get_texts()]

@@ -91,7 +91,8 @@ def test_parquet_tables_carry_units_and_the_store_provenance(reference, tables):
 def test_csv_holds_the_same_table_as_parquet(tables):
     pq = pd.read_parquet(tables / "diffusion.parquet")
     csv = pd.read_csv(tables / "diffusion.csv")
-    flags = {c: bool for c in ("ergodic", "families_agree", "eb_ok", "stationary")}
+    flags = {c: bool for c in ("ergodic", "families_agree", "eb_ok", "level_ok", "decay_ok",
+                                  "spread_ok", "stationary")}
     pd.testing.assert_frame_equal(pq.astype(flags), csv, check_exact=False, rtol=1e-12)
 
 

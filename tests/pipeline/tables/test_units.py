@@ -68,6 +68,7 @@ def test_a_column_without_a_unit_is_caught(tmp_path):
     ("Gamma", "1"), ("EB_decay_rest", "1"), ("CV2_D_lo", "1"), ("cv_max", "1"), ("n_moving", "1"),
     ("ln_mem_coll_up_hi", "1"), ("lam_move_tie", "1"), ("lam", "1/s"), ("lam_coll", "1"),
     ("collisions_per_s", "1/s"), ("f_dn", "Hz"), ("tau_coll", "s"), ("v_peak_lo", "mm/s"),
+    ("a_lo", "mm/s^2"), ("v_status", ""),
     ("D_status", ""), ("verdict", ""), ("ergodic", ""), ("lam_degenerate", ""), ("family", ""),
 ])
 def test_units_of_columns_and_column_families(column, expected):
@@ -81,7 +82,8 @@ def test_dimensionless_is_1_and_nothing_reads_as_dimensionless_by_a_blank():
     assert blank == sorted(["family", "initial", "D_status", "ergodic", "families_agree",
                             "eb_ok", "rule", "level_ok", "decay_ok", "spread_ok", "verdict",
                             "stop", "stationary", "v_by", "D_drift_status", "steady",
-                            "diffusive", "converged", "converged_coll", "still", "contact"])
+                            "diffusive", "v_status", "converged", "converged_coll", "still",
+                            "contact"])
 
 
 @pytest.fixture(scope="module")
