@@ -22,6 +22,7 @@ def markdown_table(rows: Sequence[Row], prefix: str = "", claim_header: str = "c
     L = [f"| # | {claim_header} | we measured | verdict | judged by | notes |",
          "| --- | --- | --- | --- | --- | --- |"]
     for i, r in enumerate(rows, 1):
-        L.append(f"| {r.id or f'{prefix}{i}'} | {md_cell(r.claim)} | {md_cell(r.measured)} | **{r.verdict}** | "
+        cid = r.id or f"{prefix}{i}"
+        L.append(f"| {cid} | {md_cell(r.claim)} | {md_cell(r.measured)} | **{r.verdict}** | "
                  f"{md_cell(r.judged_by)} | {md_cell(r.note)} |")
     return L

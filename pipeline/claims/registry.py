@@ -19,8 +19,8 @@ from __future__ import annotations
 import hashlib
 import json
 import math
-from dataclasses import replace
 from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import replace
 from pathlib import Path
 
 from .record import Claim, evaluate_claim

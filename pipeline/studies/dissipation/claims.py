@@ -73,7 +73,8 @@ from ...claims.record import Band, Claim, Measured, Part, Quantity, judge, measu
 from . import cases as _cases
 from .lines import cut, first_max_above, first_reaching, judged_lines, listed_alphas, onset
 
-__all__ = ["MAP", "LOCKING", "R25", "CUTS", "OWN_SEEDS_CUT", "ONSET_TOL", "LEVEL_SHARE", "P_TREND", "NEAR_ONSET",
+__all__ = ["MAP", "LOCKING", "R25", "CUTS", "OWN_SEEDS_CUT", "ONSET_TOL", "LEVEL_SHARE", "P_TREND",
+           "NEAR_ONSET",
            "BEYOND_MAX", "CUT_SHARE", "CLAIMS", "threshold_frequency", "cut_line"]
 
 MAP, LOCKING, R25 = "dissipation", "dissipation_locking", "dissipation_r25"

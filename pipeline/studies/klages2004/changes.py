@@ -49,8 +49,8 @@ def is_complete(report: str, headings: Sequence[str]) -> bool:
     first = report.split("\n## ", 1)[0]
     if "--fast" in first or "draft accuracy" in first:
         return False
-    have = {re.split(r"[:(]", h, 1)[0].strip() for h in report.splitlines() if h.startswith("## ")}
-    return all(re.split(r"[:(]", h, 1)[0].strip() in have for h in headings)
+    have = {re.split(r"[:(]", h, maxsplit=1)[0].strip() for h in report.splitlines() if h.startswith("## ")}
+    return all(re.split(r"[:(]", h, maxsplit=1)[0].strip() in have for h in headings)
 
 
 def _git(root: Path, *args: str) -> str | None:

@@ -183,8 +183,8 @@ def _cells(row: str) -> list[str]:
 
 
 def _kept_rows(report: str, rows) -> list:
-    """``rows`` with the rows of the claims in :data:`NEEDS_STORES` taken from ``report`` (the
-    report the stores wrote), cell for cell."""
+    """``rows`` with what was measured for the claims in :data:`NEEDS_STORES` (measured,
+    verdict, notes) taken from ``report``, the report the stores wrote."""
     from ...claims.record import Row
     from .claims import CLAIMS
 
@@ -195,7 +195,9 @@ def _kept_rows(report: str, rows) -> list:
             old[c[0]] = Row(c[1].replace("\\|", "|"), c[2].replace("\\|", "|"),
                             c[3].strip("*"), c[5].replace("\\|", "|"),
                             c[4].replace("\\|", "|"), c[0])
-    return [old.get(r.id, r) if r.id in keep else r for r in rows]
+    # the claim's text and rule are the code's; what was measured is the stores'
+    return [Row(r.claim, old[r.id].measured, old[r.id].verdict, old[r.id].note, r.judged_by, r.id)
+            if r.id in old else r for r in rows]
 
 
 def _replace_section(text: str, heading: str, lines: list[str]) -> str:
@@ -244,7 +246,7 @@ def rewrite_claim_sections(out_dir: str | os.PathLike, when: str | None = None) 
             "(`python -m pipeline.studies.klages2004.committed`), without the stores: the rows "
             "of " + ", ".join(f"claim {c.split(' ', 2)[1]}" for c in NEEDS_STORES.values())
             + " are the stores' and kept as the run wrote them.")
-    text = re.sub(r"\nClaims sections regenerated [^\n]*\n", "\n", text)
+    text = re.sub(r"\n\nClaims sections regenerated [^\n]*\n+", "\n\n", text)
     text = re.sub(r"(\nWritten [^\n]*\n)", lambda m: m.group(1) + "\n" + note + "\n", text,
                   count=1)
     text = text.split(f"\n{HEADING}", 1)[0].rstrip("\n") + "\n"

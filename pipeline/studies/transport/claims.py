@@ -133,7 +133,8 @@ SCENES = (MAP, SLIDING_MAP, REVERSAL_MAP)
 GEOMETRY = (("transport_t0", 0.0, 90.0), ("transport_t2", 2.0, 90.0),
             ("transport_t5", 5.0, 90.0), ("transport_p60", 0.0, 60.0),
             ("transport_p30", 0.0, 30.0))
-#: the map's other lines, floors both tilted and thrown: drawn, not judged
+#: the map's other lines, floors both tilted and thrown: judged by T3b only (the registered T3,
+#: T1, T2 and T4 read the five floors above)
 COMBINED_GEOMETRY = (("transport_t2_p60", 2.0, 60.0), ("transport_t2_p30", 2.0, 30.0),
                      ("transport_t5_p60", 5.0, 60.0), ("transport_t5_p30", 5.0, 30.0))
 HOPPING = tuple(s for s, _, _ in GEOMETRY)

@@ -43,7 +43,8 @@ from .signs import reversal_intervals, significant_signs, steady_rows
 __all__ = ["REVERSAL_MAP", "REVERSAL_TILT", "REVERSAL_THROWS", "REVERSAL_MODELS",
            "REVERSAL_LINES", "MODEL_LABELS", "HOPPING_CALIBRATION", "AIRBORNE_MIN", "F_STEP",
            "reversal_line", "line_label", "floor_label", "f_ranges", "throw_number_frequency", "airborne",
-           "hopping_boundary", "liftoff_boundary", "judge_boundary", "f_reversals", "throw_cuts", "throw_reversals"]
+           "hopping_boundary", "liftoff_boundary", "judge_boundary", "f_reversals", "throw_cuts",
+           "throw_reversals"]
 
 REVERSAL_MAP = "transport_reversal"
 REVERSAL_TILT = 2.0
