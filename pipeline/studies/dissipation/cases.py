@@ -8,6 +8,7 @@ import numpy as np
 import pandas as pd
 
 from ...claims.record import Case
+from .lines import threshold_frequency
 
 __all__ = ["ALPHAS", "F", "line", "dmap", "lock", "cut_table"]
 
@@ -38,8 +39,6 @@ def line(f_on: float, f_max: float, alpha: float, rel: float = 0.03,
 
 
 def _at(name: str):
-    from .claims import threshold_frequency
-
     return lambda a: float(np.ceil(threshold_frequency(name, a)))
 
 

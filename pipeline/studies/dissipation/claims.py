@@ -54,6 +54,10 @@ A6b             the cuts of A6 as what they are: the map's α = 0.7 and R = 25 l
                 test of the paper.
 A6c             the α = 0.7 cut with seeds of its own against Fig. 2 (the cuts rule): needs a
                 run of that line, not made yet ('not measured').
+
+Size: over 400 lines because a registered claim stays once judged: the frozen rules of
+A1, A2, A5, A6 and their measures sit beside the ids that supersede them (one study's claims, one
+module).
 """
 
 from __future__ import annotations
@@ -64,14 +68,33 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
-from bbb import Params
-from bbb.analysis.period1 import frequency_at, gamma_1, gamma_prime
 from bbb.analysis.stats.proportion import share_difference, wilson
 
 from ...claims.rank import rank_trend
 from ...claims.record import Band, Claim, Measured, Part, Quantity, judge, measure
-from . import cases as _cases
-from .lines import cut, first_max_above, first_reaching, judged_lines, listed_alphas, onset
+from .cases import (
+    cuts_cases,
+    cuts_consistency_cases,
+    ergodicity_cases,
+    ergodicity_null_cases,
+    first_max_cases,
+    loops_cases,
+    onset_level_cases,
+    onset_level_g1_cases,
+    onset_trend_cases,
+    onset_trend_g1_cases,
+    own_seed_cut_cases,
+)
+from .lines import (
+    THRESHOLDS,
+    cut,
+    first_max_above,
+    first_reaching,
+    judged_lines,
+    listed_alphas,
+    onset,
+    threshold_frequency,
+)
 
 __all__ = ["MAP", "LOCKING", "R25", "CUTS", "OWN_SEEDS_CUT", "ONSET_TOL", "LEVEL_SHARE", "P_TREND",
            "NEAR_ONSET",
@@ -91,14 +114,6 @@ CUT_SHARE = 0.95
 OWN_SEEDS_CUT = "figure2_own_seeds"
 VHO = (0.7, 60.0, 2.0)  # α, the paper's f, its tolerance (claim 5)
 _GOOD = ("agrees", "agrees within the CI")
-_THRESHOLDS = {"gamma_prime": ("Γ'", gamma_prime), "gamma_1": ("Γ₁", gamma_1)}
-
-
-def threshold_frequency(name: str, alpha, preset: str = "klages2004"):
-    """f (Hz) at which the preset's floor (A, g) reaches the threshold ``name`` (gamma_prime,
-    gamma_1) at restitution ``alpha``."""
-    p = Params.preset(preset, f=1.0)
-    return frequency_at(_THRESHOLDS[name][1](alpha), p.A, p.g)
 
 
 def _trend_part(label: str, x, y, sign: int = 0) -> Part:
@@ -122,7 +137,7 @@ def _listed(ctx) -> tuple[float, ...]:
 @measure("dissipation.onset_threshold")
 def onset_threshold(claim: Claim, ctx) -> Measured:
     name = claim.options["threshold"]
-    sym = _THRESHOLDS[name][0]
+    sym = THRESHOLDS[name][0]
     lines = _lines(ctx)
     if not lines:
         return Measured(missing="no D(f, α) map reduced")
@@ -223,7 +238,7 @@ def onset_level(claim: Claim, ctx) -> Measured:
     """Per judged line, the onset (with its CI) against f(Γ) ± ONSET_TOL; a listed line the
     map lacks is a part not measured.  The rank trend of the onset against f(Γ) is a note."""
     name = claim.options["threshold"]
-    sym = _THRESHOLDS[name][0]
+    sym = THRESHOLDS[name][0]
     lines = _lines(ctx)
     if not lines:
         return Measured(missing="no D(f, α) map reduced")
@@ -369,9 +384,9 @@ _FIRST = [
           Band(-math.inf, math.inf, "rule: D within the combined CIs at ≥ 95 % of the shared "
                "frequencies, resolved zeros at their scene's resolution")),
 ]
-_CASES = {"A1": _cases.onset_trend_cases, "A2": _cases.onset_trend_g1_cases,
-          "A3": _cases.first_max_cases, "A4": _cases.loops_cases, "A5": _cases.ergodicity_cases,
-          "A6": _cases.cuts_cases}
+_CASES = {"A1": onset_trend_cases, "A2": onset_trend_g1_cases,
+          "A3": first_max_cases, "A4": loops_cases, "A5": ergodicity_cases,
+          "A6": cuts_cases}
 _SCOPES = {"A4": {**_MAP_SCOPE, "scenes": [LOCKING]},
            "A6": {"scenes": [MAP, R25, "figure2", "figure2_matyas2004"],
                   "lines": {"figure2": "alpha = 0.7", "figure2_matyas2004": "alpha = 0.5 (R25)"},
@@ -383,13 +398,13 @@ CLAIMS[1:1] = [
           "from rest across dissipation, on every line", onset_level, MAP,
           Band(-math.inf, math.inf, _LEVEL_WHY.format(sym="Γ'")),
           options={"threshold": "gamma_prime"}, id="A1b", registered=_REG_NEW, supersedes="A1",
-          scope=_MAP_SCOPE, all_parts=True, cases=_cases.onset_level_cases)]
+          scope=_MAP_SCOPE, all_parts=True, cases=onset_level_cases)]
 CLAIMS[3:3] = [
     Claim("The flat-floor 1/1 orbit's existence threshold Γ₁(α) predicts the onset of "
           "diffusion from rest across dissipation, on every line", onset_level, MAP,
           Band(-math.inf, math.inf, _LEVEL_WHY.format(sym="Γ₁")),
           options={"threshold": "gamma_1"}, id="A2b", registered=_REG_NEW, supersedes="A2",
-          scope=_MAP_SCOPE, all_parts=True, cases=_cases.onset_level_g1_cases)]
+          scope=_MAP_SCOPE, all_parts=True, cases=onset_level_g1_cases)]
 CLAIMS += [
     Claim("Ergodicity breaks only next to the onset of diffusion, at every dissipation: more "
           "often than the rule's false positives inside the window, not beyond it",
@@ -400,11 +415,11 @@ CLAIMS += [
                "not above the null, and inside above beyond (each by Newcombe's interval of "
                "the difference); points without a verdict left out"),
           id="A5b", registered=_REG_NEW, supersedes="A5", scope=_MAP_SCOPE, all_parts=True,
-          cases=_cases.ergodicity_null_cases),
+          cases=ergodicity_null_cases),
     Claim("The maps' α = 0.7 and R = 25 lines repeat the committed Fig. 2 curves they share "
           "seeds and chunks with", cuts, MAP, Band(-math.inf, math.inf, _CUT_WHY),
           id="A6b", registered=_REG_NEW, supersedes="A6", scope=_SCOPES["A6"],
-          kind="consistency", cases=_cases.cuts_consistency_cases),
+          kind="consistency", cases=cuts_consistency_cases),
     Claim("The map's α = 0.7 line run with seeds of its own reproduces the committed Fig. 2 "
           "curve", cuts, MAP, Band(-math.inf, math.inf, _CUT_WHY),
           options={"cuts": (OWN_SEEDS_CUT,), "label": "α = 0.7, own seeds vs Fig. 2",
@@ -415,7 +430,7 @@ CLAIMS += [
           id="A6c", registered=_REG_NEW,
           scope={"scenes": [MAP, "figure2"], "lines": {"figure2": "alpha = 0.7, own seed"},
                  "families": ["rest"], "frequencies": "those both share"},
-          cases=_cases.own_seed_cut_cases),
+          cases=own_seed_cut_cases),
 ]
 CLAIMS.sort(key=lambda c: (int(c.id[1:].rstrip("bc")), c.id))
 

@@ -33,7 +33,7 @@ from ...claims.markdown import markdown_table
 __all__ = ["TABLE_FILES", "FLOAT_FORMAT", "CLAIMS_HEADING", "CLAIMS_INTRO", "NEEDS_STORES",
            "write_csv", "read_tables", "study_key", "study_file", "read_study_tables",
            "write_study_tables", "figure2_params", "claim_rows", "claim_sections",
-           "rewrite_claim_sections", "main"]
+           "rewrite_claim_sections", "summary_line", "main"]
 
 #: this study's tables (as write_report reads them) -> the CSV beside REPORT.md
 TABLE_FILES = {"figure2": "diffusion_figure2.csv", "ergodicity": "diffusion_ergodicity.csv",
@@ -176,6 +176,15 @@ def claim_sections(out_dir: str | os.PathLike, studies: Sequence[str] | None = N
     return sections
 
 
+def summary_line(rows: Sequence) -> str:
+    """'Summary: **agrees** 13 (#5, …); …' of the claims table, by registered id."""
+    by: dict[str, list[str]] = {}
+    for i, r in enumerate(rows, 1):
+        by.setdefault(r.verdict, []).append(r.id or str(i))
+    return "Summary: " + "; ".join(f"**{v}** {len(n)} (#{', #'.join(n)})"
+                                   for v, n in by.items()) + "."
+
+
 def _cells(row: str) -> list[str]:
     import re
 
@@ -227,7 +236,6 @@ def rewrite_claim_sections(out_dir: str | os.PathLike, when: str | None = None) 
 
     from ...workflow.scenes import ROOT
     from .changes import HEADING, changes_section, previous_report
-    from .report import summary_line
 
     path = Path(out_dir) / "REPORT.md"
     text = path.read_text(encoding="utf-8")

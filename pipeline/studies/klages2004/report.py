@@ -30,7 +30,7 @@ from ...claims.measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarit
 from ...claims.record import Row
 from ...tables.collisions import as_store
 from .claims import CLAIMS, evaluate  # evaluate: importable from here as before
-from .committed import CLAIMS_HEADING, CLAIMS_INTRO, claim_rows
+from .committed import CLAIMS_HEADING, CLAIMS_INTRO, claim_rows, summary_line
 from .measures import DEPTH_FRACTION, curve_extrema, curves, spiral_closeness
 
 __all__ = ["Row", "CLAIMS", "curve_extrema", "onset", "evaluate", "write_report",
@@ -212,15 +212,6 @@ CAPTIONS = {
         "(b) the refined D(f), 95 % CIs (grey), the 0.4 Hz grid (black), refined points "
         "(blue), the extrema with the interval each lies in (▲ max, ▼ min)."),
 }
-
-
-def summary_line(rows: Sequence[Row]) -> str:
-    """'Summary: **agrees** 13 (#5, …); …' of the claims table, by registered id."""
-    by: dict[str, list[str]] = {}
-    for i, r in enumerate(rows, 1):
-        by.setdefault(r.verdict, []).append(r.id or str(i))
-    return "Summary: " + "; ".join(f"**{v}** {len(n)} (#{', #'.join(n)})"
-                                   for v, n in by.items()) + "."
 
 
 def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],

@@ -40,7 +40,10 @@ from bbb.analysis.gk_contrast import Contrast, calibrated_rule, carrier, combine
 from ...claims.markdown import markdown_table
 from ...claims.measures import row_at
 from ...claims.record import Band, Claim, Measured, Part, Quantity, evaluate, measure
-from . import cases as _cases
+from .cases import (
+    carrier_cases,
+    lyapunov_cases,
+)
 
 __all__ = ["CLAIMS", "EXTREMA", "SIDES", "STEPS", "neighbour_moves", "report_lines",
            "side_contrast", "combine_both_sides"]
@@ -200,7 +203,7 @@ CLAIMS = [
     Claim(f"The {kind}imum of D at {f0:g} Hz: carried by the random walk (D_0) or by the "
           "memory (D_∞/D_0), against both grid neighbours", extremum_carrier, "mechanisms",
           Band(-math.inf, math.inf, _rule_why()), f0=f0, options={"kind": kind},
-          id=f"M{i}", registered=_REG_M, scope=_SCOPE, cases=_cases.carrier_cases(f0, kind))
+          id=f"M{i}", registered=_REG_M, scope=_SCOPE, cases=carrier_cases(f0, kind))
     for i, (f0, kind) in enumerate(EXTREMA, 1)
 ] + [
     Claim(f"The {kind}imum of D at {f0:g} Hz: carried by the random walk (D_0) or by the "
@@ -210,14 +213,14 @@ CLAIMS = [
                "required: a side or step not measured (not resolved) makes the claim so"),
           f0=f0, options={"kind": kind, "both_sides": True}, id=f"M{i}b",
           registered=_REG_NEW, supersedes=f"M{i}", scope=_SCOPE,
-          cases=_cases.carrier_cases(f0, kind, both=True))
+          cases=carrier_cases(f0, kind, both=True))
     for i, (f0, kind) in enumerate(EXTREMA, 1)
 ] + [
     Claim(f"λ is larger in the spiral regime (f ≥ {SPIRAL_FROM:g} Hz) than at the VHO "
           f"({VHO:g} Hz), for the particles that move", lyapunov_ratio, "mechanisms",
           Band(1.0, math.inf, "rule: ratio of the mean λ of moving particles over f ≥ 66 Hz "
                "to theirs at 60 Hz above 1"), f0=VHO, id="M6", registered=_REG_M6,
-          scope={**_SCOPE, "frequencies": "60 Hz and f ≥ 66 Hz"}, cases=_cases.lyapunov_cases),
+          scope={**_SCOPE, "frequencies": "60 Hz and f ≥ 66 Hz"}, cases=lyapunov_cases),
 ]
 CLAIMS.sort(key=lambda c: (int(c.id[1:].rstrip("b")), c.id))
 

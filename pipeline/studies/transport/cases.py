@@ -14,6 +14,7 @@ import pandas as pd
 from bbb.analysis.transport import SYMMETRY
 
 from ...claims.record import Case
+from .lines import CONVEYORS, GEOMETRIES, HOPPING, SLIDING
 
 __all__ = ["F", "vtable"]
 
@@ -37,8 +38,6 @@ def _lines(**tables) -> dict:
 
 
 def _conveyors(v, D=None) -> dict:
-    from .claims import CONVEYORS
-
     return _lines(**{sc: vtable(v, D) for sc in CONVEYORS})
 
 
@@ -52,8 +51,6 @@ def _rising(f):
 
 def no_current_cases() -> list[Case]:
     """T1's rule (mirror pairs read as 'agrees': the flaw T1b mends)."""
-    from .claims import HOPPING
-
     sc = HOPPING[0]
     return [Case("mirror pairs", _lines(**{sc: vtable(np.zeros(F.size), mirror=True)}), "agrees"),
             Case("independent particles, no current", _lines(**{sc: vtable(np.zeros(F.size))}),
@@ -64,8 +61,6 @@ def no_current_cases() -> list[Case]:
 
 def no_current_construction_cases() -> list[Case]:
     """T1b's rule."""
-    from .claims import HOPPING
-
     sc = HOPPING[0]
     return [Case("mirror pairs", _lines(**{sc: vtable(np.zeros(F.size), mirror=True)}),
                  "by construction"),
@@ -98,16 +93,12 @@ def reversal_f_cases() -> list[Case]:
 def _psi_only() -> dict:
     """Every conveyor line positive along f but the tilted lines at ψ = 90° negative: sign
     changes along ψ only (T3b's scope, not T3's)."""
-    from .claims import GEOMETRIES
-
     return _lines(**{sc: vtable(lambda f, s=(-2.0 if g["tilt"] and g["throw"] == 90 else 2.0):
                                 s + 0 * f) for sc, g in GEOMETRIES.items()})
 
 
 def reversal_cases() -> list[Case]:
     """T3b's rule: along f or ψ on every conveyor floor."""
-    from .claims import GEOMETRIES
-
     every = {sc: vtable(_reversing) for sc in GEOMETRIES}
     none = {sc: vtable(lambda f: 2.0 + 0 * f) for sc in GEOMETRIES}
     return [Case("v changes sign along f", _lines(**every), "agrees"),
@@ -128,8 +119,6 @@ def d_extrema_cases() -> list[Case]:
 
 def sliding_cases() -> list[Case]:
     """T5's rule: below lift-off no current under stick, one under Coulomb friction."""
-    from .claims import SLIDING
-
     (stick, _, _), (coul, _, _) = SLIDING
     ok = _lines(**{stick: vtable(np.zeros(F.size)), coul: vtable(lambda f: 0.05 * f)})
     both = _lines(**{stick: vtable(lambda f: 0.05 * f), coul: vtable(np.zeros(F.size))})

@@ -72,6 +72,10 @@ T6b             the sliding/hopping boundary by lift-offs per floor period (a li
 
 k = 2 v_y⁺ f / g needs post-collision states, which these positions-only scenes do not
 record: the extrema are reported by frequency.
+
+Size: over 400 lines because a registered claim stays once judged: the frozen rules of
+T1, T3, T6 and their measures sit beside the ids that supersede them (one study's claims, one
+module).
 """
 
 from __future__ import annotations
@@ -101,7 +105,17 @@ from ...claims.record import (
     measure,
 )
 from ..map_lines import split_lines
-from . import cases as _cases
+from .cases import (
+    d_extrema_cases,
+    hopping_cases,
+    liftoff_cases,
+    no_current_cases,
+    no_current_construction_cases,
+    reversal_cases,
+    reversal_f_cases,
+    sliding_cases,
+    v_extrema_cases,
+)
 from .reversal import (
     AIRBORNE_MIN,
     F_STEP,
@@ -125,38 +139,21 @@ __all__ = ["SCENES", "MAP", "SLIDING_MAP", "LINES", "HOPPING", "COMBINED", "CONV
            "LABELS", "SLIDING", "SLIDING_LABELS", "SLIDING_GEOMETRY", "GEOMETRIES",
            "line_tables", "sliding_liftoff", "CLAIMS", "report_lines"]
 
-#: the map scenes: tilt x throw (hopping), and the sliding floor's contact x mu
-MAP, SLIDING_MAP = "transport", "transport_sliding"
-SCENES = (MAP, SLIDING_MAP, REVERSAL_MAP)
-#: (line, tilt φ °, throw ψ °) of the map judged by the claims; the first one is the paper's
-#: symmetric floor.  A line's name keys its tables (``<line>_diffusion``, :func:`line_tables`)
-GEOMETRY = (("transport_t0", 0.0, 90.0), ("transport_t2", 2.0, 90.0),
-            ("transport_t5", 5.0, 90.0), ("transport_p60", 0.0, 60.0),
-            ("transport_p30", 0.0, 30.0))
-#: the map's other lines, floors both tilted and thrown: judged by T3b only (the registered T3,
-#: T1, T2 and T4 read the five floors above)
-COMBINED_GEOMETRY = (("transport_t2_p60", 2.0, 60.0), ("transport_t2_p30", 2.0, 30.0),
-                     ("transport_t5_p60", 5.0, 60.0), ("transport_t5_p30", 5.0, 30.0))
-HOPPING = tuple(s for s, _, _ in GEOMETRY)
-COMBINED = tuple(s for s, _, _ in COMBINED_GEOMETRY)
-CONVEYORS = HOPPING[1:]
-LABELS = {s: f"φ = {t:g}°, ψ = {p:g}°" for s, t, p in GEOMETRY + COMBINED_GEOMETRY}
-#: the sliding regime: one floor (level, thrown at ψ = 30°, the paper's arcs) from low Γ to
-#: above lift-off, under (line, contact model, μ)
-SLIDING_GEOMETRY = {"tilt": 0.0, "throw": 30.0}
-SLIDING = (("transport_sliding_stick", "stick", 0.0),
-           ("transport_sliding_coulomb", "coulomb", 0.3))
-SLIDING_LABELS = {"transport_sliding_stick": "stick",
-                  "transport_sliding_coulomb": "Coulomb, μ = 0.3"}
-#: {line: its grid values} of the maps transport and transport_sliding (transport_reversal's:
-#: reversal.REVERSAL_LINES)
-LINES = {**{s: {"tilt": t, "throw": p} for s, t, p in GEOMETRY + COMBINED_GEOMETRY},
-         **{s: {"contact": c, "mu": mu} for s, c, mu in SLIDING}}
-#: {line: its floor and driving (tilt, throw; contact, mu where the map has them)}: the
-#: conveyor lines claim T3 judges (every line of the maps transport and transport_reversal but
-#: the mirror-symmetric φ = 0°, ψ = 90°)
-GEOMETRIES = {**{s: {"tilt": t, "throw": p} for s, t, p in GEOMETRY[1:] + COMBINED_GEOMETRY},
-              **REVERSAL_LINES}
+from .lines import (  # noqa: E402  (the lines, importable from here as before)
+    COMBINED,
+    CONVEYORS,
+    GEOMETRIES,
+    HOPPING,
+    LABELS,
+    LINES,
+    MAP,
+    SCENES,
+    SLIDING,
+    SLIDING_GEOMETRY,
+    SLIDING_LABELS,
+    SLIDING_MAP,
+)
+
 D_MIN = 1e-6  # mm²/s
 #: the mirror-pair benchmark: variance saved per scene, T1's false alarms without pairs
 MIRROR: dict = json.loads(resources.files(__package__).joinpath("mirror.json")
@@ -462,22 +459,22 @@ CLAIMS = [
                f"minus the f of Γ_v = 1 lies within ± one frequency step ({F_STEP:g} Hz)",
                "Hz")),
 ]
-_META = [("T1", _REG_T, _SCOPE_T1, _cases.no_current_cases, ""),
+_META = [("T1", _REG_T, _SCOPE_T1, no_current_cases, ""),
          ("T2", _REG_T, {**_SCOPE_MAP, "lines": {s: LINES[s] for s in CONVEYORS}},
-          _cases.v_extrema_cases, ""),
-         ("T3", _REG_T, _SCOPE_T3, _cases.reversal_f_cases, ""),
-         ("T3b", _REG_T6, _SCOPE_T3B, _cases.reversal_cases, "T3"),
+          v_extrema_cases, ""),
+         ("T3", _REG_T, _SCOPE_T3, reversal_f_cases, ""),
+         ("T3b", _REG_T6, _SCOPE_T3B, reversal_cases, "T3"),
          ("T4", _REG_T, {**_SCOPE_MAP, "lines": {s: LINES[s] for s in CONVEYORS}},
-          _cases.d_extrema_cases, ""),
-         ("T5", _REG_T5, _SCOPE_SLIDING, _cases.sliding_cases, ""),
-         ("T6", _REG_T6, _SCOPE_REV, _cases.hopping_cases, "")]
+          d_extrema_cases, ""),
+         ("T5", _REG_T5, _SCOPE_SLIDING, sliding_cases, ""),
+         ("T6", _REG_T6, _SCOPE_REV, hopping_cases, "")]
 CLAIMS = [replace(c, id=i, registered=r, scope=sc, cases=cs, supersedes=sup)
           for c, (i, r, sc, cs, sup) in zip(CLAIMS, _META, strict=True)]
 CLAIMS[1:1] = [
     Claim("Mirror symmetry: a level floor vibrated vertically carries no current", no_current,
           HOPPING[0], Band(0.0, 0.0, _T1_WHY), options={"construction": True}, id="T1b",
           registered=_REG_NEW, supersedes="T1", scope=_SCOPE_T1,
-          cases=_cases.no_current_construction_cases)]
+          cases=no_current_construction_cases)]
 CLAIMS.append(
     Claim("Conveyor theory's sliding/hopping boundary lies at the throw number Γ_v = Γ sin ψ / "
           "cos φ = 1 (Sloot & Kruyt 1996), hopping counted by lift-offs", liftoff_vs_throw_number,
@@ -487,7 +484,7 @@ CLAIMS.append(
                    f"of Γ_v = 1 within ± one frequency step ({F_STEP:g} Hz); a line without "
                    "counters: not measured", "Hz"),
           id="T6b", registered=_REG_NEW, supersedes="T6", scope=_SCOPE_REV, all_parts=True,
-          cases=_cases.liftoff_cases))
+          cases=liftoff_cases))
 
 
 def line_tables(tables) -> dict[str, pd.DataFrame]:
