@@ -75,7 +75,11 @@ def test_a_draft_or_a_report_without_a_claims_section_is_not_complete():
 
     text = REPORT.read_text(encoding="utf-8")
     headings = ["## Claims", "## Transport on a vibro-conveyor (scenes …)"]
-    assert is_complete(text, headings)
+    made = text.replace(next(line for line in text.splitlines()
+                             if line.startswith("Claims sections regenerated")), "")
+    assert is_complete(made, headings)
+    assert not is_complete(text, headings)  # its claims sections regenerated from the tables
+    text = made
     assert not is_complete(text.replace("## Transport on", "## Conveyors on"), headings)
     assert not is_complete(text.replace("make_figures`", "make_figures --fast`", 1), headings)
 
