@@ -17,11 +17,12 @@ def md_cell(text) -> str:
 
 def markdown_table(rows: Sequence[Row], prefix: str = "", claim_header: str = "claim"
                    ) -> list[str]:
-    """The claims table of a REPORT section: header lines and one row per claim, numbered
-    ``prefix`` + 1, 2, ... (e.g. "M1")."""
+    """The claims table of a REPORT section: header lines and one row per claim, under its
+    registered id, else numbered ``prefix`` + 1, 2, ... (e.g. "M1")."""
     L = [f"| # | {claim_header} | we measured | verdict | judged by | notes |",
          "| --- | --- | --- | --- | --- | --- |"]
     for i, r in enumerate(rows, 1):
-        L.append(f"| {prefix}{i} | {md_cell(r.claim)} | {md_cell(r.measured)} | **{r.verdict}** | "
+        cid = r.id or f"{prefix}{i}"
+        L.append(f"| {cid} | {md_cell(r.claim)} | {md_cell(r.measured)} | **{r.verdict}** | "
                  f"{md_cell(r.judged_by)} | {md_cell(r.note)} |")
     return L

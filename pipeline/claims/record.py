@@ -16,11 +16,28 @@ inconclusive           the value lies outside the band, but its CI reaches into 
 disagrees              the whole CI lies outside the band (or the feature is not found)
 partly                 several parts: some agree and some do not, or only a curve other
                        than the claim's main one agrees
-not measured           the table the claim needs is missing
+not measured           the table the claim needs is missing, or (a rule stated over all
+                       its parts, :attr:`Claim.all_parts`) one of its parts is
+=====================  ===================================================================
+
+Two further kinds of row are never 'agrees' or 'disagrees':
+
+=====================  ===================================================================
+consistent /           a claim of kind "consistency" (:attr:`Claim.kind`): a result compared
+inconsistent           with itself (shared seeds or chunks) -- the rule above, read as a
+                       check of the pipeline, not a test of the paper
+by construction        a claim that holds by the design of the ensemble (a measure returns
+                       it, its note saying why)
 =====================  ===================================================================
 
 A quantity without a CI (lo = hi = value) is judged by its value alone, and the report says
 "no CI".  Several parts are combined by :func:`combine`.
+
+Each claim is registered (:mod:`.registry`): an ``id``, its ``scope`` and the commit it was
+``registered`` at; once judged on committed data its rule and scope are frozen, and a changed
+rule or a widened scope is a new id that ``supersedes`` the old one.  ``cases`` names the
+provider of its synthetic cases (:class:`Case`), with which the registry's test turns it each
+way.
 """
 
 from __future__ import annotations
@@ -29,11 +46,15 @@ import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 
-__all__ = ["VERDICTS", "Quantity", "Band", "Part", "Measured", "Claim", "Row", "Measure",
-           "measure", "judge", "combine", "evaluate"]
+__all__ = ["VERDICTS", "KINDS", "CONSISTENT", "INCONSISTENT", "BY_CONSTRUCTION", "Quantity",
+           "Band", "Part", "Measured", "Claim", "Case", "Row", "Measure", "measure", "judge",
+           "combine", "evaluate"]
 
+CONSISTENT, INCONSISTENT, BY_CONSTRUCTION = "consistent", "inconsistent", "by construction"
 VERDICTS = ("agrees", "agrees within the CI", "inconclusive", "partly", "disagrees",
-            "not measured")
+            "not measured", CONSISTENT, INCONSISTENT, BY_CONSTRUCTION)
+#: what a claim is: a measurement of the paper's claim, or a check of a result against itself
+KINDS = ("measurement", "consistency")
 _POSITIVE = ("agrees", "agrees within the CI")
 #: a measure: (claim, ctx) -> Measured (ctx: the tables, stores, curves, ... it reads)
 Measure = Callable[["Claim", Mapping], "Measured"]
@@ -128,6 +149,16 @@ class Claim:
     note     -- a fixed note shown whatever the verdict
     explain  -- optional callable(ctx) -> str: an explanation added when the verdict is not
                 'agrees'
+    id       -- its registered id ("5", "M2b", "T3"); a changed rule or scope is a new id
+    scope    -- what it is judged on: {"scenes": ..., "lines": ..., "families": ...,
+                "frequencies": ...} (plain data, part of the frozen rule)
+    registered -- "<date> <commit>" of the commit that registered it
+    supersedes -- the id of the claim whose rule or scope this one changes ('' for none)
+    kind     -- "measurement", or "consistency" (a result compared with itself: its verdict
+                is 'consistent' / 'inconsistent', never 'agrees' / 'disagrees')
+    all_parts -- the rule is stated over all its parts (both sides, every line): a part not
+                measured makes the claim 'not measured'
+    cases    -- its synthetic-case provider: () -> [Case, ...] (the registry's test)
     """
 
     text: str
@@ -140,6 +171,13 @@ class Claim:
     options: Mapping = field(default_factory=dict)
     note: str = ""
     explain: Callable[[Mapping], str] | None = None
+    id: str = ""
+    scope: Mapping = field(default_factory=dict)
+    registered: str = ""
+    supersedes: str = ""
+    kind: str = "measurement"
+    all_parts: bool = False
+    cases: Callable[[], Sequence[Case]] | None = None
 
     @property
     def quantity(self) -> str:
@@ -148,15 +186,35 @@ class Claim:
 
 
 @dataclass(frozen=True)
+class Case:
+    """A synthetic input of a claim with the verdict it must give.
+
+    ctx      -- what the claim's measure reads (as :func:`evaluate` would pass it)
+    verdict  -- the verdict the rule must give on it
+    perturbs -- the name of the case this one perturbs: its verdict must differ from that
+                case's (e.g. an absurd threshold that must turn a claim to 'disagrees')
+    options  -- settings merged into the claim's options for this case only (a perturbed
+                threshold)
+    """
+
+    name: str
+    ctx: Mapping
+    verdict: str
+    perturbs: str = ""
+    options: Mapping = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
 class Row:
     """One claim in the report: what the paper says, what we measured, the verdict, the
-    tolerance it was judged by (and why), a plain note."""
+    tolerance it was judged by (and why), a plain note; its registered id and registration."""
 
     claim: str
     measured: str
     verdict: str
     note: str = ""
     judged_by: str = ""
+    id: str = ""
 
 
 def measure(name: str):
@@ -220,8 +278,12 @@ def evaluate_claim(claim: Claim, ctx: Mapping) -> Row:
     band = claim.band
     judged_by = ("" if band is None else f"{band.text()}: {band.why}" if band.text()
                  else band.why)
+    text = _registered_text(claim)
+    if claim.kind == "consistency":
+        judged_by = ("consistency check (a result compared with itself), not a test of the "
+                     "claim: " + judged_by)
     if m.missing:
-        return Row(claim.text, m.missing, "not measured", claim.note, judged_by)
+        return Row(text, m.missing, "not measured", claim.note, judged_by, claim.id)
     texts, main_v, other_v, flips = [], [], [], []
     for p in m.parts:
         b = p.band or band
@@ -241,13 +303,26 @@ def evaluate_claim(claim: Claim, ctx: Mapping) -> Row:
         verdict = combine(main_v) if main_v else "disagrees"
         if verdict not in _POSITIVE and any(v in _POSITIVE for v in other_v):
             verdict = "partly"
+        if claim.all_parts and "not measured" in main_v + other_v:
+            verdict = "not measured"
+    if claim.kind == "consistency" and verdict != "not measured":
+        verdict = CONSISTENT if verdict in _POSITIVE else INCONSISTENT
     notes = [claim.note, m.note]
     if flips:
         notes.append("The verdict flips inside the CI: " + "; ".join(flips) + ".")
     if verdict != "agrees" and claim.explain is not None:
         notes.append(claim.explain(ctx))
     measured = "; ".join(t for t in texts + [m.text] if t)
-    return Row(claim.text, measured, verdict, " ".join(n for n in notes if n).strip(), judged_by)
+    return Row(text, measured, verdict, " ".join(n for n in notes if n).strip(), judged_by,
+               claim.id)
+
+
+def _registered_text(claim: Claim) -> str:
+    """The claim's text with its registration, and the id it supersedes."""
+    if not claim.registered:
+        return claim.text
+    after = f"; supersedes {claim.supersedes}" if claim.supersedes else ""
+    return f"{claim.text} (registered {claim.registered}{after})"
 
 
 def evaluate(claims: Sequence[Claim], ctx: Mapping) -> list[Row]:

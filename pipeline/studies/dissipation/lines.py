@@ -15,14 +15,26 @@ import math
 import numpy as np
 import pandas as pd
 
+from bbb import Params
+from bbb.analysis.period1 import frequency_at, gamma_1, gamma_prime
+
 from ...claims.measures import grid_step, onset_ci
 from ...claims.record import Quantity
 from ..klages2004.measures import curve_extrema
 
-__all__ = ["COLS", "listed_alphas", "judged_lines", "onset", "first_max_above", "first_reaching",
-           "cut"]
+__all__ = ["COLS", "THRESHOLDS", "threshold_frequency", "listed_alphas", "judged_lines", "onset",
+           "first_max_above", "first_reaching", "cut"]
 
 COLS = ("D", "D_lo", "D_hi")
+#: the flat-floor thresholds the onset is judged against: name -> (symbol, Γ(α))
+THRESHOLDS = {"gamma_prime": ("Γ'", gamma_prime), "gamma_1": ("Γ₁", gamma_1)}
+
+
+def threshold_frequency(name: str, alpha, preset: str = "klages2004"):
+    """f (Hz) at which the preset's floor (A, g) reaches the threshold ``name`` (gamma_prime,
+    gamma_1) at restitution ``alpha``."""
+    p = Params.preset(preset, f=1.0)
+    return frequency_at(THRESHOLDS[name][1](alpha), p.A, p.g)
 
 
 def listed_alphas(scene: str = "dissipation") -> tuple[float, ...]:

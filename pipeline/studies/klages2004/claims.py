@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
+from dataclasses import replace
 
 import numpy as np
 import pandas as pd
@@ -144,7 +145,7 @@ def _ext(kind: str, f0: float, text: str, window: float = 2.0, why: str = _AROUN
 
 
 #: the paper's claims in its order
-CLAIMS: list[Claim] = [
+_PAPER: list[Claim] = [
     Claim("Onset of diffusion around f = 50", onset_measure, "figure2",
           Band.around(50.0, 2.5, "'around f = 50', read off the paper's Fig. 2; ± 2.5 Hz as "
                       "set for the first report (half the 5 Hz between the named 50 and 55)",
@@ -201,6 +202,16 @@ CLAIMS: list[Claim] = [
                "resolution shows (a D(f) smooth on the 0.4 Hz scale gives 0; set before the "
                "data)", "extrema")),
 ]
+#: the commit each claim first appeared at (git log -S of its text)
+_REGISTERED = {**{i: "2026-11-22 7c3ea53" for i in (*range(1, 11), 15, 16, 17, 18)},
+               **{i: "2026-11-23 ac62bc4" for i in (11, 12, 13, 14)}, 19: "2026-11-23 8faaa93"}
+#: the paper's claims, registered as "1" … "19" (their numbers in the report)
+CLAIMS: list[Claim] = [
+    replace(c, id=str(i), registered=_REGISTERED[i],
+            scope={"scenes": [c.scene], "families": [c.family],
+                   "frequencies": (f"{c.f0:g} ± {c.window:g} Hz" if math.isfinite(c.f0)
+                                   else "the scene's")})
+    for i, c in enumerate(_PAPER, 1)]
 
 
 def evaluate(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str] | None = None,

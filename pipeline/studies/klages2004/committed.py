@@ -30,9 +30,10 @@ import pandas as pd
 
 from ...claims.markdown import markdown_table
 
-__all__ = ["TABLE_FILES", "FLOAT_FORMAT", "CLAIMS_HEADING", "write_csv", "read_tables",
-           "study_key", "study_file", "read_study_tables", "write_study_tables", "figure2_params",
-           "claim_rows", "claim_sections"]
+__all__ = ["TABLE_FILES", "FLOAT_FORMAT", "CLAIMS_HEADING", "CLAIMS_INTRO", "NEEDS_STORES",
+           "write_csv", "read_tables", "study_key", "study_file", "read_study_tables",
+           "write_study_tables", "figure2_params", "claim_rows", "claim_sections",
+           "rewrite_claim_sections", "summary_line", "main"]
 
 #: this study's tables (as write_report reads them) -> the CSV beside REPORT.md
 TABLE_FILES = {"figure2": "diffusion_figure2.csv", "ergodicity": "diffusion_ergodicity.csv",
@@ -43,8 +44,33 @@ TABLE_FILES = {"figure2": "diffusion_figure2.csv", "ergodicity": "diffusion_ergo
                "protocol_verdicts": "protocol_verdicts.csv"}
 #: every committed table keeps six significant digits
 FLOAT_FORMAT = "%.6g"
-#: the heading of this study's claims section in REPORT.md
+#: the heading of this study's claims section in REPORT.md, and the paragraph under it
 CLAIMS_HEADING = "## Claims"
+CLAIMS_INTRO = (
+    "Each measured number carries its 95 % CI; each claim is judged against the tolerance "
+    "band in the 'judged by' column, with the reason for its width. Verdicts: **agrees** "
+    "(the whole CI inside the band), **agrees within the CI** (the value inside, the CI "
+    "reaching beyond an edge: the verdict flips inside the CI), **inconclusive** (the "
+    "value outside, the CI reaching in), **disagrees** (the whole CI outside, or the "
+    "feature not found), **partly** (some parts agree, or only a curve other than the "
+    "claim's main one), **not measured** (a table missing; for a rule stated over all its "
+    "parts, a part missing). Two kinds of row are never agrees or disagrees: **consistent** / "
+    "**inconsistent** (a result compared with itself, e.g. runs sharing seeds and chunks: a "
+    "check of the pipeline, not a test of the paper) and **by construction** (true by the "
+    "design of the ensemble). A quantity shown with '(no CI)' is judged by its value alone. "
+    "⚠ marks a D that depends on the run length (stationarity below). Every claim is "
+    "registered with its id, rule, scope and commit (pipeline/studies/registry.py); once "
+    "judged its rule and scope are frozen, and a changed rule or widened scope is a new id "
+    "(T3 → T3b) judged beside the old one.")
+#: claims whose measure reads a store, not a committed table, and why: regenerated from the
+#: committed tables alone their rows are kept from the report the stores wrote
+NEEDS_STORES = {
+    "klages2004.spiral_approx": (
+        "claim 15 reads the post-collision states of the figure3 and locking stores (distances "
+        "of every state to the curve of Eqs. (8)-(9)), which are not committed; its measure "
+        "(pipeline/studies/klages2004/measures.py) would have to read a table of those "
+        "distances instead"),
+}
 
 
 def write_csv(df: pd.DataFrame, path: str | os.PathLike) -> Path:
@@ -148,3 +174,112 @@ def claim_sections(out_dir: str | os.PathLike, studies: Sequence[str] | None = N
             elif heading is not None:
                 sections[heading].append(line)
     return sections
+
+
+def summary_line(rows: Sequence) -> str:
+    """'Summary: **agrees** 13 (#5, …); …' of the claims table, by registered id."""
+    by: dict[str, list[str]] = {}
+    for i, r in enumerate(rows, 1):
+        by.setdefault(r.verdict, []).append(r.id or str(i))
+    return "Summary: " + "; ".join(f"**{v}** {len(n)} (#{', #'.join(n)})"
+                                   for v, n in by.items()) + "."
+
+
+def _cells(row: str) -> list[str]:
+    import re
+
+    return [c.strip() for c in re.split(r"(?<!\\)\|", row.strip())[1:-1]]
+
+
+def _kept_rows(report: str, rows) -> list:
+    """``rows`` with what was measured for the claims in :data:`NEEDS_STORES` (measured,
+    verdict, notes) taken from ``report``, the report the stores wrote."""
+    from ...claims.record import Row
+    from .claims import CLAIMS
+
+    keep = {c.id for c in CLAIMS if c.quantity in NEEDS_STORES}
+    old = {}
+    for line in report.splitlines():
+        if line.startswith("| ") and (c := _cells(line)) and c[0] in keep and len(c) == 6:
+            old[c[0]] = Row(c[1].replace("\\|", "|"), c[2].replace("\\|", "|"),
+                            c[3].strip("*"), c[5].replace("\\|", "|"),
+                            c[4].replace("\\|", "|"), c[0])
+    # the claim's text and rule are the code's; what was measured is the stores'
+    return [Row(r.claim, old[r.id].measured, old[r.id].verdict, old[r.id].note, r.judged_by, r.id)
+            if r.id in old else r for r in rows]
+
+
+def _replace_section(text: str, heading: str, lines: list[str]) -> str:
+    """``text`` with the section under ``heading`` (up to the next '## ' heading) replaced by
+    ``lines``; appended before the section of changes if it is not there."""
+    from .changes import HEADING
+
+    body = "\n".join([heading, *lines]).rstrip("\n") + "\n\n"
+    start = text.find(f"\n{heading}\n")
+    if start < 0:
+        at = text.find(f"\n{HEADING}")
+        at = len(text) if at < 0 else at + 1
+        return text[:at] + body + text[at:]
+    start += 1
+    end = text.find("\n## ", start + len(heading))
+    end = len(text) if end < 0 else end + 1
+    return text[:start] + body + text[end:]
+
+
+def rewrite_claim_sections(out_dir: str | os.PathLike, when: str | None = None) -> Path:
+    """Rewrite every claims section of ``<out_dir>/REPORT.md`` from the committed tables beside
+    it (:func:`claim_sections`), the rows of :data:`NEEDS_STORES` kept from it, and its
+    section of changes against :func:`~.changes.previous_report`; the rest of the report (runs,
+    parameters, figures) is the run's and stays.  Returns the path."""
+    import datetime as dt
+    import re
+
+    from ...workflow.scenes import ROOT
+    from .changes import HEADING, changes_section, previous_report
+
+    path = Path(out_dir) / "REPORT.md"
+    text = path.read_text(encoding="utf-8")
+    sections = claim_sections(out_dir)
+    rows, _ = claim_rows(read_tables(out_dir))
+    rows = _kept_rows(text, rows)
+    sections[CLAIMS_HEADING] = ["", CLAIMS_INTRO, "",
+                                *markdown_table(rows, claim_header="the paper says"), "",
+                                summary_line(rows)]
+    headings = list(sections)
+    previous, against = previous_report(out_dir, ROOT, headings)
+    for heading, lines in sections.items():
+        text = _replace_section(text, heading, lines)
+    when = when or dt.datetime.now(dt.UTC).isoformat(timespec="seconds")
+    note = (f"Claims sections regenerated {when} from the committed tables beside this report "
+            "(`python -m pipeline.studies.klages2004.committed`), without the stores: the rows "
+            "of " + ", ".join(f"claim {c.split(' ', 2)[1]}" for c in NEEDS_STORES.values())
+            + " are the stores' and kept as the run wrote them.")
+    text = re.sub(r"\n\nClaims sections regenerated [^\n]*\n+", "\n\n", text)
+    text = re.sub(r"(\nWritten [^\n]*\n)", lambda m: m.group(1) + "\n" + note + "\n", text,
+                  count=1)
+    text = text.split(f"\n{HEADING}", 1)[0].rstrip("\n") + "\n"
+    written = re.search(r"^Written (\S+) by", previous or "", re.M)
+    text += "\n".join(changes_section(previous, text, written and written.group(1), against)) + "\n"
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m pipeline.studies.klages2004.committed [--out DIR]``: rewrite the claims
+    sections of DIR/REPORT.md (default figures/) from the committed tables."""
+    import argparse
+    import sys
+
+    ap = argparse.ArgumentParser(prog="python -m pipeline.studies.klages2004.committed",
+                                 description=main.__doc__.split("\n")[0])
+    ap.add_argument("--out", default="figures", help="the folder of REPORT.md and its tables")
+    a = ap.parse_args(argv)
+    if not (Path(a.out) / "REPORT.md").is_file():
+        print(f"no REPORT.md in {a.out}: make_figures writes it first", file=sys.stderr)
+        return 2
+    print(rewrite_claim_sections(a.out))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

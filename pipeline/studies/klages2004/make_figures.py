@@ -75,8 +75,9 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     from ...tables.collisions import locking_table
     from ...tables.reduce import reduce_store
     from . import figures as fg
-    from .changes import changes_section
+    from .changes import changes_section, previous_report
     from .committed import (
+        CLAIMS_HEADING,
         TABLE_FILES,
         read_study_tables,
         read_tables,
@@ -173,8 +174,8 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     readme = ROOT / "README.md"
     if out.resolve() == (ROOT / "figures").resolve() and readme.is_file():
         update_readme(readme, log)  # the committed figures: the README's table of run times
-    previous = out / "REPORT.md"
-    previous = previous.read_text(encoding="utf-8") if previous.is_file() else None
+    headings = [CLAIMS_HEADING] + [h for h in extra_lines if h.startswith("## ")]
+    previous, against = previous_report(out, ROOT, headings)
     report = write_report(out, stores=stores, tables=read_tables(out), figures=paths,
                           run_log=log, captions=captions)
     if extra_lines:
@@ -182,7 +183,7 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
             fh.write("\n".join(extra_lines) + "\n")
     written = re.search(r"^Written (\S+) by", previous or "", re.M)
     changes = changes_section(previous, report.read_text(encoding="utf-8"),
-                              written and written.group(1))
+                              written and written.group(1), against)
     with open(report, "a", encoding="utf-8") as fh:
         fh.write("\n".join(changes) + "\n")
     echo(f"figures: {', '.join(str(p) for p in paths if p.suffix == '.png')}")

@@ -30,11 +30,11 @@ from ...claims.measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarit
 from ...claims.record import Row
 from ...tables.collisions import as_store
 from .claims import CLAIMS, evaluate  # evaluate: importable from here as before
-from .committed import CLAIMS_HEADING, claim_rows
+from .committed import CLAIMS_HEADING, CLAIMS_INTRO, claim_rows, summary_line
 from .measures import DEPTH_FRACTION, curve_extrema, curves, spiral_closeness
 
 __all__ = ["Row", "CLAIMS", "curve_extrema", "onset", "evaluate", "write_report",
-           "spiral_closeness"]
+           "spiral_closeness", "summary_line"]
 
 _fmt_d = fmt_d
 _row_at = row_at
@@ -239,21 +239,9 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
     if run_log and "wall_s" in run_log:
         L.append(f"\nWall time of the runs and reductions behind it: {run_log['wall_s']:.0f} s "
                  f"({run_log['wall_s'] / 60:.1f} min; per scene below).")
-    L += ["", CLAIMS_HEADING, "",
-          "Each measured number carries its 95 % CI; each claim is judged against the tolerance "
-          "band in the 'judged by' column, with the reason for its width. Verdicts: **agrees** "
-          "(the whole CI inside the band), **agrees within the CI** (the value inside, the CI "
-          "reaching beyond an edge: the verdict flips inside the CI), **inconclusive** (the "
-          "value outside, the CI reaching in), **disagrees** (the whole CI outside, or the "
-          "feature not found), **partly** (some parts agree, or only a curve other than the "
-          "claim's main one), **not measured**. A quantity shown with '(no CI)' is judged by "
-          "its value alone. ⚠ marks a D that depends on the run length (stationarity below).",
+    L += ["", CLAIMS_HEADING, "", CLAIMS_INTRO,
           ""] + markdown_table(rows, claim_header="the paper says")
-    by: dict[str, list[str]] = {}
-    for i, r in enumerate(rows, 1):
-        by.setdefault(r.verdict, []).append(str(i))
-    L += ["", "Summary: " + "; ".join(f"**{v}** {len(n)} (#{', #'.join(n)})" for v, n in by.items())
-          + "."]
+    L += ["", summary_line(rows)]
     L += ["", "## Significant extrema of D(f), located by `bbb.analysis.extrema`", ""]
     for label, ext in extrema.items():
         tbl = curves(tables)[label][0]

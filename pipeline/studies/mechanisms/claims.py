@@ -16,6 +16,12 @@ extremum carrier  (M1–M5) The paper's extremum of D at f0 (Klages et al. 2004:
                one is not measured the other's.  "not measured": f0 is still (no particle left
                its cell: the MSD D is zero at the scene's resolution; or every state creeps),
                the MSD D's CI reaches 0, or the expansion at f0 has not converged.
+both sides     (M1b–M5b) the rule of M1–M5 stated over both neighbours and both step choices
+               as it reads: a side not measured (a still neighbour, a D ≤ 0, no convergence) or
+               not resolved makes the step's verdict that ('not measured' before 'not
+               resolved'), never the other side's alone; a step choice not measured makes the
+               claim 'not measured'.  (M1–M5 combine with ``combine_sides``, which takes the
+               other side alone: kept, frozen, beside them.)
 λ ratio        (M6) r = mean λ of the moving particles (x spans ≥ S in λ's window) over the
                scene's f ≥ 66 Hz (the spiral regime) / theirs at 60 Hz (the VHO): larger means
                r > 1 with its CI (ends: mean of the lows / λ_hi(60), mean of the highs /
@@ -34,9 +40,13 @@ from bbb.analysis.gk_contrast import Contrast, calibrated_rule, carrier, combine
 from ...claims.markdown import markdown_table
 from ...claims.measures import row_at
 from ...claims.record import Band, Claim, Measured, Part, Quantity, evaluate, measure
+from .cases import (
+    carrier_cases,
+    lyapunov_cases,
+)
 
 __all__ = ["CLAIMS", "EXTREMA", "SIDES", "STEPS", "neighbour_moves", "report_lines",
-           "side_contrast"]
+           "side_contrast", "combine_both_sides"]
 
 #: the paper's extrema of D(f) (Fig. 2 and its text) and their kind
 EXTREMA = ((54.0, "max"), (58.0, "min"), (60.0, "max"), (62.0, "min"), (80.0, "max"))
@@ -97,6 +107,18 @@ def _unmeasured(r: pd.Series, diff: pd.DataFrame | None, f0: float) -> str:
     return ""
 
 
+def combine_both_sides(verdicts) -> str:
+    """One verdict from both sides' carrier verdicts, each side required (M1b–M5b): 'no
+    extremum' if a side has the wrong sign; else 'not measured' if a side is, 'not resolved'
+    if a side is; else ``combine_sides``."""
+    if "wrong sign" in verdicts:
+        return "no extremum"
+    for gap in ("not measured", "not resolved"):
+        if gap in verdicts:
+            return gap
+    return combine_sides(verdicts)
+
+
 @measure("extremum_carrier")
 def extremum_carrier(claim: Claim, ctx) -> Measured:
     t = ctx["tables"].get(claim.scene)
@@ -109,13 +131,24 @@ def extremum_carrier(claim: Claim, ctx) -> Measured:
     if why:
         return Measured(missing=why)
     theta, kind = float(calibrated_rule()["theta"]), claim.options["kind"]
+    both = bool(claim.options.get("both_sides"))
     texts, by_step = [], {}
     for step, name in STEPS.items():
         if f"ln_D{step}_dn" not in t:
+            if both:
+                texts.append(f"{name} — no contrasts in the table")
+                by_step[name] = "not measured"
             continue
         sides = [_side(t, r, step, s, kind, theta) for s in SIDES]
-        by_step[name] = combine_sides([v for v, _ in sides])
+        by_step[name] = (combine_both_sides if both else combine_sides)([v for v, _ in sides])
         texts.append(f"{name} — " + "; ".join(x for _, x in sides) + f" ⇒ {by_step[name]}")
+    if both:
+        gaps = [v for v in ("not measured", "not resolved") if v in by_step.values()]
+        if gaps:
+            return Measured(text=". ".join(texts), verdict=gaps[0],
+                            note="Judged against both neighbours under both step choices: "
+                                 f"{', '.join(k for k, v in by_step.items() if v in gaps)} "
+                                 f"{gaps[0]}.")
     decided = {k: v for k, v in by_step.items() if v != "not measured"}
     if not decided:
         return Measured(missing="not measured against either neighbour: " + ". ".join(texts))
@@ -162,17 +195,34 @@ def _rule_why() -> str:
             f"{rule['worst_wrong']:.2f}, {rule['source']})")
 
 
+_SCOPE = {"scenes": ["mechanisms"], "families": ["rest"],
+          "frequencies": "f0 and its grid neighbours"}
+_REG_M, _REG_M6 = "2026-11-25 0e548ac", "2026-11-23 8178e6b"
+_REG_NEW = "2026-11-28 h36-claims"
 CLAIMS = [
     Claim(f"The {kind}imum of D at {f0:g} Hz: carried by the random walk (D_0) or by the "
           "memory (D_∞/D_0), against both grid neighbours", extremum_carrier, "mechanisms",
-          Band(-math.inf, math.inf, _rule_why()), f0=f0, options={"kind": kind})
-    for f0, kind in EXTREMA
+          Band(-math.inf, math.inf, _rule_why()), f0=f0, options={"kind": kind},
+          id=f"M{i}", registered=_REG_M, scope=_SCOPE, cases=carrier_cases(f0, kind))
+    for i, (f0, kind) in enumerate(EXTREMA, 1)
+] + [
+    Claim(f"The {kind}imum of D at {f0:g} Hz: carried by the random walk (D_0) or by the "
+          "memory (D_∞/D_0), judged against both grid neighbours under both step choices",
+          extremum_carrier, "mechanisms",
+          Band(-math.inf, math.inf, _rule_why() + "; both sides and both step choices "
+               "required: a side or step not measured (not resolved) makes the claim so"),
+          f0=f0, options={"kind": kind, "both_sides": True}, id=f"M{i}b",
+          registered=_REG_NEW, supersedes=f"M{i}", scope=_SCOPE,
+          cases=carrier_cases(f0, kind, both=True))
+    for i, (f0, kind) in enumerate(EXTREMA, 1)
 ] + [
     Claim(f"λ is larger in the spiral regime (f ≥ {SPIRAL_FROM:g} Hz) than at the VHO "
           f"({VHO:g} Hz), for the particles that move", lyapunov_ratio, "mechanisms",
           Band(1.0, math.inf, "rule: ratio of the mean λ of moving particles over f ≥ 66 Hz "
-               "to theirs at 60 Hz above 1"), f0=VHO),
+               "to theirs at 60 Hz above 1"), f0=VHO, id="M6", registered=_REG_M6,
+          scope={**_SCOPE, "frequencies": "60 Hz and f ≥ 66 Hz"}, cases=lyapunov_cases),
 ]
+CLAIMS.sort(key=lambda c: (int(c.id[1:].rstrip("b")), c.id))
 
 
 def report_lines(tables) -> list[str]:

@@ -53,14 +53,36 @@ sliding         on the sliding scenes' floor (φ = 0°, ψ = 30°), below its li
                 the frequencies with a significant v: 0 under stick (a stuck particle rides
                 with the floor, v = 0 up to rounding) and ≥ 1 under Coulomb friction.
 
+Registered later, each beside the claim whose rule or scope it changes (ids in :data:`CLAIMS`):
+
+T1b             T1 as what it is: with mirror pairs v = 0 exactly, 'by construction'; with
+                independent particles T1's rule.
+T3              restored to the rule and scope it was registered and first judged with: a sign
+                change of v along f on the four conveyor floors of scene transport (φ = 2°, 5°
+                at ψ = 90°; φ = 0° at ψ = 60°, 30°).  T3b is the rule of the reversal section
+                above, registered after T3's data (the floors tilted against their throw,
+                scene transport_reversal, and sign changes along ψ added).
+T6b             the sliding/hopping boundary by lift-offs per floor period (a lift-off starts a
+                flight from contact; a chatter of bounces that never rest counts none): the
+                first frequency whose lift-offs per period reach L, L read from liftoffs.json
+                (benchmarks/hopping_liftoffs.py checks it on flat floors, where the answer is
+                Γ_v = 1), and the frequency before it bound the boundary; judged as T6 (± one
+                frequency step), on every line of transport_reversal (a line without counters:
+                not measured).
+
 k = 2 v_y⁺ f / g needs post-collision states, which these positions-only scenes do not
 record: the extrema are reported by frequency.
+
+Size: over 400 lines because a registered claim stays once judged: the frozen rules of
+T1, T3, T6 and their measures sit beside the ids that supersede them (one study's claims, one
+module).
 """
 
 from __future__ import annotations
 
 import json
 import math
+from dataclasses import replace
 from importlib import resources
 
 import numpy as np
@@ -72,8 +94,28 @@ from bbb.analysis.liftoff import liftoff_frequency
 from bbb.analysis.transport import SYMMETRY
 
 from ...claims.markdown import markdown_table
-from ...claims.record import Band, Claim, Measured, Part, Quantity, evaluate, measure
+from ...claims.record import (
+    BY_CONSTRUCTION,
+    Band,
+    Claim,
+    Measured,
+    Part,
+    Quantity,
+    evaluate,
+    measure,
+)
 from ..map_lines import split_lines
+from .cases import (
+    d_extrema_cases,
+    hopping_cases,
+    liftoff_cases,
+    no_current_cases,
+    no_current_construction_cases,
+    reversal_cases,
+    reversal_f_cases,
+    sliding_cases,
+    v_extrema_cases,
+)
 from .reversal import (
     AIRBORNE_MIN,
     F_STEP,
@@ -85,52 +127,41 @@ from .reversal import (
     floor_label,
     hopping_boundary,
     judge_boundary,
+    liftoff_boundary,
     line_label,
     throw_cuts,
     throw_number_frequency,
     throw_reversals,
 )
-from .signs import V_MIN, significant_signs, steady_rows
+from .signs import V_MIN, reversals, significant_signs, steady_rows
 
 __all__ = ["SCENES", "MAP", "SLIDING_MAP", "LINES", "HOPPING", "COMBINED", "CONVEYORS",
            "LABELS", "SLIDING", "SLIDING_LABELS", "SLIDING_GEOMETRY", "GEOMETRIES",
            "line_tables", "sliding_liftoff", "CLAIMS", "report_lines"]
 
-#: the map scenes: tilt x throw (hopping), and the sliding floor's contact x mu
-MAP, SLIDING_MAP = "transport", "transport_sliding"
-SCENES = (MAP, SLIDING_MAP, REVERSAL_MAP)
-#: (line, tilt φ °, throw ψ °) of the map judged by the claims; the first one is the paper's
-#: symmetric floor.  A line's name keys its tables (``<line>_diffusion``, :func:`line_tables`)
-GEOMETRY = (("transport_t0", 0.0, 90.0), ("transport_t2", 2.0, 90.0),
-            ("transport_t5", 5.0, 90.0), ("transport_p60", 0.0, 60.0),
-            ("transport_p30", 0.0, 30.0))
-#: the map's other lines, floors both tilted and thrown: drawn, not judged
-COMBINED_GEOMETRY = (("transport_t2_p60", 2.0, 60.0), ("transport_t2_p30", 2.0, 30.0),
-                     ("transport_t5_p60", 5.0, 60.0), ("transport_t5_p30", 5.0, 30.0))
-HOPPING = tuple(s for s, _, _ in GEOMETRY)
-COMBINED = tuple(s for s, _, _ in COMBINED_GEOMETRY)
-CONVEYORS = HOPPING[1:]
-LABELS = {s: f"φ = {t:g}°, ψ = {p:g}°" for s, t, p in GEOMETRY + COMBINED_GEOMETRY}
-#: the sliding regime: one floor (level, thrown at ψ = 30°, the paper's arcs) from low Γ to
-#: above lift-off, under (line, contact model, μ)
-SLIDING_GEOMETRY = {"tilt": 0.0, "throw": 30.0}
-SLIDING = (("transport_sliding_stick", "stick", 0.0),
-           ("transport_sliding_coulomb", "coulomb", 0.3))
-SLIDING_LABELS = {"transport_sliding_stick": "stick",
-                  "transport_sliding_coulomb": "Coulomb, μ = 0.3"}
-#: {line: its grid values} of the maps transport and transport_sliding (transport_reversal's:
-#: reversal.REVERSAL_LINES)
-LINES = {**{s: {"tilt": t, "throw": p} for s, t, p in GEOMETRY + COMBINED_GEOMETRY},
-         **{s: {"contact": c, "mu": mu} for s, c, mu in SLIDING}}
-#: {line: its floor and driving (tilt, throw; contact, mu where the map has them)}: the
-#: conveyor lines claim T3 judges (every line of the maps transport and transport_reversal but
-#: the mirror-symmetric φ = 0°, ψ = 90°)
-GEOMETRIES = {**{s: {"tilt": t, "throw": p} for s, t, p in GEOMETRY[1:] + COMBINED_GEOMETRY},
-              **REVERSAL_LINES}
+from .lines import (  # noqa: E402  (the lines, importable from here as before)
+    COMBINED,
+    CONVEYORS,
+    GEOMETRIES,
+    HOPPING,
+    LABELS,
+    LINES,
+    MAP,
+    SCENES,
+    SLIDING,
+    SLIDING_GEOMETRY,
+    SLIDING_LABELS,
+    SLIDING_MAP,
+)
+
 D_MIN = 1e-6  # mm²/s
 #: the mirror-pair benchmark: variance saved per scene, T1's false alarms without pairs
 MIRROR: dict = json.loads(resources.files(__package__).joinpath("mirror.json")
                           .read_text(encoding="utf-8"))
+#: T6b's threshold: lift-offs per floor period (benchmarks/hopping_liftoffs.py, flat floors)
+LIFTOFFS: dict = json.loads(resources.files(__package__).joinpath("liftoffs.json")
+                            .read_text(encoding="utf-8"))
+LIFTOFF_MIN = float(LIFTOFFS["threshold"])
 
 
 def _table(ctx, scene: str) -> pd.DataFrame | None:
@@ -181,7 +212,8 @@ def no_current(claim: Claim, ctx) -> Measured:
                               "every particle's mirror image counts (mirror pairs on a "
                               "mirror-symmetric floor), so the claim is a property of the "
                               "ensemble's design, not a measurement")],
-                        note=_design_false_alarms())
+                        note=_design_false_alarms(),
+                        verdict=BY_CONSTRUCTION if claim.options.get("construction") else None)
     s = significant_signs(t["v"], t["v_lo"], t["v_hi"])
     where = t["f"][s != 0].tolist()  # steady rows only; at φ = 0, ψ = 90° all should be
     vmax = float(np.abs(t["v"]).max())
@@ -244,6 +276,28 @@ def v_reversals(claim: Claim, ctx) -> Measured:
             + (". ".join(along_psi) or "none") + ")")
     return Measured([Part("significant sign changes of v along f or ψ at a fixed floor, all "
                           "conveyor floors", Quantity(float(total)), text)])
+
+
+@measure("transport_reversals.along_f")
+def v_reversals_along_f(claim: Claim, ctx) -> Measured:
+    """T3 as registered: sign changes of v(f) between significant frequencies (Bonferroni
+    over each curve) on the conveyor floors of scene transport."""
+    texts, total, seen = [], 0, False
+    for sc in CONVEYORS:
+        t = _table(ctx, sc)
+        if t is None:
+            continue
+        seen = True
+        s = significant_signs(t["v"], t["v_lo"], t["v_hi"])
+        r = reversals(t["f"].to_numpy(), s)
+        total += len(r)
+        texts.append(f"{LABELS[sc]}: {len(r)} ({', '.join(f'~{x:g} Hz' for x in r) or 'none'}; "
+                     f"v > 0 at {int((s > 0).sum())}, < 0 at {int((s < 0).sum())} of {len(t)} f)"
+                     f"{_left_out(t)}")
+    if not seen:
+        return Measured(missing="no conveyor scene reduced")
+    return Measured([Part("significant sign changes of v(f), all conveyor scenes",
+                          Quantity(float(total)), "; ".join(texts))])
 
 
 @measure("transport_d_extrema")
@@ -320,6 +374,50 @@ def hopping_vs_throw_number(claim: Claim, ctx) -> Measured:
     return Measured(parts) if parts else Measured(missing="no transport_reversal contact table")
 
 
+@measure("transport_liftoff_boundary")
+def liftoff_vs_throw_number(claim: Claim, ctx) -> Measured:
+    """T6b: per line of transport_reversal, the boundary by lift-offs per period against the f
+    of Γ_v = 1 (:func:`.reversal.liftoff_boundary`, :func:`.reversal.judge_boundary`)."""
+    threshold = float(claim.options.get("threshold", LIFTOFF_MIN))
+    counters = ctx.get("counters", {})
+    if not counters:
+        return Measured(missing="no transport_reversal counters table")
+    parts = []
+    for sc, values in REVERSAL_LINES.items():
+        n = counters.get(sc)
+        f_v = throw_number_frequency(values["tilt"], values["throw"])
+        if n is None or not len(n) or "liftoffs_per_s" not in n:
+            parts.append(Part(line_label(values), Quantity(math.nan), "no counters"))
+            continue
+        n = n.sort_values("f")
+        f = n["f"].to_numpy(float)
+        per = n["liftoffs_per_s"].to_numpy(float) / f
+        b = liftoff_boundary(f, per, threshold)
+        _, q = judge_boundary(b, f_v)
+        where = (f"no boundary in the scene's range (lift-offs per period {np.nanmin(per):.2f}–"
+                 f"{np.nanmax(per):.2f})" if b is None else
+                 f"boundary {b[0]:g}–{b[1]:g} Hz (lift-offs per period "
+                 f"{per[f == b[0]][0]:.2f} → {per[f == b[1]][0]:.2f})")
+        parts.append(Part(line_label(values), q if q is not None else Quantity(math.nan),
+                          f"{where}, Γ_v = 1 at {f_v:.1f} Hz", found=b is not None))
+    return Measured(parts)
+
+
+_REG_T, _REG_T5, _REG_T6 = "2026-11-23 d98ddae", "2026-11-23 328f226", "2026-11-25 1b0f70e"
+_REG_NEW = "2026-11-28 h36-claims"
+_SCOPE_MAP = {"scenes": [MAP], "lines": {s: LINES[s] for s in HOPPING}, "families": ["rest"],
+              "frequencies": "the scene's"}
+_SCOPE_T1 = {**_SCOPE_MAP, "lines": {HOPPING[0]: LINES[HOPPING[0]]}}
+_SCOPE_T3 = {**_SCOPE_MAP, "lines": {s: LINES[s] for s in CONVEYORS}, "along": ["f"]}
+_SCOPE_T3B = {"scenes": [MAP, REVERSAL_MAP], "lines": {s: dict(v) for s, v in GEOMETRIES.items()},
+              "families": ["rest"], "frequencies": "the scenes'", "along": ["f", "throw"]}
+_SCOPE_REV = {"scenes": [REVERSAL_MAP], "lines": {s: dict(v) for s, v in REVERSAL_LINES.items()},
+              "families": ["rest"], "frequencies": "the scene's"}
+_SCOPE_SLIDING = {"scenes": [SLIDING_MAP], "lines": {s: LINES[s] for s, _, _ in SLIDING},
+                  "families": ["rest"], "frequencies": "below the lift-off frequency"}
+_T1_WHY = ("rule: no frequency with a significant v (Bonferroni, α = 0.05); with mirror pairs "
+           "v = 0 by construction")
+
 CLAIMS = [
     Claim("Mirror symmetry: a level floor vibrated vertically carries no current",
           no_current, HOPPING[0],
@@ -331,7 +429,11 @@ CLAIMS = [
                "scene (bbb.analysis.extrema, family-wise α = 0.05), none counted where D about the "
                "drift is not diffusive")),
     Claim("Current reversals: the sign of the current changes with the driving (paper's "
-          "outlook, after Grochowski et al.)", v_reversals, "",
+          "outlook, after Grochowski et al.)", v_reversals_along_f, "",
+          Band(1.0, math.inf, "rule: at least one sign change between frequencies whose v is "
+               "significant (Bonferroni over the curve)")),
+    Claim("Current reversals: the sign of the current changes with the driving (paper's "
+          "outlook, after Grochowski et al.), along f or ψ on every conveyor floor", v_reversals, "",
           Band(1.0, math.inf, "rule: at least one significant sign change of v along f or "
                "along ψ at a fixed floor (between consecutive significant points, Bonferroni "
                "over each curve; steady drifts only), judged on every conveyor floor: the "
@@ -357,6 +459,32 @@ CLAIMS = [
                f"minus the f of Γ_v = 1 lies within ± one frequency step ({F_STEP:g} Hz)",
                "Hz")),
 ]
+_META = [("T1", _REG_T, _SCOPE_T1, no_current_cases, ""),
+         ("T2", _REG_T, {**_SCOPE_MAP, "lines": {s: LINES[s] for s in CONVEYORS}},
+          v_extrema_cases, ""),
+         ("T3", _REG_T, _SCOPE_T3, reversal_f_cases, ""),
+         ("T3b", _REG_T6, _SCOPE_T3B, reversal_cases, "T3"),
+         ("T4", _REG_T, {**_SCOPE_MAP, "lines": {s: LINES[s] for s in CONVEYORS}},
+          d_extrema_cases, ""),
+         ("T5", _REG_T5, _SCOPE_SLIDING, sliding_cases, ""),
+         ("T6", _REG_T6, _SCOPE_REV, hopping_cases, "")]
+CLAIMS = [replace(c, id=i, registered=r, scope=sc, cases=cs, supersedes=sup)
+          for c, (i, r, sc, cs, sup) in zip(CLAIMS, _META, strict=True)]
+CLAIMS[1:1] = [
+    Claim("Mirror symmetry: a level floor vibrated vertically carries no current", no_current,
+          HOPPING[0], Band(0.0, 0.0, _T1_WHY), options={"construction": True}, id="T1b",
+          registered=_REG_NEW, supersedes="T1", scope=_SCOPE_T1,
+          cases=no_current_construction_cases)]
+CLAIMS.append(
+    Claim("Conveyor theory's sliding/hopping boundary lies at the throw number Γ_v = Γ sin ψ / "
+          "cos φ = 1 (Sloot & Kruyt 1996), hopping counted by lift-offs", liftoff_vs_throw_number,
+          "", Band(-F_STEP, F_STEP, f"rule: per line of scene transport_reversal, the boundary "
+                   f"(from the frequency before the first whose lift-offs per floor period "
+                   f"reach L = {LIFTOFF_MIN:g} to that one; {LIFTOFFS['source']}) minus the f "
+                   f"of Γ_v = 1 within ± one frequency step ({F_STEP:g} Hz); a line without "
+                   "counters: not measured", "Hz"),
+          id="T6b", registered=_REG_NEW, supersedes="T6", scope=_SCOPE_REV, all_parts=True,
+          cases=liftoff_cases))
 
 
 def line_tables(tables) -> dict[str, pd.DataFrame]:

@@ -61,7 +61,7 @@ CAPTIONS = {
         "different speeds, some stuck, or velocity memory as long as the lags; bbb.analysis.transport). "
         "On the level floor (φ = 0°, ψ = 90°) every particle's mirror image counts: v = 0 "
         "exactly, by construction, without a CI. Dashed, without CIs: the floors both tilted "
-        "and thrown (φ = 2°, 5° with ψ = 60°, 30°), drawn, not judged by the claims. Scene "
+        "and thrown (φ = 2°, 5° with ψ = 60°, 30°), judged only by claim T3b (their signs). Scene "
         "transport, a map of tilt φ × throw ψ (one line per floor)."),
     "fig_transport_sliding": (
         "The sliding regime: drift v(f) on a level floor of the paper's arcs thrown at ψ = 30°, "
@@ -111,7 +111,7 @@ def figure_transport(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathL
                 bad = t[~t["diffusive"].fillna(True).astype(bool)]
                 for ax, col in ((ax_v, "v"), (ax_d, "D_drift")):
                     ax.plot(bad["f"], bad[col], "x", ms=7, mew=1.2, color=c, zorder=5)
-        for i, sc in enumerate(COMBINED, start=len(HOPPING)):  # drawn, not judged: no CIs
+        for i, sc in enumerate(COMBINED, start=len(HOPPING)):  # drawn without CIs (only T3b reads them)
             t = tables.get(sc)
             if t is None or "v" not in t:
                 continue

@@ -43,7 +43,8 @@ from .signs import reversal_intervals, significant_signs, steady_rows
 __all__ = ["REVERSAL_MAP", "REVERSAL_TILT", "REVERSAL_THROWS", "REVERSAL_MODELS",
            "REVERSAL_LINES", "MODEL_LABELS", "HOPPING_CALIBRATION", "AIRBORNE_MIN", "F_STEP",
            "reversal_line", "line_label", "floor_label", "f_ranges", "throw_number_frequency", "airborne",
-           "hopping_boundary", "judge_boundary", "f_reversals", "throw_cuts", "throw_reversals"]
+           "hopping_boundary", "liftoff_boundary", "judge_boundary", "f_reversals", "throw_cuts",
+           "throw_reversals"]
 
 REVERSAL_MAP = "transport_reversal"
 REVERSAL_TILT = 2.0
@@ -129,6 +130,19 @@ def hopping_boundary(f, lo, hi, threshold: float = AIRBORNE_MIN
     if slide.size == 0:
         return None
     return float(f[slide[-1]]), float(f[i])
+
+
+def liftoff_boundary(f, per_period, threshold: float) -> tuple[float, float] | None:
+    """(f_slide, f_hop) by lift-offs per floor period (claim T6b): f_hop the first frequency
+    whose lift-offs per period reach ``threshold``, f_slide the frequency before it; None if
+    none reaches it or the first frequency already does (the boundary lies outside)."""
+    f, x = np.asarray(f, dtype=float), np.nan_to_num(np.asarray(per_period, dtype=float),
+                                                     nan=-np.inf)
+    hop = np.flatnonzero(x >= threshold)
+    if hop.size == 0 or hop[0] == 0:
+        return None
+    i = int(hop[0])
+    return float(f[i - 1]), float(f[i])
 
 
 def judge_boundary(boundary: tuple[float, float] | None, f_v: float,

@@ -10,7 +10,8 @@ from pipeline.studies.dissipation.cuts import compare_cut
 
 from .synthetic import ALPHAS, F, dmap
 
-ONSET_GP, ONSET_G1, FIRST_MAX, LOOPS, ERGODIC, CUTS = CLAIMS
+BY_ID = {c.id: c for c in CLAIMS}
+ONSET_GP, ONSET_G1, FIRST_MAX, LOOPS, ERGODIC, CUTS = (BY_ID[f"A{i}"] for i in range(1, 7))
 
 
 def verdict(claim, **tables):
@@ -87,6 +88,6 @@ def test_a_cut_equal_to_its_scene_agrees_and_a_shifted_one_does_not():
     assert verdict(CUTS, dissipation_cuts=_cuts(1.2)) == "disagrees"
 
 
-@pytest.mark.parametrize("claim", CLAIMS, ids=lambda c: c.quantity)
+@pytest.mark.parametrize("claim", CLAIMS, ids=lambda c: c.id)
 def test_a_claim_without_its_table_is_not_measured(claim):
     assert verdict(claim) == "not measured"

@@ -21,13 +21,7 @@ REPORT = FIGURES / "REPORT.md"
 
 #: claims whose verdict needs more than the committed tables, by measure, and why: their rows
 #: are not compared (test_the_claims_not_regenerable_from_the_tables_are_exactly_these)
-NOT_REGENERABLE = {
-    "klages2004.spiral_approx": (
-        "claim 15 reads the post-collision states of the figure3 and locking stores (distances "
-        "of every state to the curve of Eqs. (8)-(9)), which are not committed; its measure "
-        "(pipeline/studies/klages2004/measures.py) would have to read a table of those "
-        "distances instead"),
-}
+NOT_REGENERABLE = committed.NEEDS_STORES
 
 
 def sections(text: str) -> dict[str, list[str]]:
@@ -49,7 +43,7 @@ def _cells(row: str) -> list[str]:
 
 def _skipped_rows() -> set[str]:
     """The first cells ('15', ...) of this study's rows that are not regenerable."""
-    return {str(i) for i, c in enumerate(CLAIMS, 1) if c.quantity in NOT_REGENERABLE}
+    return {c.id for c in CLAIMS if c.quantity in NOT_REGENERABLE}
 
 
 def mismatches(report: str, regenerated: dict[str, list[str]]) -> list[str]:

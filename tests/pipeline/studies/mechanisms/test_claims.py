@@ -15,7 +15,8 @@ from pipeline.claims.record import evaluate_claim
 from pipeline.studies.mechanisms.claims import CLAIMS, EXTREMA
 from pipeline.tables.mechanisms import _with_contrasts
 
-M3 = CLAIMS[2]  # the maximum at 60 Hz
+BY_ID = {c.id: c for c in CLAIMS}
+M3 = BY_ID["M3"]  # the maximum at 60 Hz
 FREQS = (58.0, 60.0, 62.0)
 
 
@@ -100,7 +101,7 @@ def test_a_minimum_where_the_paper_has_one_but_the_data_a_maximum_is_no_extremum
     # M2 is the minimum at 58 Hz; here 58 Hz lies below 60 Hz, as a minimum should, but M4's
     # 62 Hz lies below 60 too: against 60 it is a minimum — swap to make 62 a maximum
     t = table({58.0: (1.0, 4.0), 60.0: (1.0, 5.0), 62.0: (1.0, 12.0)})
-    assert verdict(CLAIMS[3], t) == "no extremum"
+    assert verdict(BY_ID["M4"], t) == "no extremum"
 
 
 def _lam_table(lam60: float, lam_spiral: float, degenerate60: bool = False) -> pd.DataFrame:
@@ -114,12 +115,12 @@ def _lam_table(lam60: float, lam_spiral: float, degenerate60: bool = False) -> p
 
 
 def test_lyapunov_ratio_of_moving_particles_follows_the_spiral_regime():
-    assert verdict(CLAIMS[-1], _lam_table(40.0, 50.0)) == "agrees"
-    assert verdict(CLAIMS[-1], _lam_table(50.0, 40.0)) == "disagrees"
+    assert verdict(BY_ID["M6"], _lam_table(40.0, 50.0)) == "agrees"
+    assert verdict(BY_ID["M6"], _lam_table(50.0, 40.0)) == "disagrees"
 
 
 def test_a_degenerate_lambda_ci_at_the_vho_is_not_measured():
-    assert verdict(CLAIMS[-1], _lam_table(40.0, 50.0, degenerate60=True)) == "not measured"
+    assert verdict(BY_ID["M6"], _lam_table(40.0, 50.0, degenerate60=True)) == "not measured"
 
 
 def test_the_figure_has_a_caption_and_draws_the_contrasts(tmp_path):
@@ -145,3 +146,13 @@ def test_scene_caps_lyapunov_particles_and_records_collision_jumps(fast):
     study = parse_workflow(draft_text(text) if fast else text, source="mechanisms.toml")
     assert study.observables.lyapunov_particles <= study.accuracy.n_particles
     assert study.observables.collisions_x_jumps == 4000
+
+
+def test_m2b_is_not_measured_where_m2_takes_the_moving_neighbour_alone():
+    """The committed case: 58 Hz's neighbour below (56 Hz) is still.  M2 (one side) reads the
+    side above alone; M2b (both sides required) says 'not measured'."""
+    from pipeline.studies.mechanisms.cases import carrier_table
+
+    t = carrier_table(58.0, "min", "still", (1.0, 0.1))
+    assert verdict(BY_ID["M2"], t) == "random walk"
+    assert verdict(BY_ID["M2b"], t) == "not measured"
