@@ -43,7 +43,6 @@ from .attrs import (  # importable from here as before the split
     root_attrs,
     store_fingerprint,
 )
-from .metadata import MetadataReport, inspect_metadata
 from .layout import (  # importable from here as before the split
     COUNTERS,
     FIELD_UNITS,
@@ -51,8 +50,10 @@ from .layout import (  # importable from here as before the split
     create_layout,
     n_periods,
 )
+from .metadata import MetadataReport, inspect_metadata
 
-__all__ = ["StoreError", "MetadataDamaged", "check_metadata", "StudyStore", "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
+__all__ = ["StoreError", "MetadataDamaged", "check_metadata", "StudyStore", "normalize_path",
+           "COLLISION_FIELDS", "LAYOUT_VERSION",
            "package_version", "read_attrs", "store_fingerprint", "JSON_ATTRS", "KERNEL_ATTRS",
            # of pipeline.store.layout, importable from here too
            "COUNTERS", "FIELD_UNITS", "collision_field_units", "create_layout", "n_periods"]
