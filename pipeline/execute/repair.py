@@ -3,18 +3,20 @@ thing ``bbb run`` does on a store some ``zarr.json`` of which is damaged (trunca
 overwritten, deleted; :func:`pipeline.store.metadata.inspect_metadata` names them).
 
 - An array's own ``zarr.json`` damaged, the root sound: the root's stored workflow says what
-  the array is; its ``zarr.json`` is written again as that workflow lays it out.
+  the array is; its ``zarr.json`` is written again as that workflow lays it out (a coordinate
+  is written anew whole, values too: its chunking follows the store's history, its values
+  the workflow).
 - The root ``zarr.json`` damaged: the store's identity (workflow, fingerprint, kernel) is
   gone with it and is taken from the workflow given to ``bbb run``.  Before anything is
   written it is checked that the chunks are that workflow's: every sound array is an array of
-  the workflow's layout, with the same shape, chunks, dtype, fill value, codecs and dimension
-  names; every sound coordinate (frequencies, families, ...) holds the workflow's values; and
-  one done chunk, recomputed here in a temporary store, is bit-identical to the stored one
-  (the seeds, the parameters and the kernel are not in the layout: only the numbers show
-  them).  What the root held beside the workflow is rebuilt from the arrays: the frequencies
-  refinement added (the ``frequency`` and ``refined`` arrays), a map's points in store order
-  (``point``'s coordinates).  The creation time cannot be: ``created`` is the rebuild's time,
-  and ``metadata_rebuilt`` says so.
+  the workflow's layout, with the same shape, chunks (a coordinate's aside), dtype, fill value,
+  codecs and dimension names; every sound coordinate (frequencies, families, ...) holds the
+  workflow's values; and one done chunk, recomputed here in a temporary store, is
+  bit-identical to the stored one (the seeds, the parameters and the kernel are not in the
+  layout: only the numbers show them).  What the root held beside the workflow is rebuilt
+  from the arrays: the frequencies refinement added (the ``frequency`` and ``refined``
+  arrays), a map's points in store order (``point``'s coordinates).  The creation time cannot
+  be: ``created`` is the rebuild's time, and ``metadata_rebuilt`` says so.
 
 Either way the arrays' chunks -- data, done markers, stop records -- are never written, so a
 re-run then computes only the chunks not done, as after any interruption.  When the store
@@ -76,8 +78,17 @@ def repair_metadata(study: Study, path: str, echo: Callable[[str], None] = print
     checked = _check_a_done_chunk(here, path, expected) if report.root_damaged else None
     fs, root = store_fs(path)
     for d in report.damaged:  # the arrays first, the root last: it marks the store complete
-        if d.file != "zarr.json":
-            fs.pipe_file(f"{root}/{d.file}", expected[d.file])
+        if d.file == "zarr.json":
+            continue
+        name = d.file.removesuffix("/zarr.json")
+        if len(json.loads(expected[d.file])["shape"]) == 1:  # a coordinate: written anew whole
+            if fs.exists(f"{root}/{name}/c"):
+                fs.rm(f"{root}/{name}/c", recursive=True)
+            for key, data in expected.items():
+                if key.startswith(f"{name}/c/"):
+                    fs.makedirs(f"{root}/{key}".rsplit("/", 1)[0], exist_ok=True)
+                    fs.pipe_file(f"{root}/{key}", data)
+        fs.pipe_file(f"{root}/{d.file}", expected[d.file])
     if report.root_damaged:
         now = _dt.datetime.now(_dt.UTC).isoformat(timespec="seconds")
         d: dict = {}
@@ -142,6 +153,8 @@ def _check_layout(path: str, report: MetadataReport, expected: dict[str, bytes])
                          f"cannot be rebuilt; {_DELETE}")
     for name, doc in sorted(report.arrays.items()):
         want = json.loads(expected[f"{name}/zarr.json"])
+        if len(want["shape"]) == 1:  # a coordinate's chunks follow the store's history (a
+            want = {**want, "chunk_grid": doc.get("chunk_grid")}  # grown map): values decide
         diff = decisive_difference(doc, want)
         if diff:
             raise StoreError(f"{path}/{name}/zarr.json: {diff}: not this workflow's store; "

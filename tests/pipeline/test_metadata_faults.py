@@ -55,6 +55,8 @@ DAMAGE = {
     "done's zarr.json truncated": (_truncate("done/zarr.json"), "done/zarr.json", "not JSON"),
     "positions' zarr.json deleted": (_delete("positions/zarr.json"), "positions/zarr.json",
                                      "missing"),
+    "a coordinate's zarr.json emptied": (_overwrite("frequency/zarr.json", b""),
+                                         "frequency/zarr.json", "empty"),
 }
 COMMANDS = {"status": [], "reduce": ["--out", "{tmp}/tables"], "plot": ["--out", "{tmp}/figs"],
             "verify": []}
@@ -94,7 +96,8 @@ def test_the_installed_bbb_status_names_a_truncated_root_in_one_line(reference, 
 
 
 # -- bbb run rebuilds them ------------------------------------------------------------------
-@pytest.mark.parametrize("case", ["root deleted", "done's zarr.json truncated"])
+@pytest.mark.parametrize("case", ["root deleted", "done's zarr.json truncated",
+                                  "a coordinate's zarr.json emptied"])
 def test_run_rebuilds_damaged_metadata_computing_no_done_chunk(
         case, reference, tiny_workflow, tmp_path):
     """The rebuilt store equals the undamaged one bit for bit (arrays and fingerprint), and
