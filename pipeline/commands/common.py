@@ -11,13 +11,17 @@ from importlib import metadata
 
 from ..workflow.identity import f_key
 
-__all__ = ["UsageError", "Parser", "EXIT_USAGE", "EXIT_FAILED", "EXIT_TERMINATED", "error",
+__all__ = ["UsageError", "Parser", "EXIT_USAGE", "EXIT_FAILED", "EXIT_TERMINATED", "EXIT_PIPE",
+           "DEBUG_ENV", "error",
            "version", "frequency_list", "positive_int", "positive_ints", "jobs",
            "WORKFLOW_HELP", "load"]
 
 EXIT_USAGE = 2
 EXIT_FAILED = 1
 EXIT_TERMINATED = 128 + signal.SIGTERM
+EXIT_PIPE = 128 + signal.SIGPIPE  # output into a closed pipe (pipeline/cli.py)
+#: set (to anything) to see the traceback of an unexpected exception instead of one line
+DEBUG_ENV = "BBB_DEBUG"
 
 #: the help of every workflow argument
 WORKFLOW_HELP = "workflow TOML file, or the name of a shipped scene (`bbb scenes` lists them)"

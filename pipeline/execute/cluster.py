@@ -192,11 +192,13 @@ def work_left(study, store_path) -> bool:
     from ..store.lock import run_lock
     from ..store.study_store import StudyStore, normalize_path
     from ..workflow.sanity import refuse_nothing_moves
+    from .repair import repair_metadata
     from .waves import Waves
 
     refuse_nothing_moves(study)  # pipeline.workflow.sanity: no job for a scene that cannot move
     path = normalize_path(store_path)
     with run_lock(path):
+        repair_metadata(study, path)  # as the run would: damaged zarr.json files rebuilt
         store = StudyStore.create_or_open(path, study)
         if not store.study.adaptive:
             return not store.done().all()

@@ -29,6 +29,7 @@ from ..workflow.identity import f_key
 from ..workflow.sanity import check_scene
 from ..workflow.study import Study
 from .elastic import QueueGauge
+from .repair import repair_metadata
 from .task import (  # the task and what it reports, importable from here as before the split
     FAIL_ENV,
     ChunkKey,
@@ -159,6 +160,7 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
     client, cluster = connect(scheduler, None, dashboard) if scheduler else (None, None)
     waves = None
     try:
+        repair_metadata(study, store_path, echo)  # damaged zarr.json files, chunks kept
         store = StudyStore.create_or_open(store_path, study)
         store.consolidate()  # readable by xarray.open_zarr even if the run is interrupted
         done = store.done()

@@ -1,10 +1,11 @@
 """The run lock: one bbb run writes to a store at a time.
 
-A local store: ``<store>.lock`` beside it, created exclusively (O_EXCL), holding the holder's
-host, pid and start time.  A lock left by a killed run on this host (its pid is gone) is
-stale and taken over under a flock of its directory, so that two runs finding the same stale
-lock cannot both take it.  One left by a run on another host is not (its pid cannot be checked
-from here): the refusal names the file to delete.
+A local store: ``<store>.lock`` beside it -- beside its real path, symlinks resolved, so that
+two runs reaching one store by different names take the same lock -- created exclusively
+(O_EXCL), holding the holder's host, pid and start time.  A lock left by a killed run on this
+host (its pid is gone) is stale and taken over under a flock of its directory, so that two
+runs finding the same stale lock cannot both take it.  One left by a run on another host is
+not (its pid cannot be checked from here): the refusal names the file to delete.
 
 A store at an fsspec URL: the object ``<url>.lock`` beside it, created with fsspec's exclusive
 mode (``open(..., "xb")``: the filesystem refuses to create an object that exists), holding
@@ -52,7 +53,9 @@ def run_lock(path: str) -> Iterator[None]:
         with _url_lock(path):
             yield
         return
-    with _local_lock(path):
+    # the real path: two runs reaching one store through different names (a symlink to the
+    # store or to a folder above it, a bind mount seen as a symlink) take the same lock
+    with _local_lock(os.path.realpath(path)):
         yield
 
 

@@ -50,14 +50,46 @@ from .layout import (  # importable from here as before the split
     create_layout,
     n_periods,
 )
+from .metadata import MetadataReport, inspect_metadata
 
-__all__ = ["StoreError", "StudyStore", "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
+__all__ = ["StoreError", "MetadataDamaged", "check_metadata", "StudyStore", "normalize_path",
+           "COLLISION_FIELDS", "LAYOUT_VERSION",
            "package_version", "read_attrs", "store_fingerprint", "JSON_ATTRS", "KERNEL_ATTRS",
            # of pipeline.store.layout, importable from here too
            "COUNTERS", "FIELD_UNITS", "collision_field_units", "create_layout", "n_periods"]
 
 class StoreError(ValueError):
     """A store that cannot be used as asked (wrong workflow, not a bbb store, unwritable)."""
+
+
+class MetadataDamaged(StoreError):
+    """A store whose metadata files (a ``zarr.json``) are damaged: the message names the first
+    (and how many more), says whether the chunks are there, and how to rebuild them.
+    ``report``: what :func:`pipeline.store.metadata.inspect_metadata` found."""
+
+    def __init__(self, path: str, report: MetadataReport):
+        self.path, self.report = path, report
+        first, more = report.damaged[0], report.damaged[1:]
+        also = (f" (and {len(more)} more: {', '.join(d.file for d in more[:3])}"
+                + (", ..." if len(more) > 3 else "") + ")") if more else ""
+        super().__init__(
+            f"{path.rstrip('/')}/{first.file}: {first.what}{also}; the store's metadata are "
+            f"damaged, its chunks untouched: `bbb run WORKFLOW --store {path}`, with the "
+            "workflow that made the store, rebuilds the metadata from it and keeps every "
+            "chunk (or says why it cannot)")
+
+
+def check_metadata(path: str) -> None:
+    """Raise :class:`MetadataDamaged` if a metadata file of the store at ``path`` is damaged
+    (nothing if there is no store there, or one whose layout was never finished)."""
+    report = inspect_metadata(path)
+    if report is None or not report.damaged:
+        return
+    if report.root_damaged and not report.arrays and report.damaged[0].what == "missing":
+        return  # a folder without a single sound zarr.json: not a store (said by the caller)
+    if report.root is not None and report.root.get("attributes", {}).get("bbb_creating"):
+        return  # the layout's creation was interrupted: no data yet, `bbb run` lays it out anew
+    raise MetadataDamaged(path, report)
 
 
 def normalize_path(path: str | os.PathLike) -> str:
@@ -88,7 +120,7 @@ class StudyStore:
         grid store also by a workflow of the same grid axes with other values: its new points
         are added, :meth:`add_points`)."""
         path = normalize_path(path)
-        existing = _open_group(path)
+        existing = _open_group(path, eager=True)
         if existing is not None:
             attrs = read_attrs(existing)
             if "fingerprint" not in attrs:
@@ -136,7 +168,7 @@ class StudyStore:
     def open(cls, path: str | os.PathLike) -> StudyStore:
         """Open an existing store read-only, with the Study it was made by."""
         path = normalize_path(path)
-        g = _open_group(path)
+        g = _open_group(path, eager=True)
         if g is None:
             raise StoreError(f"{path}: no such store")
         attrs = read_attrs(g)
@@ -338,12 +370,19 @@ class StudyStore:
             zarr.consolidate_metadata(self.path)
 
 
-def _open_group(path: str) -> zarr.Group | None:
+def _open_group(path: str, eager: bool = False) -> zarr.Group | None:
+    """The store's root group, None if there is none.  A damaged metadata file raises
+    MetadataDamaged naming it: looked for first if ``eager`` and the store is local (a few kB
+    read), else when Zarr cannot open the group (a URL: each file is a request)."""
+    if eager and is_local(path):
+        check_metadata(path)
     try:
         return zarr.open_group(path, mode="r")
     except (FileNotFoundError, zarr.errors.GroupNotFoundError, zarr.errors.NodeTypeValidationError):
+        check_metadata(path)  # a root zarr.json deleted while the arrays remain
         return None
     except Exception as e:  # e.g. an unreadable file where the store should be
+        check_metadata(path)
         raise StoreError(f"{path}: cannot open ({type(e).__name__}: {e})") from None
 
 

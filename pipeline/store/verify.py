@@ -49,6 +49,8 @@ from .study_store import (
     LAYOUT_VERSION,
     SEEDING,
     StoreError,
+    check_metadata,
+    is_local,
     normalize_path,
     read_attrs,
     store_fingerprint,
@@ -100,16 +102,22 @@ class VerifyReport:
 def verify_store(path: str | os.PathLike) -> VerifyReport:
     """Check the store at ``path`` (local path or fsspec URL); problems are returned, not raised.
 
-    Raises StoreError only when ``path`` holds no bbb study store at all (nothing to verify).
+    Raises StoreError only when ``path`` holds no bbb study store at all (nothing to verify),
+    or MetadataDamaged (a StoreError) naming a damaged ``zarr.json``: its chunks cannot be
+    read as the store describes them until `bbb run` rebuilds it.
     """
     path = normalize_path(path)
     report = VerifyReport(path)
+    if is_local(path):
+        check_metadata(path)  # a damaged zarr.json: MetadataDamaged, naming it
     try:
         # the arrays' own metadata, not the consolidated copy in the root (checked apart)
         g = zarr.open_group(path, mode="r", use_consolidated=False)
     except (FileNotFoundError, zarr.errors.GroupNotFoundError, zarr.errors.NodeTypeValidationError):
+        check_metadata(path)
         raise StoreError(f"{path}: no such store; allowed: a store made by `bbb run`") from None
     except Exception as e:  # e.g. a file, or an unreadable zarr.json, where the store should be
+        check_metadata(path)
         raise StoreError(f"{path}: cannot open ({type(e).__name__}: {e}); "
                          "allowed: a store made by `bbb run`") from None
     raw = dict(g.attrs)

@@ -249,3 +249,48 @@ def test_bbb_plot_of_a_path_that_is_no_store_is_one_usage_line(tmp_path, capsys)
     assert main(["plot", str(tmp_path / "nothing.zarr")]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "no such store" in err
+
+
+# -- a closed pipe, an unexpected exception -----------------------------------------------------
+@pytest.mark.parametrize("command", ["status", "verify"])
+def test_output_into_a_closed_pipe_ends_quietly_with_the_status_of_sigpipe(
+        command, reference):
+    """`bbb status X | head -1` with the reader gone before bbb writes (its end of the pipe
+    closed at once, while bbb still imports): no traceback, nothing on stderr, 141."""
+    proc = subprocess.Popen([str(BBB), command, str(reference[0])], stdout=subprocess.PIPE,
+                            stderr=subprocess.PIPE)
+    proc.stdout.close()
+    err = proc.stderr.read()
+    assert proc.wait(timeout=300) == 141 and err == b""
+
+
+def test_an_undecodable_chunk_no_check_foresees_is_one_line_naming_the_store(
+        reference, tmp_path, capsys):
+    """A done-marker chunk overwritten with garbage: one `bbb: error:` line naming the
+    store, exit 2, never a traceback."""
+    import shutil
+
+    store = Path(shutil.copytree(reference[0], tmp_path / "s.zarr"))
+    (store / "done/c/0/1/0").write_bytes(b"garbage")
+    assert main(["status", str(store)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"bbb: error: {store}") and err.count("\n") == 1, err
+
+
+def test_an_internal_error_is_one_line_and_bbb_debug_shows_its_traceback(
+        reference, capsys, monkeypatch):
+    """A bug (stood in for by a status table that raises): one line naming the store and the
+    exception, exit 2; with BBB_DEBUG=1 the exception goes through, for its traceback."""
+    import pipeline.store.status as status
+
+    def bug(store):
+        raise RuntimeError("a bug")
+
+    monkeypatch.setattr(status, "status_text", bug)
+    monkeypatch.delenv("BBB_DEBUG", raising=False)
+    assert main(["status", str(reference[0])]) == 2
+    assert capsys.readouterr().err == (f"bbb: error: {reference[0]}: RuntimeError: a bug "
+                                       "(unexpected; BBB_DEBUG=1 shows the traceback)\n")
+    monkeypatch.setenv("BBB_DEBUG", "1")
+    with pytest.raises(RuntimeError, match="a bug"):
+        main(["status", str(reference[0])])

@@ -16,6 +16,7 @@ import zarr
 
 from bbb.provenance import kernel_hash, kernel_identity
 from bbb.record import COLLISION_FIELDS
+from pipeline.cli import main
 from pipeline.store.lock import run_lock
 from pipeline.store.study_store import (
     JSON_ATTRS,
@@ -234,6 +235,28 @@ def test_a_held_store_is_refused_naming_the_holder(tmp_path):
             with run_lock(path):
                 pass
     assert not os.path.exists(path + ".lock")  # released
+
+
+@pytest.mark.parametrize("linked", ["the store", "its folder"])
+def test_a_run_reaching_a_held_store_through_a_symlink_is_refused(linked, tiny_workflow,
+                                                                  tmp_path, capsys):
+    """One run holds the store by its real path; `bbb run` on a symlink to the store (or to
+    a folder above it) takes the same lock, so it is refused, not let in beside the first."""
+    (tmp_path / "real").mkdir()
+    real = tmp_path / "real" / "s.zarr"
+    if linked == "the store":
+        real.mkdir()
+        (tmp_path / "link.zarr").symlink_to(real)
+        via = tmp_path / "link.zarr"
+    else:
+        (tmp_path / "link").symlink_to(tmp_path / "real")
+        via = tmp_path / "link" / "s.zarr"
+    with run_lock(str(real)):
+        assert main(["run", str(tiny_workflow), "--store", str(via), "--workers", "1"]) == 2
+    err = capsys.readouterr().err
+    assert f"in use by another bbb run (host {socket.gethostname()}, pid {os.getpid()}" in err
+    assert f"delete {real}.lock" in err and err.count("\n") == 1
+    assert not (real / "zarr.json").exists()  # the refused run wrote nothing
 
 
 def test_a_stale_lock_of_a_dead_process_is_taken_over(tmp_path):
