@@ -290,9 +290,10 @@ def attach_tables(ds: xr.Dataset, tables: dict[str, pd.DataFrame]) -> xr.Dataset
 
     axes = _grid_axes(ds)
     families = [str(f) for f in ds["family"].values] if "family" in ds.coords else []
-    dims = [d for d in ("frequency", *axes) if d in ds.dims]
-    tds = tables_dataset(tables, {d: ds[d].values for d in dims}, families)
-    if "point" in ds.dims:  # a grid as stored: each point's row
+    if "point" not in ds.dims:  # on ds's coordinates
+        tds = tables_dataset(tables, {d: ds[d].values for d in ("frequency", *axes)}, families)
+    else:  # a grid as stored: each point's row
+        tds = tables_dataset(tables, axes, families)
         tds = tds.sel({c: ds[c] for c in ("frequency", *axes)})
         tds = tds.drop_vars([c for c in ("frequency", *axes) if c in tds.coords])
     if "present" in ds.data_vars:
