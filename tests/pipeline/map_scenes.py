@@ -24,7 +24,7 @@ MAP_SCENES = (
 )
 
 TINY_ACCURACY = {"preset": "draft", "n_particles": 4, "chunk_size": 4, "t_max": 8.0,
-                 "sample_dt": 0.5, "n_resamples": 50}
+                 "sample_dt": 0.1, "n_resamples": 50}
 
 
 def shipped_maps() -> list[str]:
