@@ -106,8 +106,13 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     workflow's order; a store without ``[grid]`` has none), ``family``, ``particle``,
     ``chunk`` and, as recorded, ``time`` (s), ``collision`` and ``field``; each variable's
     ``units`` and ``long_name`` are in its attributes (positions in mm; collisions' fields t s,
-    x mm, y mm, vx mm/s, vy mm/s).  A grid is unstacked: one dimension per axis, NaN where a
-    point is absent (left out as invalid, or not in the store).
+    x mm, y mm, vx mm/s, vy mm/s).  A grid is unstacked: one dimension per axis, each point at
+    the values it holds (:func:`pipeline.workflow.point.map_coords`: mu = 0 of a stick
+    point), NaN where a point is absent.  The boolean variable ``present`` (over the point
+    dimensions and ``family``; :func:`pipeline.tables.dataset.presence`) is True where the
+    store holds the point and the family has a chunk done there, False at an absent cell
+    (no point there: a conditional axis away from its condition, left out as invalid, not
+    added by refinement; or nothing done yet); :func:`reduced_dataset` carries the same.
 
     mask    -- True (default): every variable with a ``particle`` dimension is NaN for the
                particles of chunks not marked done (``ds.where(done)`` applied chunk by
@@ -252,7 +257,9 @@ def reduced_dataset(path: str | os.PathLike, names: list[str] | None = None) -> 
     """The tables of :func:`reduced` as one Dataset: dims ``frequency``, a grid's axes and
     ``family`` (the per-family ``D_<family>`` columns as ``D_family`` along ``family``), CF
     attributes (``Conventions``, ``units``, ``long_name``) on every variable; columns and
-    names in :mod:`pipeline.tables.dataset`.  ``ds.to_netcdf(...)`` writes it (needs the
+    names in :mod:`pipeline.tables.dataset`; the coordinates and the presence mask
+    ``present`` of :func:`open_study` (every variable NaN, text ``""``, at an absent
+    point), so the two agree value for value.  ``ds.to_netcdf(...)`` writes it (needs the
     ``netcdf`` extra: ``pip install bbb[netcdf]``)."""
     from .store.study_store import StudyStore
     from .tables.catalog import tables

@@ -150,3 +150,14 @@ def test_a_family_without_a_done_chunk_at_a_point_is_absent_there_and_only_there
         assert np.isfinite(ds["D_family"].sel({**at, "family": "rest"}))
         assert int((~ds["present"]).sum()) == int((~reduced_dataset(
             stores(MAP_SCENES[0]))["present"]).sum()) + 1
+
+
+def test_the_presence_mask_round_trips_through_netcdf(stores, tmp_path):
+    import xarray as xr
+
+    ds = reduced_dataset(stores(SLIDING))
+    ds.to_netcdf(tmp_path / "m.nc")
+    back = xr.open_dataset(tmp_path / "m.nc")
+    assert back["present"].dtype == bool and not back["present"].all()
+    assert np.array_equal(back["present"].values, ds["present"].values)
+    assert back["present"].attrs["flag_meanings"] == "absent present"

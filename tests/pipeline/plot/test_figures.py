@@ -67,9 +67,9 @@ def test_a_cut_of_a_real_map_without_a_point_is_not_drawn(tmp_path_factory, tmp_
 def test_a_cut_whose_points_all_failed_is_drawn(tmp_path):
     ds = reduced(families=("rest",))
     for f in ds["frequency"].values:
-        ds = failed(ds, frequency=f, alpha=0.8)
+        ds = failed(ds, "D_family", frequency=f, alpha=0.8)
     names = {p.stem for p in plot_dataset(ds, tmp_path, formats=("png",))}
-    assert np.isnan(ds["D"].sel(alpha=0.8)).all()
+    assert np.isnan(ds["D_family"].sel(alpha=0.8)).all()
     assert "curve_D_family_vs_frequency_alpha=0.8" in names
 
 
