@@ -18,7 +18,6 @@ line, so a store made here is the one ``bbb run`` makes, bit for bit, and resume
 from __future__ import annotations
 
 import json
-import math
 import os
 import warnings
 from collections.abc import Callable
@@ -107,8 +106,13 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     workflow's order; a store without ``[grid]`` has none), ``family``, ``particle``,
     ``chunk`` and, as recorded, ``time`` (s), ``collision`` and ``field``; each variable's
     ``units`` and ``long_name`` are in its attributes (positions in mm; collisions' fields t s,
-    x mm, y mm, vx mm/s, vy mm/s).  A grid is unstacked: one dimension per axis, NaN where a
-    point is absent (left out as invalid, or not in the store).
+    x mm, y mm, vx mm/s, vy mm/s).  A grid is unstacked: one dimension per axis, each point at
+    the values it holds (:func:`pipeline.workflow.point.map_coords`: mu = 0 of a stick
+    point), NaN where a point is absent.  The boolean variable ``present`` (over the point
+    dimensions and ``family``; :func:`pipeline.tables.dataset.presence`) is True where the
+    store holds the point and the family has a chunk done there, False at an absent cell
+    (no point there: a conditional axis away from its condition, left out as invalid, not
+    added by refinement; or nothing done yet); :func:`reduced_dataset` carries the same.
 
     mask    -- True (default): every variable with a ``particle`` dimension is NaN for the
                particles of chunks not marked done (``ds.where(done)`` applied chunk by
@@ -128,9 +132,11 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     import xarray as xr
 
     from .store.study_store import StudyStore, normalize_path
+    from .tables.dataset import presence
 
     st = StudyStore.open(path)  # checks that it is a complete bbb store
     study = st.study
+    done = st.done()  # (point, family, chunk)
     # a grid's points are one Zarr chunk each: in dask, whole grid lines of them at once
     # (tens of points), or a map of 10^4 points makes graphs of 10^4 tasks a variable
     chunks = {"point": _line_chunk(study)} if study.grid else None
@@ -145,7 +151,7 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
         done_p = ds["done"].data.astype(bool)[:, :, chunk_of]
     else:  # in memory (F x M x N booleans): as a dask array indexed from `done`'s
         # one-element chunks it would split every variable into one chunk per particle
-        done_p = st.done()[:, :, chunk_of]
+        done_p = done[:, :, chunk_of]
     ds = ds.assign_coords(particle_done=((study.point_dim, "family", "particle"), done_p, {
         "long_name": "the particle's chunk is marked done", "units": ""}))
     if mask:
@@ -154,11 +160,23 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
                 ds[name] = var.where(ds["particle_done"]).assign_attrs(var.attrs)
     if study.grid and unstack:
         ds = _unstack(ds, study)
+    ds["present"] = _present_on(ds, presence(study, done))
     if reduced:
         from .tables.catalog import tables
 
-        ds = attach_tables(ds, tables(st))
+        ds = attach_tables(ds, tables(st, done=done))
     return ds
+
+
+def _present_on(ds: xr.Dataset, present: xr.DataArray) -> xr.DataArray:
+    """The presence mask on ``ds``'s dimensions, in their order and with their coordinates'
+    attributes: over an unstacked map or the frequencies of a store without a grid as it
+    is; each point's along ``point`` (a grid as stored)."""
+    if "point" in ds.dims:
+        at = {c: ds[c] for c in present.dims if c != "family"}
+        return present.sel(at).drop_vars(list(at)).assign_attrs(present.attrs)
+    out = present.sel({d: ds[d].values for d in present.dims})
+    return out.assign_coords({d: ds[d] for d in out.dims})
 
 
 def _line_chunk(study: Study, points: int = 64) -> int:
@@ -169,18 +187,29 @@ def _line_chunk(study: Study, points: int = 64) -> int:
 
 
 def _unstack(ds: xr.Dataset, study: Study) -> xr.Dataset:
-    """A grid store's ``point`` dimension as one dimension per axis and ``frequency``, each
-    axis with all its values (NaN where no point has one).  A store whose points are the
-    whole product in the workflow's order (no point skipped, none added) is reshaped, lazily
-    and at once (its coordinates in the workflow's order); any other is unstacked by value
-    (coordinates sorted)."""
-    axes = dict(study.grid)
-    if not study.stored_points and len(study.points) == math.prod(
-            len(v) for v in (*axes.values(), study.frequencies)):
-        return _reshape(ds, study)
-    attrs = {c: dict(ds[c].attrs) for c in ("frequency", *axes)}
+    """A grid store's ``point`` dimension as one dimension per axis and ``frequency``, with
+    the coordinates of :func:`pipeline.workflow.point.map_coords` (where the tables put each
+    point too: mu = 0 of a stick point; NaN where no point is).  A store whose points are the
+    whole product of the workflow's values in its order (none skipped, none added, no
+    conditional axis moved) is reshaped, lazily and at once; any other is unstacked by
+    value."""
+    import itertools
+
+    from .workflow.identity import point_key
+    from .workflow.point import map_coords
+
+    coords = map_coords(study.grid, study.points)
+    axes = [a for a, _ in study.grid]
+    product = [point_key(f, tuple(zip(axes, combo, strict=True)))
+               for combo in itertools.product(*(v for _, v in study.grid))
+               for f in study.frequencies]
+    if not study.stored_points and [p.key for p in study.points] == product:
+        out = _reshape(ds, study)
+        return out.isel({d: [list(out[d].values).index(v) for v in vs]
+                         for d, vs in coords.items() if list(out[d].values) != list(vs)})
+    attrs = {c: dict(ds[c].attrs) for c in coords}
     out = ds.drop_vars("point").set_index(point=["frequency", *axes]).unstack("point")
-    out = out.reindex({a: sorted(set(out[a].values.tolist()) | set(v)) for a, v in axes.items()})
+    out = out.reindex({d: list(vs) for d, vs in coords.items()})
     out = out.transpose("frequency", *axes, ...)
     for c, a in attrs.items():
         out[c].attrs.update(a)
@@ -228,19 +257,26 @@ def reduced_dataset(path: str | os.PathLike, names: list[str] | None = None) -> 
     """The tables of :func:`reduced` as one Dataset: dims ``frequency``, a grid's axes and
     ``family`` (the per-family ``D_<family>`` columns as ``D_family`` along ``family``), CF
     attributes (``Conventions``, ``units``, ``long_name``) on every variable; columns and
-    names in :mod:`pipeline.tables.dataset`.  ``ds.to_netcdf(...)`` writes it (needs the
+    names in :mod:`pipeline.tables.dataset`; the coordinates and the presence mask
+    ``present`` of :func:`open_study` (every variable NaN, text ``""``, at an absent
+    point), so the two agree value for value.  ``ds.to_netcdf(...)`` writes it (needs the
     ``netcdf`` extra: ``pip install bbb[netcdf]``)."""
     from .store.study_store import StudyStore
     from .tables.catalog import tables
-    from .tables.dataset import tables_dataset
+    from .tables.dataset import mask_absent, presence, tables_dataset
 
     st = StudyStore.open(path)
-    attrs = st.attrs()
-    return tables_dataset(tables(st, names), dict(st.study.grid),
-                          [f.name for f in st.study.families],
-                          {"title": f"bbb reduce: study {st.study.name}",
-                           "store_fingerprint": attrs["fingerprint"],
-                           "kernel_hash": attrs["kernel_hash"]})
+    study, attrs, done = st.study, st.attrs(), st.done()
+    present = presence(study, done)
+    ds = tables_dataset(tables(st, names, done), {d: present[d].values for d in present.dims
+                                                  if d != "family"},
+                        [f.name for f in study.families],
+                        {"title": f"bbb reduce: study {study.name}",
+                         "store_fingerprint": attrs["fingerprint"],
+                         "kernel_hash": attrs["kernel_hash"]})
+    ds = mask_absent(ds, present)
+    ds["present"] = _present_on(ds, present)
+    return ds
 
 
 def attach_tables(ds: xr.Dataset, tables: dict[str, pd.DataFrame]) -> xr.Dataset:
@@ -254,15 +290,21 @@ def attach_tables(ds: xr.Dataset, tables: dict[str, pd.DataFrame]) -> xr.Dataset
     values, else attached as ``<table>_<column>`` (e.g. ``counters_n_left_cell``: per family,
     where the store's ``n_left_cell`` is per particle).  Each variable's attributes: ``units``
     (:func:`pipeline.tables.units.column_unit`, as the Parquet metadata), ``long_name``,
-    ``source`` (``bbb reduce: <table> table``), ``table`` and ``column``."""
-    from .tables.dataset import same_values, tables_dataset
+    ``source`` (``bbb reduce: <table> table``), ``table`` and ``column``.  Where ``ds`` has
+    the presence mask ``present`` (:func:`open_study` gives it), every attached variable is
+    NaN (text ``""``) at an absent point, as in :func:`reduced_dataset`."""
+    from .tables.dataset import mask_absent, same_values, tables_dataset
 
     axes = _grid_axes(ds)
     families = [str(f) for f in ds["family"].values] if "family" in ds.coords else []
-    tds = tables_dataset(tables, axes, families)
-    if "point" in ds.dims:  # a grid as stored: each point's row
+    if "point" not in ds.dims:  # on ds's coordinates
+        tds = tables_dataset(tables, {d: ds[d].values for d in ("frequency", *axes)}, families)
+    else:  # a grid as stored: each point's row
+        tds = tables_dataset(tables, axes, families)
         tds = tds.sel({c: ds[c] for c in ("frequency", *axes)})
         tds = tds.drop_vars([c for c in ("frequency", *axes) if c in tds.coords])
+    if "present" in ds.data_vars:
+        tds = mask_absent(tds, ds["present"])
     out = ds.copy()
     for name, var in tds.data_vars.items():
         if name in out.variables:

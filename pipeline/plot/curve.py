@@ -8,8 +8,11 @@ points (:data:`pipeline.plot.flags.FLAGS`: non-ergodic, non-stationary, not diff
 open marker of their flag in the line's colour, one legend entry per flag present saying what
 it means.  A point whose estimator failed (``var`` NaN where the point has a row) is not drawn
 as a value: a small ``x`` on the lower edge of the axes marks its abscissa instead (legend
-"estimator failed").  Artists carry a ``gid`` (``"line:<hue>"``, ``"band:<hue>"``,
-``"flag:<flag>:<hue>"``, ``"failed"``) so they can be found again.
+"estimator failed").  A point the map does not have (:func:`pipeline.plot.flags.absent`:
+``present`` False) is drawn as nothing -- a gap in its line, legend "not computed (gap)" --
+and a line none of whose points is present (mu = 0.3 under stick) is not drawn at all.
+Artists carry a ``gid`` (``"line:<hue>"``, ``"band:<hue>"``, ``"flag:<flag>:<hue>"``,
+``"failed"``) so they can be found again.
 """
 
 from __future__ import annotations
@@ -22,7 +25,7 @@ from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 from matplotlib.transforms import blended_transform_factory
 
-from .flags import FLAGS, failed, flagged
+from .flags import FAILED, FLAGS, NOT_COMPUTED, absent, failed, flagged
 from .labels import axis_label, value_label
 from .style import COLUMN, STYLE, family_color, new_figure
 
@@ -99,12 +102,17 @@ def _draw(ds: xr.Dataset, along: str, var: str, ax: Axes, hue: str | None, ci: s
     colors = hue_colors(ds, hue, values)
     x = ds[along].values
     bad = failed(ds, var)
+    gone = absent(ds, var)
     flags = {f: flagged(ds, f, da) for f in FLAGS}
-    shown = set()
+    shown, gaps = set(), False
     for value, color in zip(values, colors, strict=True):
         pick = {hue: value} if hue else {}
         tag = "" if hue is None else str(value)
-        y = da.sel(pick).values.astype(float)
+        off = gone.sel(pick).values
+        if off.all():
+            continue  # the map has no point on this line
+        gaps = gaps or bool(off.any())
+        y = np.where(off, np.nan, da.sel(pick).values.astype(float))
         label = value_label(ds, hue, value) if hue else None
         ax.plot(x, y, "-", marker=".", ms=3, color=color, label=label, gid=f"line:{tag}")
         lo, hi = (ds[f"{var}{s}"].sel(pick).values.astype(float) if f"{var}{s}" in ds else None
@@ -132,7 +140,10 @@ def _draw(ds: xr.Dataset, along: str, var: str, ax: Axes, hue: str | None, ci: s
                 transform=blended_transform_factory(ax.transData, ax.transAxes), gid="failed",
                 clip_on=False)
         handles.append(Line2D([], [], ls="none", marker="x", ms=4, color="0.3"))
-        labels.append("estimator failed")
+        labels.append(FAILED)
+    if gaps:
+        handles.append(Line2D([], [], ls="none"))
+        labels.append(f"{NOT_COMPUTED} (gap)")
     ax.set_xlabel(axis_label(ds, along))
     ax.set_ylabel(axis_label(ds, var))
     title = fixed_coords(da, skip=(along, hue))

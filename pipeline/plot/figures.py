@@ -12,7 +12,8 @@ names (``<format>``: each of ``formats``, default PNG and PDF):
     heat maps of D (v, D_drift) over frequency x each grid axis of 2 or more values (one per
     value of the other axes), with the CI panel (:func:`pipeline.plot.heatmap.plot_map`)
 
-A cut in which ``var`` is NaN everywhere (absent points) is not drawn.
+A cut the map has no point of (every point absent: ``present`` False, e.g. mu = 0.3 under
+stick) is not drawn; one whose points are present but failed is, its failures marked.
 """
 
 from __future__ import annotations
@@ -22,12 +23,12 @@ import os
 from collections.abc import Sequence
 from pathlib import Path
 
-import numpy as np
 import xarray as xr
 from matplotlib import rc_context
 from matplotlib.figure import Figure
 
 from .curve import plot_curve
+from .flags import present
 from .heatmap import plot_map
 from .labels import file_token
 from .style import FORMATS, STYLE, figure_files, save_figure
@@ -63,8 +64,8 @@ def plot_dataset(ds: xr.Dataset, out_dir: str | os.PathLike, *,
             save_figure(fig, out_dir, formats=formats)
         written.extend(figure_files(out_dir, name, formats))
 
-    def drawn(da: xr.DataArray) -> bool:
-        return bool(np.isfinite(da.values.astype(float)).any())
+    def drawn(cut: xr.Dataset, var: str) -> bool:
+        return bool(present(cut, cut[var]).values.any())
 
     for var in (v for v in VARIABLES if v in ds.data_vars):
         if not axes:
@@ -72,13 +73,13 @@ def plot_dataset(ds: xr.Dataset, out_dir: str | os.PathLike, *,
         for hue in axes:
             for pick, suffix in _cuts(ds, [a for a in axes if a != hue]):
                 cut = ds.sel(pick)
-                if drawn(cut[var]):
+                if drawn(cut, var):
                     save(plot_curve(cut, "frequency", var, hue=hue),
                          f"curve_{var}_vs_frequency_by_{hue}{suffix}")
     if "D_family" in ds.data_vars:
         for pick, suffix in _cuts(ds, axes):
             cut = ds.sel(pick)
-            if drawn(cut["D_family"]):
+            if drawn(cut, "D_family"):
                 save(plot_curve(cut, "frequency", "D_family", hue="family"),
                      f"curve_D_family_vs_frequency{suffix}")
     if ds.sizes["frequency"] >= 2:
@@ -86,7 +87,7 @@ def plot_dataset(ds: xr.Dataset, out_dir: str | os.PathLike, *,
             for axis in (a for a in axes if ds.sizes[a] >= 2):
                 for pick, suffix in _cuts(ds, [a for a in axes if a != axis]):
                     cut = ds.sel(pick)
-                    if drawn(cut[var]):
+                    if drawn(cut, var):
                         save(plot_map(cut, "frequency", axis, var),
                              f"map_{var}_frequency-{axis}{suffix}")
     return written

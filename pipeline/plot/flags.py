@@ -1,5 +1,8 @@
 """The verdicts a point can be flagged by, and how each is drawn: a flag variable holds True
-(passed), False (flagged) or NaN / None (unknown: not flagged).
+(passed), False (flagged) or NaN / None (unknown: not flagged).  And which points are there at
+all: an absent point (:func:`absent`: the map does not have it, ``present`` False) is drawn as
+nothing and named "not computed" in the legend; a present point whose value is NaN
+(:func:`failed`) is named "estimator failed".
 
 =============  ===================  =========================  ===========
 flag variable  said in the legend   marker on a curve (open)   map hatch
@@ -23,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-__all__ = ["Flag", "FLAGS", "flagged", "failed", "present"]
+__all__ = ["Flag", "FLAGS", "flagged", "failed", "present", "absent", "NOT_COMPUTED", "FAILED"]
 
 
 @dataclass(frozen=True)
@@ -34,6 +37,10 @@ class Flag:
     marker: str
     hatch: str
 
+
+#: what the legend says of an absent point (the map does not have it: nothing drawn) and of a
+#: present point whose value is NaN (its estimator failed)
+NOT_COMPUTED, FAILED = "not computed", "estimator failed"
 
 FLAGS = (Flag("ergodic", "non-ergodic", "o", "////"),
          Flag("stationary", "non-stationary", "s", "\\\\\\\\"),
@@ -59,20 +66,32 @@ def flagged(ds: xr.Dataset, flag: Flag, like: xr.DataArray) -> xr.DataArray:
 
 
 def present(ds: xr.Dataset, like: xr.DataArray) -> xr.DataArray:
-    """True over ``like``'s dims where the point has a row: some variable of ``ds`` over
-    those dims (any family) is not NaN; an absent point is NaN in every one."""
+    """True over ``like``'s dims where the map has the point: its presence mask ``present``
+    (:func:`pipeline.tables.dataset.presence`, as every Dataset of a store carries it; any
+    family for a variable without ``family``).  A Dataset without the mask (built by hand):
+    where some number over those dims is not NaN or some text is not empty."""
+    if "present" in ds.data_vars:
+        p = ds["present"].astype(bool)
+        p = p.any([d for d in p.dims if d not in like.dims])
+        return p.broadcast_like(like).transpose(*like.dims)
     found = xr.zeros_like(like, dtype=bool)
     for v in ds.data_vars.values():
         if not set(v.dims) <= set(like.dims) | {"family"} or not v.dims:
             continue
-        known = v.notnull() if v.dtype.kind in "fcmMO" else xr.ones_like(v, dtype=bool)
+        known = (v != "") if v.dtype.kind in "US" else v.notnull()
         if "family" in known.dims and "family" not in like.dims:
             known = known.any("family")
         found = found | known.broadcast_like(like)
     return found.transpose(*like.dims)
 
 
+def absent(ds: xr.Dataset, var: str) -> xr.DataArray:
+    """True where the map does not have the point of ``ds[var]`` (not computed): drawn as
+    nothing, never as a failure."""
+    return ~present(ds, ds[var])
+
+
 def failed(ds: xr.Dataset, var: str) -> xr.DataArray:
-    """True where the point has a row but ``ds[var]`` is NaN: its estimator failed."""
+    """True where the point is present but ``ds[var]`` is NaN: its estimator failed."""
     like = ds[var]
     return present(ds, like) & like.isnull()

@@ -6,8 +6,9 @@ such as ``contact`` one cell per name).
 What a cell shows:
 
 * its value on a colour scale, the colorbar labelled with the unit (``"D (mm²/s)"``);
-* blank (the axes' background) where the point is absent (NaN in every variable); light grey
-  where the point has a row but ``var`` is NaN (its estimator failed);
+* blank (the axes' background) where the point is absent -- the map does not have it
+  (:func:`pipeline.plot.flags.absent`: ``present`` False), legend "not computed" -- and
+  light grey where the point is present but ``var`` is NaN, legend "estimator failed";
 * hatched where the point is flagged (:data:`pipeline.plot.flags.FLAGS`: ``////``
   non-ergodic, ``\\\\`` non-stationary, ``..`` not diffusive; a cell with two flags carries
   both), a legend above the map saying which hatch means what;
@@ -36,7 +37,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Patch, Rectangle
 
 from .curve import fixed_coords
-from .flags import FLAGS, failed, flagged
+from .flags import FAILED, FLAGS, NOT_COMPUTED, absent, failed, flagged
 from .labels import axis_label, symbol
 from .style import PAGE, STYLE, new_figure
 
@@ -116,8 +117,10 @@ def _mesh(ds: xr.Dataset, x: str, y: str, ax: Axes):
 def _draw_map(ds, x, y, var, ax, cmap, contours, contour_levels) -> None:
     cx, ex, cy, ey = _mesh(ds, x, y, ax)
     z = ds[var].transpose(y, x)
-    mesh = ax.pcolormesh(ex, ey, np.ma.masked_invalid(z.values.astype(float)), cmap=cmap,
-                         gid="map")
+    gone = absent(ds, var).transpose(y, x).values
+    values = z.values.astype(float)
+    mesh = ax.pcolormesh(ex, ey, np.ma.masked_where(gone | ~np.isfinite(values), values),
+                         cmap=cmap, gid="map")
     label = axis_label(ds, var)
     where = fixed_coords(z, skip=(x, y))
     ax.figure.colorbar(mesh, ax=ax, label=f"{label}, {where}" if where else label)
@@ -125,10 +128,12 @@ def _draw_map(ds, x, y, var, ax, cmap, contours, contour_levels) -> None:
     if lost.any():
         ax.pcolormesh(ex, ey, np.ma.masked_where(~lost, np.ones(lost.shape)), cmap="Greys",
                       vmin=0, vmax=4, gid="failed")
-    handles = [Patch(facecolor="0.85", edgecolor="0.5", label="estimator failed")] \
-        if lost.any() else []
+    handles = [Patch(facecolor="0.85", edgecolor="0.5", label=FAILED)] if lost.any() else []
+    if gone.any():
+        handles.append(Patch(facecolor=ax.get_facecolor(), edgecolor="0.5", lw=0.4,
+                             label=NOT_COMPUTED))
     for f in FLAGS:
-        cells = flagged(ds, f, z).values
+        cells = flagged(ds, f, z).values & ~gone
         if not cells.any():
             continue
         rects = [Rectangle((ex[i], ey[j]), ex[i + 1] - ex[i], ey[j + 1] - ey[j])

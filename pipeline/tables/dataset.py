@@ -2,8 +2,17 @@
 CF attributes on every variable.
 
 Dimensions: ``frequency`` (Hz), then a grid's axes in the workflow's order (``alpha``,
-``contact``, ...; absent without a grid), and ``family`` for what is per family.  NaN where a
-point is absent (a grid point left out as invalid, or not computed yet).
+``contact``, ...; absent without a grid), and ``family`` for what is per family; each axis's
+values where :func:`pipeline.workflow.point.map_coords` puts them (mu = 0 of a stick point
+among mu's values, as the store and the tables record it).
+
+Absent points: a cell of the map that no point holds (mu = 0.3 under stick, a point skipped
+as invalid, a cell ``[grid.refine]`` did not add) or a point without a done chunk is absent,
+and an absent point looks the same in every view of a store (``open_study``, with or without
+``reduced=True``, :func:`pipeline.api.reduced_dataset`, the figures): every variable NaN
+there (text ``""``), and the boolean variable ``present`` (:func:`presence`, over
+``frequency``, the axes and ``family``) False.  NaN where ``present`` is True is a value
+that was computed and failed (D where its estimator failed), never an absent point.
 
 * Columns of a table with a row per point (``diffusion``, ``mechanisms``) are variables over
   the point dimensions; the per-family columns among them (``D_<family>``,
@@ -24,15 +33,20 @@ point is absent (a grid point left out as invalid, or not computed yet).
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
 import xarray as xr
 
+from ..workflow.point import map_coords
 from .units import column_unit
 
-__all__ = ["LONG_NAMES", "FAMILY_STEMS", "CONVENTIONS", "tables_dataset", "long_name",
-           "same_values"]
+if TYPE_CHECKING:
+    from ..workflow.study import Study
+
+__all__ = ["LONG_NAMES", "FAMILY_STEMS", "CONVENTIONS", "PRESENT_ATTRS", "tables_dataset",
+           "long_name", "same_values", "presence", "mask_absent"]
 
 CONVENTIONS = "CF-1.10"
 
@@ -69,6 +83,19 @@ LONG_NAMES: dict[str, str] = {
     "t_max": "simulated time",
 }
 
+#: the attributes of the presence mask ``present`` (CF flag attributes; stored as 0/1 by
+#: ``to_netcdf``)
+PRESENT_ATTRS = {
+    "units": "",
+    "long_name": "the map has the point and the family has data there (a chunk done)",
+    "flag_values": [0, 1],
+    "flag_meanings": "absent present",
+    "comment": "absent: no point of the map at these values (a conditional axis such as mu "
+               "away from its condition, a point skipped as invalid, a cell a refined map "
+               "did not add) or no chunk done there; every variable is NaN (text empty) "
+               "there. NaN where present is a value that failed (an estimator failure).",
+}
+
 
 def long_name(column: str, table: str = "") -> str:
     """The CF long name of ``column`` (:data:`LONG_NAMES`, else named after its table)."""
@@ -83,26 +110,82 @@ def tables_dataset(tables: Mapping[str, pd.DataFrame],
                    ) -> xr.Dataset:
     """The Dataset of ``tables`` ({name: DataFrame} as :func:`pipeline.tables.catalog.tables`
     gives them) of a study whose grid has ``axes`` and whose families are ``families``
-    (module docstring).  ``axes`` as {axis: values}: each axis has every one of its values,
-    those no row has too (NaN), e.g. a value whose every point was left out as invalid."""
+    (module docstring).  ``axes`` as {axis: values} (``frequency`` may be among them, as
+    :func:`pipeline.workflow.point.map_coords` gives them): each axis has these values in
+    this order, those no row has too (NaN), e.g. a value whose every point was left out as
+    invalid; ``family`` is in the order of ``families``.  Nothing is masked here: absent
+    points as the tables have them (:func:`mask_absent` and :func:`presence` make the
+    store's mask)."""
     out = xr.Dataset(attrs={"Conventions": CONVENTIONS,
                             "title": "bbb reduce: the tables of a study store",
                             "source": "bbb", **(attrs or {})})
+    names = [a for a in axes if a != "frequency"]
     per_point = sorted(tables.items(), key=lambda item: "family" in item[1].columns)
     for name, df in per_point:
-        for var, values in _variables(name, df, list(axes), list(families)):
+        for var, values in _variables(name, df, names, list(families)):
             if var in out.variables:
                 if same_values(out[var], values):
                     continue
                 var = f"{name}_{var}"
             out[var] = values
-    if isinstance(axes, Mapping):
-        out = out.reindex({a: sorted(set(out[a].values.tolist()) | set(v))
-                           for a, v in axes.items() if a in out.dims})
-    for dim in ("frequency", *axes, "family"):
+    order = dict(axes) if isinstance(axes, Mapping) else {}
+    if families:
+        order["family"] = families
+    out = _filled(out.reindex({a: _ordered(v, out[a].values) for a, v in order.items()
+                               if a in out.dims}))
+    for dim in ("frequency", *names, "family"):
         if dim in out.coords:
             out[dim].attrs.update(units=column_unit("f" if dim == "frequency" else dim),
                                   long_name=long_name(dim))
+    return out
+
+
+def _ordered(listed: Sequence, have) -> list:
+    """``listed`` in its order, then any value of ``have`` it lacks (sorted)."""
+    listed = list(listed)
+    return listed + sorted(set(np.asarray(have).tolist()) - set(listed))
+
+
+def _filled(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` with its text variables' missing values ``""`` (a reindex leaves NaN)."""
+    for name, var in ds.data_vars.items():
+        if var.dtype == object:
+            ds[name] = var.fillna("").astype(str).assign_attrs(var.attrs)
+    return ds
+
+
+def presence(study: Study, done: np.ndarray) -> xr.DataArray:
+    """The presence mask ``present`` of a store of ``study`` whose done markers are ``done``
+    (bool (point, family, chunk), :meth:`pipeline.store.study_store.StudyStore.done`): over
+    ``frequency``, the grid's axes (:func:`pipeline.workflow.point.map_coords`) and
+    ``family``, True where the store holds the point and the family has a chunk done there,
+    False at every other cell (module docstring).  Attributes :data:`PRESENT_ATTRS`."""
+    coords = map_coords(study.grid, study.points)
+    families = [f.name for f in study.families]
+    where = {d: {v: i for i, v in enumerate(vs)} for d, vs in coords.items()}
+    mask = np.zeros([len(v) for v in coords.values()] + [len(families)], dtype=bool)
+    has = np.asarray(done, dtype=bool).any(axis=2)
+    for pi, p in enumerate(study.points):
+        at = dict(p.grid, frequency=float(p.f))
+        mask[tuple(where[d][at[d]] for d in coords)] = has[pi]
+    return xr.DataArray(mask, dims=[*coords, "family"],
+                        coords={**{d: list(v) for d, v in coords.items()}, "family": families},
+                        name="present", attrs=dict(PRESENT_ATTRS))
+
+
+def mask_absent(ds: xr.Dataset, present: xr.DataArray) -> xr.Dataset:
+    """``ds`` with every variable over ``present``'s dimensions (or some of them) NaN, text
+    ``""``, where the point is absent: where ``present`` is False, for a variable without
+    ``family`` where it is False for every family."""
+    out = ds.copy()
+    for name, var in ds.data_vars.items():
+        if name == "present" or not var.dims or not set(var.dims) <= set(present.dims):
+            continue
+        here = present.any([d for d in present.dims if d not in var.dims])
+        if var.dtype.kind in "UO":
+            out[name] = var.where(here, "").fillna("").astype(str).assign_attrs(var.attrs)
+        else:
+            out[name] = var.where(here).assign_attrs(var.attrs)
     return out
 
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -18,7 +18,7 @@ from bbb.params import PRESETS, Params
 from .identity import point_key
 
 __all__ = ["Grid", "Point", "resolve_params", "fmt_value", "combinations", "CONDITIONAL_AXES",
-           "elsewhere"]
+           "elsewhere", "map_coords"]
 
 #: a grid: (axis, values) per [grid] axis, in the workflow's order
 Grid = tuple[tuple[str, tuple[Any, ...]], ...]
@@ -61,6 +61,28 @@ def combinations(grid: Grid, overrides: Mapping[str, Any]):
         if out not in seen:
             seen.add(out)
             yield out
+
+
+def map_coords(grid: Grid, points: Iterable[Point]) -> dict[str, tuple[Any, ...]]:
+    """Where every view of a map puts its points (``open_study``, the tables' Dataset, the
+    figures): the coordinates of the unstacked map, ``{"frequency": Hz, axis: values, ...}``.
+
+    A point sits at the values its :class:`Point` holds, which are also the store's
+    coordinates and the tables' columns: a conditional axis (:data:`CONDITIONAL_AXES`) at
+    its value elsewhere -- mu = 0 under stick and slide, whatever ``[grid]`` lists -- so
+    each axis has the workflow's values and every value a point holds (that mu = 0, a value
+    ``[grid.refine]`` added).  Numbers ascending (frequency too); names (``contact``) in the
+    workflow's order, any other after them.  A cell of this product that no point holds is
+    absent (the presence mask ``present`` of :func:`pipeline.tables.dataset.presence`)."""
+    points = list(points)
+    out: dict[str, tuple[Any, ...]] = {"frequency": tuple(sorted({float(p.f) for p in points}))}
+    for axis, listed in grid:
+        held = {dict(p.grid)[axis] for p in points} | set(listed)
+        if all(isinstance(v, str) for v in held):
+            out[axis] = tuple(listed) + tuple(sorted(held - set(listed)))
+        else:
+            out[axis] = tuple(sorted(held))
+    return out
 
 
 def resolve_params(preset: str, f: float, values: Mapping[str, Any]) -> Params:

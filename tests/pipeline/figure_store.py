@@ -1,5 +1,6 @@
-"""A tiny study store for the figure and report tests, made once per test session through
-the real pipeline (run_study on a 2-worker LocalCluster, then reduce_store)."""
+"""Tiny study stores for the figure and report tests, made once per test session through
+the real pipeline (run_study on a LocalCluster, then reduce_store or reduced_dataset): a D(f)
+study, and a map whose absent points come from the store itself."""
 
 from __future__ import annotations
 
@@ -43,6 +44,57 @@ n_resamples = 50
 record = 400
 record_from = 2.0
 """
+
+
+# The issue's map: contact x mu on a tilted floor (v and D_drift too), two families.  mu
+# applies under Coulomb only, so the store holds stick and slide at mu = 0 and Coulomb at
+# mu = 0.3: the cells (stick, 0.3), (slide, 0.3) and (coulomb, 0) of the map are absent.
+TINY_MAP = """\
+[study]
+name = "tiny_map"
+seed = 7
+
+[params]
+preset = "klages2004"
+tilt = 2.0
+
+[frequencies]
+values = [54.0, 60.0]
+
+[grid]
+contact = ["stick", "slide", "coulomb"]
+mu = [0.3]
+
+[families.rest]
+initial = "rest"
+
+[families.launched]
+initial = "launched"
+launch_speed = [0.0, 150.0]
+
+[accuracy]
+preset = "draft"
+n_particles = 8
+chunk_size = 8
+t_max = 10.0
+sample_dt = 0.5
+n_resamples = 50
+
+[observables.positions]
+"""
+
+
+def tiny_map(tmp_path_factory) -> str:
+    """The path of the TINY_MAP store, run once per session (one worker)."""
+    from pipeline.api import run_study
+
+    base = Path(tmp_path_factory.getbasetemp()) / "tiny_map"
+    store = base / "tiny_map.zarr"
+    if not (base / "ready").exists():
+        base.mkdir(parents=True, exist_ok=True)
+        run_study(TINY_MAP, store, workers=1, echo=lambda s: None)
+        (base / "ready").write_text("ok\n")
+    return str(store)
 
 
 def tiny_store(tmp_path_factory) -> tuple[str, dict[str, pd.DataFrame]]:

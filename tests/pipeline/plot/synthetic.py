@@ -1,7 +1,9 @@
 """Synthetic reduced Datasets shaped as ``open_study(path, reduced=True)`` returns them with a
 ``[grid]`` (the contract of pipeline/plot/): dims ``frequency`` and grid axes, ``family`` for
-the per-family variables, NaN where a point is absent, ``units`` / ``long_name`` on every
-variable and coordinate."""
+the per-family variables, ``units`` / ``long_name`` on every variable and coordinate, every
+point present (``present`` True): values with known answers for the drawing of values, CIs,
+flags and failures.  Absent points are not made here: the tests that need them read a real
+store's (tests/pipeline/figure_store.py, ``tiny_map``)."""
 
 from __future__ import annotations
 
@@ -13,8 +15,9 @@ D_UNITS = {"units": "mm^2/s", "long_name": "diffusion coefficient"}
 
 def reduced(freqs=(50.0, 55.0, 62.0, 70.0, 80.0), alphas=(0.5, 0.6, 0.8),
             families=("rest", "launched"), velocity=False) -> xr.Dataset:
-    """D(f, alpha) = 100 alpha (1 + sin(f / 5)) with a 10 % CI, every point present, every
-    flag True; per-family D 5 % apart; ``velocity``: v and D_drift too."""
+    """D(f, alpha) = 100 alpha (1 + sin(f / 5)) with a 10 % CI, every point present
+    (``present`` True for every family), every flag True; per-family D 5 % apart;
+    ``velocity``: v and D_drift too."""
     f = np.asarray(freqs, float)
     a = np.asarray(alphas, float)
     d = 100 * a[None, :] * (1 + np.sin(f[:, None] / 5)) + 10
@@ -37,6 +40,7 @@ def reduced(freqs=(50.0, 55.0, 62.0, 70.0, 80.0), alphas=(0.5, 0.6, 0.8),
     ds["D_family"] = (fdims, fam, D_UNITS)
     ds["D_family_lo"] = (fdims, 0.9 * fam, D_UNITS)
     ds["D_family_hi"] = (fdims, 1.1 * fam, D_UNITS)
+    ds["present"] = (fdims, np.ones(fam.shape, dtype=bool), {"units": "", "long_name": "present"})
     if velocity:
         v = 3 * a[None, :] + 0.01 * f[:, None]
         vu = {"units": "mm/s", "long_name": "drift velocity"}
@@ -45,19 +49,6 @@ def reduced(freqs=(50.0, 55.0, 62.0, 70.0, 80.0), alphas=(0.5, 0.6, 0.8),
         ds["D_drift_lo"] = (dims, 0.7 * d, D_UNITS)
         ds["D_drift_hi"] = (dims, 0.9 * d, D_UNITS)
     return ds
-
-
-def absent(ds: xr.Dataset, **point) -> xr.Dataset:
-    """``ds`` with the point ``point`` absent: NaN in every variable (flags become floats)."""
-    out = ds.copy(deep=True)
-    for name, var in out.data_vars.items():
-        if set(point) <= set(var.dims):
-            values = var.values.astype(float)
-            idx = tuple(list(ds[d].values).index(point[d]) if d in point else slice(None)
-                        for d in var.dims)
-            values[idx] = np.nan
-            out[name] = (var.dims, values, var.attrs)
-    return out
 
 
 def failed(ds: xr.Dataset, var: str = "D", **point) -> xr.Dataset:

@@ -9,11 +9,19 @@ from matplotlib.collections import LineCollection, PolyCollection
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from pipeline.api import reduced_dataset
 from pipeline.plot import plot_curve
 from pipeline.plot.style import FAMILY_COLORS
 
+from ..figure_store import tiny_map
 from ..text_overlap import overlaps
 from .synthetic import failed, flag, reduced
+
+
+@pytest.fixture(scope="module")
+def real_map(tmp_path_factory):
+    """The reduced Dataset of a real contact x mu map (figure_store.TINY_MAP)."""
+    return reduced_dataset(tiny_map(tmp_path_factory))
 
 
 def _artists(fig, kind, gid_prefix):
@@ -112,6 +120,14 @@ def test_a_point_whose_estimator_failed_is_not_drawn_as_a_value_but_marked_faile
 
 def test_nothing_is_marked_failed_when_every_estimate_exists():
     assert _artists(plot_curve(reduced()), Line2D, "failed") == {}
+
+
+def test_a_line_a_real_map_does_not_have_is_neither_drawn_nor_marked_failed(real_map):
+    """At mu = 0.3 the map has the Coulomb line only (mu applies under Coulomb)."""
+    fig = plot_curve(real_map.sel(mu=0.3), hue="contact")
+    assert sorted(_artists(fig, Line2D, "line:")) == ["line:coulomb"]
+    assert _artists(fig, Line2D, "failed") == {}
+    assert not {"estimator failed", "stick", "slide"} & set(_legend(fig))
 
 
 def test_a_variable_varying_along_a_dimension_neither_along_nor_hue_is_refused():

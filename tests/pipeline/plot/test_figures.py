@@ -6,10 +6,11 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from pipeline.api import reduced_dataset
 from pipeline.plot import plot_dataset
 
-from ..figure_store import assert_png_drawn
-from .synthetic import absent, reduced
+from ..figure_store import assert_png_drawn, tiny_map
+from .synthetic import failed, reduced
 
 MAGIC = {".png": b"\x89PNG\r\n\x1a\n", ".pdf": b"%PDF-"}
 
@@ -55,14 +56,21 @@ def test_two_grid_axes_give_a_cut_per_value_of_the_other_axis(tmp_path):
                      "map_D_frequency-mu_alpha=0.5", "map_D_frequency-mu_alpha=0.8"}
 
 
-def test_a_cut_where_every_point_is_absent_is_not_drawn(tmp_path):
+def test_a_cut_of_a_real_map_without_a_point_is_not_drawn(tmp_path_factory, tmp_path):
+    ds = reduced_dataset(tiny_map(tmp_path_factory))
+    names = {p.stem for p in plot_dataset(ds, tmp_path, formats=("png",))}
+    assert not ds["present"].sel(contact="stick", mu=0.3).any()  # mu is Coulomb's
+    assert "curve_D_family_vs_frequency_contact=stick_mu=0.3" not in names
+    assert "curve_D_family_vs_frequency_contact=stick_mu=0" in names
+
+
+def test_a_cut_whose_points_all_failed_is_drawn(tmp_path):
     ds = reduced(families=("rest",))
     for f in ds["frequency"].values:
-        ds = absent(ds, frequency=f, alpha=0.8)
+        ds = failed(ds, "D_family", frequency=f, alpha=0.8)
     names = {p.stem for p in plot_dataset(ds, tmp_path, formats=("png",))}
-    assert "curve_D_family_vs_frequency_alpha=0.8" not in names
-    assert "curve_D_family_vs_frequency_alpha=0.6" in names
-    assert np.isnan(ds["D"].sel(alpha=0.8)).all()
+    assert np.isnan(ds["D_family"].sel(alpha=0.8)).all()
+    assert "curve_D_family_vs_frequency_alpha=0.8" in names
 
 
 def test_formats_choose_the_files_written(tmp_path):

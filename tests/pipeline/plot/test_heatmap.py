@@ -1,5 +1,6 @@
-"""plot_map: a variable over two dimensions, flagged cells hatched, absent cells blank, the
-CI as a second panel, contours (pipeline/plot/heatmap.py)."""
+"""plot_map: a variable over two dimensions, flagged cells hatched, absent cells blank (a real
+map's: never the grey of a failure), the CI as a second panel, contours
+(pipeline/plot/heatmap.py)."""
 
 from __future__ import annotations
 
@@ -8,12 +9,21 @@ import pytest
 from matplotlib.collections import PatchCollection, QuadMesh
 from matplotlib.contour import ContourSet
 from matplotlib.figure import Figure
+from PIL import Image
 
+from pipeline.api import reduced_dataset
 from pipeline.plot import plot_map
 from pipeline.plot.heatmap import cell_edges
 
+from ..figure_store import tiny_map
 from ..text_overlap import overlaps
-from .synthetic import absent, failed, flag, reduced
+from .synthetic import failed, flag, reduced
+
+
+@pytest.fixture(scope="module")
+def real_map(tmp_path_factory):
+    """The reduced Dataset of a real contact x mu map (figure_store.TINY_MAP)."""
+    return reduced_dataset(tiny_map(tmp_path_factory))
 
 
 def _by_gid(fig, kind):
@@ -69,23 +79,44 @@ def test_no_cell_is_hatched_and_no_legend_is_drawn_without_flags():
     assert not _by_gid(fig, PatchCollection) and fig.axes[0].get_legend() is None
 
 
-def test_absent_cells_are_masked_and_only_they():
-    ds = absent(absent(reduced(), frequency=80.0, alpha=0.8), frequency=50.0, alpha=0.5)
-    z = _by_gid(plot_map(ds), QuadMesh)["map"].get_array()
-    # rows alpha (0.5, 0.6, 0.8), columns f (50 ... 80)
-    want = np.zeros((3, 5), bool)
-    want[2, 4] = want[0, 0] = True
-    assert np.array_equal(np.ma.getmaskarray(z).reshape(3, 5), want)
+def test_absent_cells_of_a_real_map_are_masked_and_only_they(real_map):
+    cut = real_map.sel(mu=0.0)  # coulomb is absent there (mu = 0.3 only), stick and slide not
+    z = _by_gid(plot_map(cut, y="contact"), QuadMesh)["map"].get_array()
+    gone = ~cut["present"].any("family").transpose("contact", "frequency").values
+    assert gone[2].all() and not gone[:2].any()
+    want = gone | np.isnan(cut["D"].transpose("contact", "frequency").values)
+    assert np.array_equal(np.ma.getmaskarray(z).reshape(3, 2), want)
 
 
-def test_a_failed_cell_is_masked_in_the_map_and_drawn_grey_but_an_absent_one_is_not():
-    ds = absent(failed(reduced(), frequency=62.0, alpha=0.6), frequency=80.0, alpha=0.8)
-    meshes = _by_gid(plot_map(ds), QuadMesh)
-    grey = ~np.ma.getmaskarray(meshes["failed"].get_array()).reshape(3, 5)
-    want = np.zeros((3, 5), bool)
-    want[1, 2] = True
+def test_a_failed_cell_is_drawn_grey_but_an_absent_one_of_a_real_map_is_not(real_map):
+    cut = failed(real_map.sel(mu=0.0), frequency=54.0, contact="slide")
+    fig = plot_map(cut, y="contact")
+    grey = ~np.ma.getmaskarray(_by_gid(fig, QuadMesh)["failed"].get_array()).reshape(3, 2)
+    want = np.zeros((3, 2), bool)  # rows stick, slide, coulomb; columns 54, 60 Hz
+    want[1, 0] = True
     assert np.array_equal(grey, want)
-    assert np.ma.getmaskarray(meshes["map"].get_array()).reshape(3, 5)[1, 2]
+    legend = [t.get_text() for t in fig.axes[0].get_legend().get_texts()]
+    assert legend[:2] == ["estimator failed", "not computed"]
+
+
+def test_the_pixels_of_an_absent_cell_are_the_background_not_the_failed_grey(real_map,
+                                                                             tmp_path):
+    """The saved PNG itself: at mu = 0.3 only the Coulomb line exists; the stick and slide
+    cells show the axes' white, the Coulomb cells a colour of the map."""
+    fig = plot_map(real_map.sel(mu=0.3), y="contact", ci=False)
+    fig.savefig(tmp_path / "map.png", dpi=100)  # no tight box: the figure's own pixels
+    with Image.open(tmp_path / "map.png") as im:
+        rgb = np.asarray(im.convert("RGB"), dtype=int)
+    ax = fig.axes[0]
+
+    def pixel(f, row):
+        x, y = ax.transData.transform((f, row))
+        return rgb[int(round(rgb.shape[0] - y)), int(round(x))]
+
+    for f in (54.0, 60.0):
+        assert (pixel(f, 0) >= 250).all() and (pixel(f, 1) >= 250).all(), f  # stick, slide
+        assert not (pixel(f, 2) >= 250).all(), f  # coulomb: drawn
+    assert "not computed" in [t.get_text() for t in ax.get_legend().get_texts()]
 
 
 def test_the_colorbar_and_the_axes_are_labelled_with_units():
