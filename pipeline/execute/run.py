@@ -207,7 +207,7 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
         if not todo and not damaged:
             if waves is None:
                 echo(f"{study.name}: all {done.size} chunks already done in {store_path} "
-                     f"(each checked in {report.check_seconds:.1f} s: sound)")
+                     f"(every one read and checked in {report.check_seconds:.1f} s: intact)")
             else:
                 store.consolidate()
                 echo(f"{study.name}: nothing left to compute in {store_path} "

@@ -58,17 +58,20 @@ def read_markers(g: zarr.Group) -> tuple[np.ndarray, list[Damage]]:
         try:
             done[fi, mi, ci] = bool(arr[fi, mi, ci])
         except Exception as e:
-            damage.append(Damage("done", fi, mi, ci, f"unreadable done-marker ({_cause(e)})"))
+            damage.append(Damage("done", fi, mi, ci, f"done-marker unreadable: {_cause(e)}"))
     return done, damage
 
 
 def read_checked(g: zarr.Group, name: str, fi: int, mi: int, chunks: np.ndarray, cs: int,
                  checked: tuple[str, ...]) -> tuple[list[np.ndarray], list[Damage]]:
     """Array ``name`` at (point fi, family mi) for the chunks ``chunks`` (sorted indices,
-    ``cs`` particles each): (one block per run of consecutive chunks, damaged chunks).  Each
-    chunk of a data array (``checked``) is compared with its recorded digest."""
+    ``cs`` particles each; an array along ``chunk``, as ``chunk_seconds``, has one value a
+    chunk): (one block per run of consecutive chunks, damaged chunks).  Each chunk of a data
+    array (``checked``) is compared with its recorded digest; of another, its bytes only."""
     arr = g[name]
     k = checked.index(name) if name in checked else None
+    if (arr.metadata.dimension_names or ())[2:3] != ("particle",):
+        cs = 1
     blocks, damage = [], []
     for c0, c1 in runs(chunks):
         try:  # one read per run: Zarr fetches its chunks at once
@@ -96,7 +99,7 @@ def _check_run(g, arr, name, k, fi, mi, c0, c1, cs, block, damage: list[Damage])
             try:
                 part = np.asarray(arr[fi, mi, ci * cs: (ci + 1) * cs])
             except Exception as e:
-                damage.append(Damage(name, fi, mi, ci, f"unreadable ({_cause(e)})"))
+                damage.append(Damage(name, fi, mi, ci, f"unreadable: {_cause(e)}"))
                 part = np.full((cs, *arr.shape[3:]), fill, dtype=arr.dtype)
                 parts.append(part)
                 continue
@@ -106,8 +109,8 @@ def _check_run(g, arr, name, k, fi, mi, c0, c1, cs, block, damage: list[Damage])
         if int(want[ci - c0]) == DIGEST_NONE:
             damage.append(Damage(name, fi, mi, ci, "marked done but no digest was recorded"))
         elif chunk_digest(part, fill, trim) != int(want[ci - c0]):
-            damage.append(Damage(name, fi, mi, ci, "values differ from those written (a "
-                                 "deleted, cut or altered chunk file)"))
+            damage.append(Damage(name, fi, mi, ci, "values differ from those its task "
+                                 "wrote (recorded digest): a deleted or rewritten chunk"))
     return np.concatenate(parts) if len(parts) > 1 else parts[0]
 
 
@@ -116,18 +119,19 @@ def _digest_of(g, fi, mi, ci, k, damage: list[Damage]) -> int | None:
         return int(g["digest"][fi, mi, ci, k])
     except Exception as e:
         if not any(d.array == "digest" and (d.fi, d.mi, d.ci) == (fi, mi, ci) for d in damage):
-            damage.append(Damage("digest", fi, mi, ci, f"unreadable ({_cause(e)})"))
+            damage.append(Damage("digest", fi, mi, ci, f"unreadable: {_cause(e)}"))
         return None
 
 
 def scan(g: zarr.Group, done: np.ndarray, cs: int) -> list[Damage]:
     """Every damaged chunk among the ``done`` ones (bool (point, family, chunk)): each data
-    array of each done chunk read and compared with its digest.  Reads the whole store."""
+    array of each done chunk read and compared with its digest, and its ``chunk_seconds``
+    decoded.  Reads the whole store."""
     checked = checked_arrays(g)
     damage: list[Damage] = []
     for fi, mi in zip(*np.nonzero(done.any(axis=2)), strict=True):
         chunks = np.flatnonzero(done[fi, mi])
-        for name in checked:
+        for name in (*checked, "chunk_seconds"):
             for batch in _batches(chunks):
                 damage += read_checked(g, name, int(fi), int(mi), batch, cs, checked)[1]
     # a digest chunk damaged is found once per array: keep one line
@@ -148,5 +152,9 @@ def _batches(chunks: np.ndarray) -> Iterator[np.ndarray]:
 
 
 def _cause(e: Exception) -> str:
+    """Why a chunk could not be decoded, for a person: Zarr's crc32c codec says "checksum do
+    not match" for any changed byte, an empty or a cut file alike."""
     text = str(e).splitlines()[0] if str(e) else ""
-    return f"{type(e).__name__}: {text[:120]}" if text else type(e).__name__
+    if "checksum do not match" in text:
+        return "its bytes fail their CRC-32C: a flipped, cut, emptied or foreign chunk file"
+    return f"cannot be decoded ({type(e).__name__}: {text[:100]})" if text else type(e).__name__
