@@ -63,11 +63,14 @@ def read_markers(g: zarr.Group) -> tuple[np.ndarray, list[Damage]]:
 
 
 def read_checked(g: zarr.Group, name: str, fi: int, mi: int, chunks: np.ndarray, cs: int,
-                 checked: tuple[str, ...]) -> tuple[list[np.ndarray], list[Damage]]:
+                 checked: tuple[str, ...], cache: dict | None = None
+                 ) -> tuple[list[np.ndarray], list[Damage]]:
     """Array ``name`` at (point fi, family mi) for the chunks ``chunks`` (sorted indices,
     ``cs`` particles each; an array along ``chunk``, as ``chunk_seconds``, has one value a
     chunk): (one block per run of consecutive chunks, damaged chunks).  Each chunk of a data
-    array (``checked``) is compared with its recorded digest; of another, its bytes only."""
+    array (``checked``) is compared with its recorded digest; of another, its bytes only.
+    ``cache``: digests read before, by (fi, mi, first chunk, end) of a run (the readers read
+    one array after another over the same done chunks: their digests are read once)."""
     arr = g[name]
     k = checked.index(name) if name in checked else None
     if (arr.metadata.dimension_names or ())[2:3] != ("particle",):
@@ -79,17 +82,25 @@ def read_checked(g: zarr.Group, name: str, fi: int, mi: int, chunks: np.ndarray,
         except Exception:
             block = None
         if block is None or k is not None:
-            block = _check_run(g, arr, name, k, fi, mi, c0, c1, cs, block, damage)
+            block = _check_run(g, arr, name, k, fi, mi, c0, c1, cs, block, damage,
+                               {} if cache is None else cache)
         blocks.append(block)
     return blocks, damage
 
 
-def _check_run(g, arr, name, k, fi, mi, c0, c1, cs, block, damage: list[Damage]) -> np.ndarray:
+def _check_run(g, arr, name, k, fi, mi, c0, c1, cs, block, damage: list[Damage],
+               cache: dict) -> np.ndarray:
     if k is not None:
-        try:
-            want = np.asarray(g["digest"][fi, mi, c0:c1, k])
-        except Exception:  # a digest chunk itself damaged: which one?
-            want = np.array([_digest_of(g, fi, mi, ci, k, damage) for ci in range(c0, c1)])
+        rows = cache.get((fi, mi, c0, c1))
+        if rows is None:
+            try:
+                rows = np.asarray(g["digest"][fi, mi, c0:c1])
+                if (rows != DIGEST_NONE).all():  # else a chunk may be done since: read again
+                    cache[(fi, mi, c0, c1)] = rows
+            except Exception:  # a digest chunk itself damaged: which one?
+                rows = None
+        want = (rows[:, k] if rows is not None else
+                np.array([_digest_of(g, fi, mi, ci, k, damage) for ci in range(c0, c1)]))
     parts = []
     fill, trim = arr.fill_value, "period" in (arr.metadata.dimension_names or ())
     for ci in range(c0, c1):

@@ -217,26 +217,38 @@ class StudyStore:
     def read_done(self, name: str, fi: int, mi: int, done_fm: np.ndarray | None = None
                   ) -> np.ndarray:
         """Array ``name`` at (frequency index fi, family index mi) for the particles of the
-        done chunks only, in particle order: shape (particles of done chunks, ...).
+        done chunks only, in particle order: shape (particles of done chunks, ...); an array
+        along ``chunk`` (``chunk_seconds``): one value per done chunk.
 
         Chunks not marked done are never read, so a half-written or damaged chunk of an
         interrupted run cannot break a reduction.  Each done chunk is checked as it is read
         (its file's CRC-32C, its values' digest): a damaged one raises StoreDamaged naming it.
         """
         g = self.group()
-        arr = g[name]
         if done_fm is None:
             done_fm = self.done()[fi, mi]
         # One read per run of consecutive done chunks (an adaptive store's done chunks are one
         # run, its first n): Zarr then fetches the run's chunks at once, where one read per
         # chunk made `bbb reduce` spend half its time in per-call overhead.
         parts, damage = read_checked(g, name, fi, mi, np.flatnonzero(done_fm),
-                                     self.study.accuracy.chunk_size, self.checked)
+                                     self.study.accuracy.chunk_size, self.checked,
+                                     self._digests)
         if damage:
             raise self.damaged(damage)
         if parts:
             return np.concatenate(parts) if len(parts) > 1 else parts[0]
+        arr = g[name]
         return np.zeros((0, *arr.shape[3:]), dtype=arr.dtype)
+
+    @cached_property
+    def _digests(self) -> dict:
+        """Digests of the done chunks read so far (:func:`read_checked`'s cache); a done
+        chunk's digest never changes (a repair rewrites the same)."""
+        return {}
+
+    def __getstate__(self) -> dict:
+        # sent to every Dask task: without the digests this process has read
+        return {k: v for k, v in self.__dict__.items() if k != "_digests"}
 
     def damage(self) -> list[Damage]:
         """Every damaged chunk of the store: unreadable done-markers, and each done chunk of
