@@ -188,7 +188,8 @@ def work_left(study, store_path) -> bool:
     An adaptive store never has every chunk done (a (frequency, family) stops short of the
     cap): it is finished when the wave rule, replayed as the run would (recorded stops are
     read, not recomputed, except a "resolved zero" where nothing moved, which reopens),
-    leaves no (frequency, family) open and refinement adds nothing."""
+    leaves no (frequency, family) open and refinement adds nothing.  A store with damaged
+    chunks has work left: their recomputation."""
     from ..store.lock import run_lock
     from ..store.study_store import StudyStore, normalize_path
     from ..workflow.sanity import refuse_nothing_moves
@@ -200,6 +201,8 @@ def work_left(study, store_path) -> bool:
     with run_lock(path):
         repair_metadata(study, path)  # as the run would: damaged zarr.json files rebuilt
         store = StudyStore.create_or_open(path, study)
+        if store.damage():  # damaged chunks: the run recomputes them
+            return True
         if not store.study.adaptive:
             return not store.done().all()
         return bool(Waves(store, echo=lambda _: None).prepare())

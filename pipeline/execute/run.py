@@ -4,7 +4,10 @@ The cluster is a ``LocalCluster`` (processes, one thread each, ``workers`` of th
 the number of cores) or an existing scheduler given by address.  Every chunk's result depends
 only on (parameters, frequency, family, chunk) through its SeedSequence, so the store is the
 same bit for bit whatever the worker count or task order.  Chunks already marked done are
-skipped, so re-running the same workflow on the same store resumes it.  This module is the
+skipped, so re-running the same workflow on the same store resumes it; first, every done
+chunk is read and checked (:meth:`pipeline.store.study_store.StudyStore.damage`), and the
+damaged ones -- a chunk file deleted, cut or altered, a done-marker unreadable -- are
+recomputed, which rewrites exactly their bytes.  This module is the
 client side; what a task computes on a worker is :mod:`pipeline.execute.task`.
 
 Fault injection (for tests): the environment variable ``BBB_FAIL_CHUNKS`` lists chunks, as
@@ -89,6 +92,8 @@ class RunReport:
     dashboard: str | None = None
     adaptive: bool = False  # n_chunks is then the store's capacity, not a plan
     submit_seconds: float = 0.0
+    repaired: list[ChunkKey] = field(default_factory=list)  # damaged chunks recomputed
+    check_seconds: float = 0.0  # reading and checking every done chunk, s
 
     @property
     def collisions_per_s(self) -> float:
@@ -99,7 +104,8 @@ class RunReport:
         # an adaptive store's chunk axis is a cap: most of it is never meant to be computed
         count = (f"{done} chunks used (of {self.n_chunks} the cap allows)" if self.adaptive
                  else f"{done}/{self.n_chunks} chunks done")
-        return (f"{self.name}: {count} ({len(self.computed)} computed, "
+        repaired = f", {len(self.repaired)} of them repaired" if self.repaired else ""
+        return (f"{self.name}: {count} ({len(self.computed)} computed{repaired}, "
                 f"{self.skipped} already done), {self.collisions:.3g} collisions in "
                 f"{self.wall:.1f} s wall ({self.compute_wall:.1f} s computing, "
                 f"{self.task_seconds:.1f} s in tasks) on {self.workers} workers = "
@@ -159,53 +165,65 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
     # a LocalCluster starts only once the store is known to need work.
     client, cluster = connect(scheduler, None, dashboard) if scheduler else (None, None)
     waves = None
-    try:
-        repair_metadata(study, store_path, echo)  # damaged zarr.json files, chunks kept
-        store = StudyStore.create_or_open(store_path, study)
-        store.consolidate()  # readable by xarray.open_zarr even if the run is interrupted
-        done = store.done()
-        report = RunReport(study.name, store_path, done.size, int(done.sum()),
-                           adaptive=study.adaptive)
-        if study.adaptive:
-            # waves and refinement: the chunks to compute follow from the done ones
-            waves = Waves(store, echo)
-            todo = waves.prepare()
-            store, study = waves.store, waves.store.study
-        else:
-            study = store.study  # a grid store's points, in its order
-            todo = [(fi, mi, ci)
-                    for fi in range(len(study.points))
-                    for mi in range(len(study.families))
-                    for ci in range(study.accuracy.n_chunks)
-                    if not done[fi, mi, ci]]
-        if not todo:
-            if waves is None:
-                echo(f"{study.name}: all {done.size} chunks already done in {store_path}")
-            else:
-                store.consolidate()
-                echo(f"{study.name}: nothing left to compute in {store_path} "
-                     f"({int(store.done().sum())} chunks used; {waves.summary()})")
-            report.wall = time.perf_counter() - t_start
-            return report
-        if report.skipped:
-            echo(f"{study.name}: resuming, {report.skipped} of {done.size} chunks already done")
+    t_compute = None
+    report = RunReport(study.name, store_path, 0, 0, adaptive=study.adaptive)
 
+    def start(n_tasks: int) -> None:
+        """The cluster, the kernel warmed in it, before the first of ``n_tasks`` tasks."""
+        nonlocal client, cluster, t_compute
+        if t_compute is not None:
+            return
         warm = warm_numba(study)  # compile here first: workers then only load the cache
         if client is None:
             client, cluster = connect(None, workers, dashboard)
         report.workers = len(client.scheduler_info(n_workers=-1)["workers"])
         report.dashboard = _dashboard(client, cluster, dashboard)
         link = report.dashboard or ("off" if not dashboard else "unavailable (pip install bokeh)")
-        echo(f"{study.name}: {len(todo)} chunks on {report.workers} workers; numba warm-up "
+        echo(f"{study.name}: {n_tasks} chunks on {report.workers} workers; numba warm-up "
              f"{warm:.1f} s; dashboard: {link}")
         if cluster is None:
             _check_workers_see_store(client, store_path)
         _warm_workers(client, study)
         t_compute = time.perf_counter()
-        try:
+
+    try:
+        repair_metadata(study, store_path, echo)  # damaged zarr.json files, chunks kept
+        store = StudyStore.create_or_open(store_path, study)
+        store.consolidate()  # readable by xarray.open_zarr even if the run is interrupted
+        study = store.study  # a grid store's points, in its order
+        damaged = _repair(store, report, start, lambda todo: _execute(
+            client, store, todo, fails, report, progress), echo)
+        done = store.done()
+        report.n_chunks, report.skipped = done.size, int(done.sum()) - len(report.repaired)
+        if study.adaptive:
+            # waves and refinement: the chunks to compute follow from the done ones
+            waves = Waves(store, echo)
+            todo = waves.prepare()
+            store, study = waves.store, waves.store.study
+        else:
+            todo = [(fi, mi, ci)
+                    for fi in range(len(study.points))
+                    for mi in range(len(study.families))
+                    for ci in range(study.accuracy.n_chunks)
+                    if not done[fi, mi, ci]]
+        if not todo and not damaged:
             if waves is None:
-                _execute(client, store, todo, fails, report, progress)
+                echo(f"{study.name}: all {done.size} chunks already done in {store_path} "
+                     f"(every one read and checked in {report.check_seconds:.1f} s: intact)")
             else:
+                store.consolidate()
+                echo(f"{study.name}: nothing left to compute in {store_path} "
+                     f"({int(store.done().sum())} chunks used; {waves.summary()})")
+            report.wall = time.perf_counter() - t_start
+            return report
+        if report.skipped and todo:
+            echo(f"{study.name}: resuming, {report.skipped} of {done.size} chunks already done")
+        if todo:
+            start(len(todo))
+        try:
+            if waves is None and todo:
+                _execute(client, store, todo, fails, report, progress)
+            elif todo:
                 waves.execute(client, fails, report, progress, compute_chunk, _failed)
                 store = waves.store
                 report.n_chunks = store.done().size  # refinement may have grown the store
@@ -215,7 +233,7 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
                      + (f"; {waves.rounds} refinement rounds, {len(store.study.points)} points"
                         if store.study.grid_refine else ""))
         finally:
-            report.compute_wall = time.perf_counter() - t_compute
+            report.compute_wall = time.perf_counter() - (t_compute or time.perf_counter())
     finally:
         if client is not None:
             client.close()
@@ -225,6 +243,26 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
     report.wall = time.perf_counter() - t_start
     echo(report.summary())
     return report
+
+
+def _repair(store: StudyStore, report: RunReport, start, execute, echo) -> bool:
+    """Read and check every done chunk; recompute the damaged ones (``start(n)`` readies the
+    cluster, ``execute(todo)`` runs the tasks) and say so in one line.  True if any."""
+    t0 = time.perf_counter()
+    damage = store.damage()
+    report.check_seconds = time.perf_counter() - t0
+    if not damage:
+        return False
+    study = store.study
+    todo = sorted({(d.fi, d.mi, d.ci) for d in damage})
+    start(len(todo))
+    execute(todo)
+    report.repaired = [(study.points[fi].f, study.families[mi].name, ci) for fi, mi, ci in todo]
+    named = [f"{d.array}[{study.points[d.fi].label()}, family {study.families[d.mi].name}, "
+             f"chunk {d.ci}]" for d in damage]
+    echo(f"{study.name}: repaired {len(todo)} damaged chunks: {'; '.join(named[:6])}"
+         + (f" and {len(named) - 6} more" if len(named) > 6 else ""))
+    return True
 
 
 def connect(scheduler: str | None, workers: int | None, dashboard: bool):

@@ -24,13 +24,16 @@ __all__ = ["LAYOUT_VERSION", "OLDER_LAYOUTS", "JSON_ATTRS", "KERNEL_ATTRS", "pac
            "root_attrs", "store_fingerprint", "read_attrs", "json_attr", "jsonable",
            "fingerprint_difference"]
 
-# 3: root attributes record the kernel (KERNEL_ATTRS) and are netCDF-safe (JSON_ATTRS are JSON
-#    strings); 2: collisions carry bbb.record.COLLISION_FIELDS (t, x, y, vx, vy, phase);
+# 4: every chunk carries a CRC-32C (crc32c codec) and every done chunk the digest of its values
+#    (``digest``); 3: root attributes record the kernel (KERNEL_ATTRS) and are netCDF-safe
+#    (JSON_ATTRS are JSON strings); 2: collisions carry bbb.record.COLLISION_FIELDS (t, x, y, vx, vy, phase);
 #    1 had no phase
-LAYOUT_VERSION = 3
-OLDER_LAYOUTS = {2: "it records no kernel hash, so whether its chunks were computed by this "
+LAYOUT_VERSION = 4
+OLDER_LAYOUTS = {3: "its chunks carry no checksums, so a damaged chunk cannot be told from "
+                     "data",
+                 2: "it records no kernel hash, so whether its chunks were computed by this "
                      "kernel cannot be known",
-                  1: "its collisions have no floor phase"}
+                 1: "its collisions have no floor phase"}
 #: root attributes held as JSON strings (nested dicts, which netCDF attributes cannot hold)
 JSON_ATTRS = ("workflow", "params", "numerics", "accuracy")
 #: root attributes naming the kernel that computed the chunks (bbb.provenance.kernel_identity)

@@ -21,6 +21,7 @@ collisions     (frequency, family, particle, collision, field)  f8  (1, 1, chunk
 n_recorded     (frequency, family, particle)  valid rows   i8      (1, 1, chunk_size) [coll.]
 n_<counter>    (frequency, family, particle)  bbb counters  i8  (1, 1, chunk_size)
 held_time, sliding_time  (frequency, family, particle)  s  f8  (1, 1, chunk_size)  [contact]
+digest         (frequency, family, chunk, array)  CRC-32C  i8      (1, 1, 1, A)
 done           (frequency, family, chunk)   bool           b1      (1, 1, 1)
 chunk_seconds  (frequency, family, chunk)   simulate, s    f8      (1, 1, 1)   not reproducible
 n_chunks_used  (frequency, family)          chunks         i8      (1, 1)      [target_ci]
@@ -35,6 +36,13 @@ collision_jump  (collision_jump,)           index          i8      whole    [x_j
 collision_dx   (frequency, family, particle, collision_jump)  mm  f4  (1, 1, chunk_size, J)  [x_jumps]
 collision_dt   (frequency, family, particle, collision_jump)  s   f4  (1, 1, chunk_size, J)  [x_jumps]
 =============  ==========================================  ======  ===========================
+
+Every array's chunks end in a CRC-32C checksum of their stored bytes (the ``crc32c``
+codec: Zarr refuses to decode a chunk whose bytes changed).  The ``A`` arrays with a
+``particle`` dimension (``array``, the coordinate of ``digest``, names them in this order) are
+the chunks' data: ``digest[..., a]`` is the CRC-32C of the values a task wrote into its chunk
+of array ``a`` (:func:`chunk_digest`), written before ``done``, so that a done chunk whose
+file was deleted (read back as fill values) or rewritten is told from the one written.
 
 ``jumps[..., n]`` = x((n+1)/f) − x(n/f) for n < floor(t_max f) (P: its largest value over the
 frequencies; NaN beyond).  ``lyapunov*`` hold the first ``[observables.lyapunov] particles``
@@ -59,8 +67,10 @@ from __future__ import annotations
 import math
 import os
 
+import google_crc32c
 import numpy as np
 import zarr
+from zarr.codecs import Crc32cCodec, ZstdCodec
 
 from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES
 
@@ -68,12 +78,18 @@ from ..workflow.identity import f_key
 from ..workflow.keys import PARAM_LONG_NAMES, PARAM_UNITS
 from ..workflow.study import Study
 
-__all__ = ["COUNTERS", "default_store_path", "FIELD_UNITS", "collision_field_units", "create_layout",
+__all__ = ["COUNTERS", "CODECS", "chunk_digest", "DIGEST_NONE", "default_store_path", "FIELD_UNITS",
+           "collision_field_units", "create_layout",
            "n_periods", "OPEN", "TARGET", "ZERO", "CAP", "STOP_LEGEND"]
 
 OPEN, TARGET, ZERO, CAP = 0, 1, 2, 3
 #: stop_reason codes as stored (the store's ``stop_reason`` array and its ``legend``)
 STOP_LEGEND = {OPEN: "open", TARGET: "target met", ZERO: "resolved zero", CAP: "cap"}
+
+#: the bytes-to-bytes codecs of every array: zstd, then a CRC-32C of the compressed bytes
+CODECS = (ZstdCodec(level=0, checksum=False), Crc32cCodec())
+#: ``digest`` of a chunk whose data were never completely written
+DIGEST_NONE = -1
 
 # Per-particle counters kept from bbb's SimRun.counters ('recorded' is stored as n_recorded).
 COUNTERS = tuple(c for c in COUNTER_NAMES if c != "recorded")
@@ -93,11 +109,12 @@ def create_layout(g: zarr.Group, study: Study) -> None:
     P0 = study.point_dim  # "frequency", or "point" for a grid
     # chunked by the workflow's own grid, so that refinement (which appends) keeps the chunks
     n_base = max(1, len(study.base_frequencies) if not study.grid else len(study.points))
+    checked: list[str] = []  # the arrays of the chunks' data, in creation order (``digest``)
 
     def coord(name, values, dtype, units, long_name, dim=None, chunk=None):
         arr = g.create_array(name, shape=(len(values),), dtype=dtype,
                              chunks=(chunk or max(1, len(values)),),
-                             dimension_names=[dim or name],
+                             dimension_names=[dim or name], compressors=CODECS,
                              attributes={"units": units, "long_name": long_name})
         arr[:] = np.asarray(values, dtype=dtype if dtype is not str else None)
 
@@ -106,7 +123,9 @@ def create_layout(g: zarr.Group, study: Study) -> None:
         if "family" in dims:  # CF convention: xarray then shows `initial` as a coordinate
             attrs["coordinates"] = "initial"
         g.create_array(name, shape=shape, chunks=chunks, dtype=dtype, fill_value=fill,
-                       dimension_names=list(dims), attributes=attrs)
+                       dimension_names=list(dims), attributes=attrs, compressors=CODECS)
+        if dims[2:3] == ("particle",):
+            checked.append(name)
 
     if study.grid:
         coord("point", np.arange(F), "int64", "", "point of the grid, in store order",
@@ -171,6 +190,12 @@ def create_layout(g: zarr.Group, study: Study) -> None:
             data(name, (P0, "family", "particle", "collision_jump"), (F, M, N, J),
                  (1, 1, cs, J), "float32", np.nan, unit,
                  f"{what} of recorded collision n + 1 minus {what} of collision n, NaN beyond")
+    coord("array", checked, str, "", "data array whose chunk a digest covers")
+    data("digest", (P0, "family", "chunk", "array"), (F, M, C, len(checked)),
+         (1, 1, 1, len(checked)), "int64", DIGEST_NONE, "",
+         "CRC-32C of the values written into the chunk of each data array (-1: none)",
+         algorithm="crc32c of the chunk's values, little-endian, C order, trailing fill "
+                   "along the period axis left out")
     data("done", (P0, "family", "chunk"), (F, M, C), (1, 1, 1), "bool", False, "",
          "chunk completely written")
     data("chunk_seconds", (P0, "family", "chunk"), (F, M, C), (1, 1, 1), "float64",
@@ -181,6 +206,21 @@ def create_layout(g: zarr.Group, study: Study) -> None:
              "chunks used: the first n_chunks_used chunks (0: not decided yet)")
         data("stop_reason", (P0, "family"), (F, M), (1, 1), "int8", 0, "",
              f"why sampling stopped ({legend})", legend=legend)
+
+
+def chunk_digest(values: np.ndarray, fill, trim: bool = False) -> int:
+    """CRC-32C of one task's chunk of a data array: ``values`` (particle, ...) as stored
+    (the array's dtype, little-endian, C order); ``trim``: leave out the trailing slices along
+    the last axis that hold only ``fill`` (the ``period`` axis, which a grown map lengthens
+    with fill), so the digest of a chunk does not change when its array grows."""
+    a = np.asarray(values)
+    if trim and a.ndim > 1 and a.shape[-1]:
+        fill_at = np.isnan(a) if np.isnan(fill) else (a == fill)
+        keep = np.flatnonzero(~fill_at.reshape(-1, a.shape[-1]).all(axis=0))
+        a = a[..., : keep[-1] + 1 if keep.size else 0]
+    a = np.ascontiguousarray(a, dtype=a.dtype.newbyteorder("<"))
+    # the shape too: an all-fill chunk trimmed to nothing is not the empty chunk of another
+    return google_crc32c.extend(google_crc32c.value(a.tobytes()), repr(a.shape).encode())
 
 
 def n_periods(t_max: float, f: float) -> int:

@@ -1,12 +1,16 @@
 """The Zarr v3 store of one study: opening, resume checks, growth along points,
 chunk-aligned writes and done-markers.  Which arrays it holds is :mod:`pipeline.store.layout`;
-its root attributes and fingerprint, :mod:`pipeline.store.attrs`.
+its root attributes and fingerprint, :mod:`pipeline.store.attrs`; how a read knows a chunk is
+the one written, :mod:`pipeline.store.integrity`.
 
 One Dask task computes one (point, family, chunk) -- a point is a frequency without a grid --
-and writes exactly one chunk of every data array, so concurrent writers never share a chunk.
-``done`` is set only after the data: with Zarr v3's ``write_empty_chunks=False`` a chunk's
-presence proves nothing (an all-NaN or all-zero chunk is never written).  Opening the store
-with a workflow of another fingerprint, or with another kernel, is refused; a grid store is
+and writes exactly one chunk of every data array, whole (it never decodes what a chunk file
+held before), then the chunk's ``digest`` (the CRC-32C of each array's values), then ``done``.
+With Zarr v3's ``write_empty_chunks=False`` a chunk's presence proves nothing (an all-NaN or
+all-zero chunk is never written); the digest is what tells a deleted chunk from an empty one.
+Every read of a done chunk is checked against it: a damaged chunk raises
+:class:`StoreDamaged` naming it, and ``bbb run`` recomputes it.  Opening the store with a
+workflow of another fingerprint, or with another kernel, is refused; a grid store is
 opened by any workflow of the same axes and settings, and grows by the points it lacks
 (:meth:`StudyStore.add_points`), never rewriting a done chunk.
 
@@ -20,6 +24,7 @@ from __future__ import annotations
 import os
 import warnings
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -43,17 +48,20 @@ from .attrs import (  # importable from here as before the split
     root_attrs,
     store_fingerprint,
 )
+from .integrity import Damage, checked_arrays, read_checked, read_markers, scan
 from .layout import (  # importable from here as before the split
     COUNTERS,
+    DIGEST_NONE,
     FIELD_UNITS,
+    chunk_digest,
     collision_field_units,
     create_layout,
     n_periods,
 )
 from .metadata import MetadataReport, inspect_metadata
 
-__all__ = ["StoreError", "MetadataDamaged", "check_metadata", "StudyStore", "normalize_path",
-           "COLLISION_FIELDS", "LAYOUT_VERSION",
+__all__ = ["StoreError", "StoreDamaged", "MetadataDamaged", "check_metadata", "StudyStore",
+           "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
            "package_version", "read_attrs", "store_fingerprint", "JSON_ATTRS", "KERNEL_ATTRS",
            # of pipeline.store.layout, importable from here too
            "COUNTERS", "FIELD_UNITS", "collision_field_units", "create_layout", "n_periods"]
@@ -92,6 +100,23 @@ def check_metadata(path: str) -> None:
     raise MetadataDamaged(path, report)
 
 
+class StoreDamaged(StoreError):
+    """A done chunk whose bytes are not those its task wrote (deleted, cut, altered, or its
+    done-marker unreadable).  ``array``: the array read (``done`` for a marker); ``point``:
+    the point as a person reads it (``f = 60 Hz, alpha = 0.5``); ``family``; ``chunk``: the
+    chunk's index; ``more``: how many other damaged chunks the same read met.  The message
+    says how to repair: ``bbb run`` recomputes exactly the damaged chunks."""
+
+    def __init__(self, path: str, array: str, point: str, family: str, chunk: int, why: str,
+                 more: int = 0):
+        self.path, self.array, self.point, self.family, self.chunk = path, array, point, family, chunk
+        self.why, self.more = why, more
+        others = f" (and {more} more damaged chunks)" if more else ""
+        super().__init__(f"{path}: {array}[{point}, family {family}, chunk {chunk}] is damaged: "
+                         f"{why}{others}; run `bbb run` with its workflow on this store to "
+                         "recompute the damaged chunks (`bbb verify` lists them)")
+
+
 def normalize_path(path: str | os.PathLike) -> str:
     """A store path as used everywhere: ``file://`` URLs become plain local paths, and local
     paths absolute (workers may run in another directory); other URLs are kept."""
@@ -128,11 +153,7 @@ class StudyStore:
                     return cls._create(path, study, overwrite=True)
                 raise StoreError(f"{path}: exists and is not a bbb study store; "
                                  "allowed: a new path or a store made by the same workflow")
-            layout = attrs.get("bbb_store_layout")
-            if layout != LAYOUT_VERSION:
-                why = f" ({OLDER_LAYOUTS[layout]})" if layout in OLDER_LAYOUTS else ""
-                raise StoreError(f"{path}: store layout {layout!r} of an older bbb{why}; "
-                                 f"allowed: layout {LAYOUT_VERSION} (delete it or use another --store)")
+            _check_layout_version(path, attrs)
             kernel = kernel_identity()
             for key in KERNEL_ATTRS:
                 if attrs.get(key) != kernel[key]:
@@ -174,6 +195,7 @@ class StudyStore:
         attrs = read_attrs(g)
         if "fingerprint" not in attrs:
             raise StoreError(f"{path}: not a (complete) bbb study store")
+        _check_layout_version(path, attrs)
         return cls(path, Study.from_dict(attrs["workflow"], text=attrs.get("workflow_toml", "")))
 
     @classmethod
@@ -208,87 +230,118 @@ class StudyStore:
 
     def done(self) -> np.ndarray:
         """bool (point, family, chunk): chunks whose data are completely written (the point
-        index is the frequency index without a grid)."""
-        return np.asarray(self.group()["done"][...], dtype=bool)
+        index is the frequency index without a grid).  Raises StoreDamaged naming an
+        unreadable done-marker."""
+        done, damage = read_markers(self.group())
+        if damage:
+            raise self.damaged(damage)
+        return done
 
     def chunk_particles(self, chunk: int) -> slice:
         c = self.study.accuracy.chunk_size
         return slice(chunk * c, (chunk + 1) * c)
 
+    @cached_property
+    def checked(self) -> tuple[str, ...]:
+        """The data arrays whose chunks carry a digest (the ``array`` coordinate)."""
+        return checked_arrays(self.group())
+
     def read_done(self, name: str, fi: int, mi: int, done_fm: np.ndarray | None = None
                   ) -> np.ndarray:
         """Array ``name`` at (frequency index fi, family index mi) for the particles of the
-        done chunks only, in particle order: shape (particles of done chunks, ...).
+        done chunks only, in particle order: shape (particles of done chunks, ...); an array
+        along ``chunk`` (``chunk_seconds``): one value per done chunk.
 
         Chunks not marked done are never read, so a half-written or damaged chunk of an
-        interrupted run cannot break a reduction.  A done chunk that cannot be decoded raises
-        StoreError naming it (``bbb verify`` checks every done chunk).
+        interrupted run cannot break a reduction.  Each done chunk is checked as it is read
+        (its file's CRC-32C, its values' digest): a damaged one raises StoreDamaged naming it.
         """
-        arr = self.group()[name]
+        g = self.group()
         if done_fm is None:
             done_fm = self.done()[fi, mi]
         # One read per run of consecutive done chunks (an adaptive store's done chunks are one
         # run, its first n): Zarr then fetches the run's chunks at once, where one read per
         # chunk made `bbb reduce` spend half its time in per-call overhead.
-        parts = []
-        for c0, c1 in _runs(np.flatnonzero(done_fm)):
-            sl = slice(self.chunk_particles(c0).start, self.chunk_particles(c1 - 1).stop)
-            try:
-                parts.append(np.asarray(arr[fi, mi, sl]))
-            except Exception:  # zarr/codec errors differ by cause; find the chunk, name it
-                for ci in range(c0, c1):
-                    self._read_chunk(arr, name, fi, mi, ci)
-                raise
+        parts, damage = read_checked(g, name, fi, mi, np.flatnonzero(done_fm),
+                                     self.study.accuracy.chunk_size, self.checked,
+                                     self._digests)
+        if damage:
+            raise self.damaged(damage)
         if parts:
             return np.concatenate(parts) if len(parts) > 1 else parts[0]
+        arr = g[name]
         return np.zeros((0, *arr.shape[3:]), dtype=arr.dtype)
 
-    def _read_chunk(self, arr, name: str, fi: int, mi: int, ci: int) -> np.ndarray:
-        try:
-            return np.asarray(arr[fi, mi, self.chunk_particles(ci)])
-        except Exception as e:
-            where = self.study.points[fi].label()
-            fam = self.study.families[mi].name
-            raise StoreError(
-                f"{self.path}: {name}[{where}, family {fam}, chunk {ci}] is marked done "
-                f"but cannot be read ({type(e).__name__}: {e}); run `bbb verify` on the "
-                "store") from None
+    @cached_property
+    def _digests(self) -> dict:
+        """Digests of the done chunks read so far (:func:`read_checked`'s cache); a done
+        chunk's digest never changes (a repair rewrites the same)."""
+        return {}
+
+    def __getstate__(self) -> dict:
+        # sent to every Dask task: without the digests this process has read
+        return {k: v for k, v in self.__dict__.items() if k != "_digests"}
+
+    def damage(self) -> list[Damage]:
+        """Every damaged chunk of the store: unreadable done-markers, and each done chunk of
+        each data array whose bytes or values are not those written (reads the whole
+        store's done data)."""
+        g = self.group()
+        done, damage = read_markers(g)
+        return damage + scan(g, done, self.study.accuracy.chunk_size)
+
+    def damaged(self, damage: list[Damage]) -> StoreDamaged:
+        """The error naming the first of ``damage`` (and how many chunks more)."""
+        d = damage[0]
+        n = len({(x.fi, x.mi, x.ci) for x in damage})
+        return StoreDamaged(self.path, d.array, self.study.points[d.fi].label(),
+                            self.study.families[d.mi].name, d.ci, d.why, n - 1)
 
     # -- writing ---------------------------------------------------------------------------
     def write_chunk(self, fi: int, mi: int, ci: int, run: Any, seconds: float,
                     mark_done: bool = True, extra: dict[str, np.ndarray] | None = None) -> None:
         """Write one task's results (a bbb SimRun) into its own chunk of every array, then
-        mark it done.  Indices: fi frequency, mi family, ci chunk; seconds: its simulation time.
+        its digest, then mark it done.  Indices: fi frequency, mi family, ci chunk; seconds:
+        its simulation time.
 
-        Idempotent: Dask may run a task twice, and a rerun writes the same bytes.
+        Idempotent: Dask may run a task twice, and a rerun writes the same bytes.  Every data
+        array's chunk is written whole (fill where the task has no value), so a damaged chunk
+        file is overwritten, never decoded.
         mark_done=False leaves a written chunk unfinished (fault injection in tests).
         extra: {array name: values for this chunk's particles (leading axis)} ([jumps],
         [lyapunov]); a shorter leading axis fills the chunk's first particles.
         """
         g = self.group("r+")
         sl = self.chunk_particles(ci)
-        obs = self.study.observables
-        if obs.positions:
-            g["positions"][fi, mi, sl, :] = run.positions
-        if obs.collisions:
-            g["collisions"][fi, mi, sl, :, :] = run.collisions_dense
-            g["n_recorded"][fi, mi, sl] = run.n_recorded
-        for name in COUNTERS:
-            g[f"n_{name}"][fi, mi, sl] = run.counters[name]
-        if obs.contact:
-            for name in CONTACT_TIME_NAMES:
-                g[f"{name}_time"][fi, mi, sl] = run.contact_time[name]
-        for name, values in (extra or {}).items():
-            a = np.asarray(values)
-            rows = slice(sl.start, sl.start + a.shape[0])
-            if a.ndim == 1:
-                g[name][fi, mi, rows] = a
-            else:
-                g[name][fi, mi, rows, : a.shape[1]] = a
+        values = self._chunk_values(run, extra)
+        digests = np.full(len(self.checked), DIGEST_NONE, dtype=np.int64)
+        for k, name in enumerate(self.checked):
+            arr = g[name]
+            block = np.full((sl.stop - sl.start, *arr.shape[3:]), arr.fill_value, dtype=arr.dtype)
+            a = values.get(name)
+            if a is not None:
+                a = np.asarray(a)
+                block[(slice(0, a.shape[0]), *(slice(0, n) for n in a.shape[1:]))] = a
+            arr[fi, mi, sl] = block
+            digests[k] = chunk_digest(block, arr.fill_value, "period" in _dims(arr))
+        g["digest"][fi, mi, ci] = digests
         g["chunk_seconds"][fi, mi, ci] = seconds
-        # Only now, after every data array: the chunk is complete.
+        # Only now, after every data array and its digest: the chunk is complete.
         if mark_done:
             g["done"][fi, mi, ci] = True
+
+    def _chunk_values(self, run: Any, extra: dict[str, np.ndarray] | None) -> dict[str, Any]:
+        """{array name: this chunk's values} of a SimRun and the extra observables."""
+        obs = self.study.observables
+        values: dict[str, Any] = {f"n_{name}": run.counters[name] for name in COUNTERS}
+        if obs.positions:
+            values["positions"] = run.positions
+        if obs.collisions:
+            values["collisions"] = run.collisions_dense
+            values["n_recorded"] = run.n_recorded
+        if obs.contact:
+            values.update({f"{name}_time": run.contact_time[name] for name in CONTACT_TIME_NAMES})
+        return {**values, **(extra or {})}
 
     def write_stop(self, fi: int, mi: int, n_chunks: int, reason: int) -> None:
         """Record that (frequency fi, family mi) stopped after ``n_chunks`` chunks, and why
@@ -370,6 +423,18 @@ class StudyStore:
             zarr.consolidate_metadata(self.path)
 
 
+def _dims(arr: zarr.Array) -> tuple[str, ...]:
+    return tuple(arr.metadata.dimension_names or ())
+
+
+def _check_layout_version(path: str, attrs: dict[str, Any]) -> None:
+    layout = attrs.get("bbb_store_layout")
+    if layout != LAYOUT_VERSION:
+        why = f" ({OLDER_LAYOUTS[layout]})" if layout in OLDER_LAYOUTS else ""
+        raise StoreError(f"{path}: store layout {layout!r} of an older bbb{why}; "
+                         f"allowed: layout {LAYOUT_VERSION} (delete it or use another --store)")
+
+
 def _open_group(path: str, eager: bool = False) -> zarr.Group | None:
     """The store's root group, None if there is none.  A damaged metadata file raises
     MetadataDamaged naming it: looked for first if ``eager`` and the store is local (a few kB
@@ -385,10 +450,3 @@ def _open_group(path: str, eager: bool = False) -> zarr.Group | None:
         check_metadata(path)
         raise StoreError(f"{path}: cannot open ({type(e).__name__}: {e})") from None
 
-
-def _runs(indices: np.ndarray) -> list[tuple[int, int]]:
-    """[start, stop) of each run of consecutive integers in the sorted ``indices``."""
-    if indices.size == 0:
-        return []
-    breaks = np.flatnonzero(np.diff(indices) != 1) + 1
-    return [(int(r[0]), int(r[-1]) + 1) for r in np.split(indices, breaks)]

@@ -15,8 +15,12 @@ frequency, family and chunk):
   data were made with);
 - layout: every array of the workflow's layout exists with its shape, chunks, dtype and
   dimension names, coordinates hold the workflow's values, and there is no other array;
-- every chunk marked done (chunks not done are not data yet: a re-run recomputes them): its
-  data are physically sound, by the checks of :mod:`pipeline.store.chunk_checks`.
+- every done-marker readable, and every chunk marked done (chunks not done are not data yet:
+  a re-run recomputes them) intact -- each data array's chunk decodes (its CRC-32C) and holds
+  the values its task wrote (their recorded digest), :mod:`pipeline.store.integrity`: a
+  deleted, cut, altered or NaN-overwritten chunk is one line, and ``bbb run`` recomputes it;
+- every intact done chunk's data are physically sound, by the checks of
+  :mod:`pipeline.store.chunk_checks` (a run of a faulty kernel writes intact nonsense).
 
 Reading needs no lock: a done chunk is complete before its marker is written, so a store can
 be verified while a run is still filling it.
@@ -42,6 +46,7 @@ from bbb.provenance import kernel_identity
 from ..workflow.schema import as_dict
 from ..workflow.study import Study
 from .chunk_checks import ON_SURFACE_MM, chunk_problems
+from .integrity import read_markers, scan
 from .layout import COUNTERS, create_layout
 from .study_store import (
     JSON_ATTRS,
@@ -86,6 +91,7 @@ class VerifyReport:
     n_done: int = 0
     chunks_checked: bool = False
     problems: list[Problem] = field(default_factory=list)
+    n_damaged: int = 0  # damaged chunks (bytes not those written): `bbb run` recomputes them
 
     @property
     def ok(self) -> bool:
@@ -95,8 +101,10 @@ class VerifyReport:
         verdict = "OK" if self.ok else f"{len(self.problems)} inconsistencies"
         if not self.chunks_checked:
             return f"{self.name}: chunks not checked (workflow or layout unusable) in {self.path}: {verdict}"
+        repair = (f" ({self.n_damaged} damaged chunks: `bbb run` with the store's workflow "
+                  "recomputes them)" if self.n_damaged else "")
         return (f"{self.name}: verified {self.n_done} done of {self.n_chunks} chunks in "
-                f"{self.path}: {verdict}")
+                f"{self.path}: {verdict}{repair}")
 
 
 def verify_store(path: str | os.PathLike) -> VerifyReport:
@@ -221,6 +229,7 @@ def _check_layout(g: zarr.Group, study: Study, problems: list[Problem]) -> bool:
         h = have[name]
         for what, a, b in (("shape", h.shape, w.shape), ("chunks", h.chunks, w.chunks),
                            ("dtype", str(h.dtype), str(w.dtype)),
+                           ("codecs", _codecs(h), _codecs(w)),
                            ("dimension names", _dims(h), _dims(w))):
             if a != b:
                 problems.append(Problem(name, f"{what} {a}; allowed: {b}"))
@@ -234,7 +243,7 @@ def _check_layout(g: zarr.Group, study: Study, problems: list[Problem]) -> bool:
                 problems.append(Problem(name, "coordinate values differ from the workflow's"))
     # chunk checks index every data array by (frequency, family, particle...): they need the
     # data arrays and done to be laid out right
-    return not any(p.where in _DATA or p.where == "layout" for p in problems[n_before:])
+    return not any(p.where in _DATA or p.where in ("layout", "array") for p in problems[n_before:])
 
 
 def _check_consolidated(path: str, g: zarr.Group, problems: list[Problem]) -> None:
@@ -255,7 +264,7 @@ def _check_consolidated(path: str, g: zarr.Group, problems: list[Problem]) -> No
                                 "a finishing `bbb run` rewrites it"))
 
 
-_DATA = ("positions", "collisions", "n_recorded", "done", "chunk_seconds",
+_DATA = ("positions", "collisions", "n_recorded", "done", "chunk_seconds", "digest",
          *(f"n_{c}" for c in COUNTERS), "held_time", "sliding_time")
 
 
@@ -278,18 +287,27 @@ def _stored_params(attrs: dict[str, Any], study: Study) -> Callable[[int], Param
 def _check_chunks(g: zarr.Group, study: Study, report: VerifyReport,
                   params_at: Callable[[int], Params]) -> None:
     problems = report.problems
+
+    def where(array: str, fi, mi, ci) -> str:
+        return f"{array}[{study.points[fi].label()}, family {study.families[mi].name}, chunk {ci}]"
+
     try:
-        done = np.asarray(g["done"][...], dtype=bool)
-    except Exception as e:
-        problems.append(Problem("done", f"unreadable ({type(e).__name__}: {e})"))
+        done, damage = read_markers(g)
+        damage += scan(g, done, study.accuracy.chunk_size)
+    except Exception as e:  # e.g. an unreadable `array` coordinate
+        problems.append(Problem("done", f"chunks cannot be read ({type(e).__name__}: {e})"))
         return
     report.n_chunks, report.n_done = done.size, int(done.sum())
     report.chunks_checked = True
+    for d in damage:
+        problems.append(Problem(where(d.array, d.fi, d.mi, d.ci), d.why))
+    damaged = {(d.fi, d.mi, d.ci) for d in damage}
+    report.n_damaged = len(damaged)
     for fi, mi, ci in zip(*np.nonzero(done), strict=True):
-        fam = study.families[mi]
-        label = f"[{study.points[fi].label()}, family {fam.name}, chunk {ci}]"
+        if (fi, mi, ci) in damaged:  # its physics would be that of the damage
+            continue
         for array, what in chunk_problems(g, study, int(fi), int(mi), int(ci), params_at):
-            problems.append(Problem(array + label, what))
+            problems.append(Problem(where(array, fi, mi, ci), what))
 
 
 # -- helpers ---------------------------------------------------------------------------------
@@ -309,6 +327,10 @@ def _diff(got: Any, want: Any) -> str:
 def _dims(a: zarr.Array) -> tuple | None:
     names = getattr(a.metadata, "dimension_names", None)
     return tuple(names) if names is not None else None
+
+
+def _codecs(a: zarr.Array) -> str:
+    return ", ".join(c.to_dict()["name"] for c in a.metadata.codecs)
 
 
 def _short(fp: Any) -> str:

@@ -29,7 +29,7 @@ from pipeline.execute.run import run_study
 from pipeline.store.study_store import COUNTERS, KERNEL_ATTRS, StoreError, store_fingerprint
 from pipeline.workflow.load import load_workflow
 
-from .helpers import QUIET, assert_same_store
+from .helpers import QUIET, assert_same_store, write_as_a_run
 
 BBB = Path(sys.executable).with_name("bbb")
 
@@ -275,16 +275,15 @@ def test_verify_passes_a_sound_store(reference, capsys):
 
 
 def _set(name, index, value):
+    """A value a faulty run could have written: set, and its chunk's digest recorded."""
     def corrupt(store: Path):
-        arr = zarr.open_group(str(store), mode="r+")[name]
-        arr[index] = value
+        write_as_a_run(store, name, index, value)
     return corrupt
 
 
 def _shift(name, index, delta):
     def corrupt(store: Path):
-        arr = zarr.open_group(str(store), mode="r+")[name]
-        arr[index] = arr[index] + delta
+        write_as_a_run(store, name, index, lambda v: v + delta)
     return corrupt
 
 
@@ -336,10 +335,10 @@ CORRUPTIONS = {
         "collisions[f = 60 Hz, family rest, chunk 1]: 1 collisions off the floor surface"),
     "done chunk whose positions file is gone": (
         _file("positions/c/0/1/1/0", None),
-        "positions[f = 54 Hz, family launched, chunk 1]: 84 non-finite values"),
+        "positions[f = 54 Hz, family launched, chunk 1]: values differ from those its task wrote"),
     "done chunk whose collisions file is garbage": (
         _file("collisions/c/1/0/0/0/0", b"garbage"),
-        "collisions[f = 60 Hz, family rest, chunk 0]: unreadable"),
+        "collisions[f = 60 Hz, family rest, chunk 0]: unreadable: its bytes fail their CRC-32C"),
     "n_recorded beyond the record length": (
         _set("n_recorded", (0, 1, 0), 41),
         "n_recorded[f = 54 Hz, family launched, chunk 0]: 1 out of range"),

@@ -124,6 +124,27 @@ def test_a_run_failing_mid_wave_resumes_to_the_same_store(scene, two_workers, tm
     assert_same_store(store, two_workers)
 
 
+@pytest.mark.slow
+def test_a_damaged_chunk_inside_a_stopped_unit_is_repaired_without_replaying_its_waves(
+        scene, two_workers, tmp_path):
+    """60 Hz launched used 8 chunks; a byte flipped in its chunk 2: the re-run recomputes
+    that chunk alone, before the waves look at the store (unmarking it would have shortened
+    the unit's run of done chunks and dropped the chunks after it)."""
+    import shutil
+
+    store = Path(shutil.copytree(two_workers, tmp_path / "damaged.zarr"))
+    chunk = store / "positions" / "c" / "1" / "1" / "2" / "0"
+    data = bytearray(chunk.read_bytes())
+    data[len(data) // 2] ^= 0x10
+    chunk.write_bytes(bytes(data))
+    said = []
+    report = run_study(parse_workflow(SCENE, str(scene)), store, workers=1,
+                       **{**QUIET, "echo": said.append})
+    assert report.repaired == [(60.0, "launched", 2)] and report.computed == report.repaired
+    assert not any("beyond what the rule asks" in line for line in said), said
+    assert_same_store(store, two_workers)
+
+
 def test_status_shows_the_chunks_used_and_why_each_stopped(two_workers):
     text = status_text(StudyStore.open(two_workers))
     used, reason = _stops(two_workers)

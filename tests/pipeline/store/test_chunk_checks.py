@@ -8,7 +8,7 @@ from pipeline.execute.run import run_study
 from pipeline.store.verify import verify_store
 from pipeline.workflow.load import parse_workflow
 
-from ..helpers import QUIET, TINY
+from ..helpers import QUIET, TINY, write_as_a_run
 
 
 def test_a_thrown_floors_start_within_its_along_plane_amplitude_passes_and_beyond_fails(tmp_path):
@@ -21,7 +21,6 @@ def test_a_thrown_floors_start_within_its_along_plane_amplitude_passes_and_beyon
     g = zarr.open_group(str(path), mode="r")
     assert abs(g["positions"][:, :, :, 0]).max() > 1.0  # some start beyond S/2 = 1 mm
     assert verify_store(str(path)).ok
-    g = zarr.open_group(str(path), mode="r+")
-    g["positions"][0, 0, 0, 0] = 1.0 + 0.0867  # beyond S/2 + A cos 30°
+    write_as_a_run(path, "positions", (0, 0, 0, 0), 1.0 + 0.0867)  # beyond S/2 + A cos 30°
     report = verify_store(str(path))
     assert any("start outside the first cell" in str(p) for p in report.problems)

@@ -123,7 +123,7 @@ def test_a_store_of_an_older_layout_is_refused(store, study):
     # layout 1 stored collisions without the floor phase: resuming it would fail in every task
     zarr.open_group(str(store.path), mode="r+").attrs["bbb_store_layout"] = 1
     with pytest.raises(StoreError, match=r"store layout 1 of an older bbb \(its collisions have "
-                                         r"no floor phase\); allowed: layout 3"):
+                                         r"no floor phase\); allowed: layout 4"):
         StudyStore.create_or_open(store.path, study)
 
 
@@ -146,7 +146,7 @@ def _as_older_bbb_wrote_it(path, **kernel):
 def test_a_layout_2_store_without_a_kernel_hash_is_refused(store, study):
     _as_older_bbb_wrote_it(store.path)
     with pytest.raises(StoreError, match=r"store layout 2 of an older bbb \(it records no kernel "
-                                         r"hash.*allowed: layout 3"):
+                                         r"hash.*allowed: layout 4"):
         StudyStore.create_or_open(store.path, study)
 
 
@@ -170,10 +170,14 @@ def test_a_store_of_another_numba_is_refused(store, study):
         StudyStore.create_or_open(store.path, study)
 
 
-def test_a_store_of_layout_2_still_opens_for_reading(store, study):
-    # bbb reduce / status of a store made before the kernel was recorded
-    _as_older_bbb_wrote_it(store.path)
-    assert StudyStore.open(store.path).study == study
+def test_a_store_of_layout_3_without_checksums_is_refused_for_reading_too(store):
+    # bbb reduce / status / plot of a store whose chunks cannot be checked: one line, no read
+    zarr.open_group(str(store.path), mode="r+").attrs["bbb_store_layout"] = 3
+    with pytest.raises(StoreError) as e:
+        StudyStore.open(store.path)
+    assert str(e.value) == (f"{store.path}: store layout 3 of an older bbb (its chunks carry no "
+                            "checksums, so a damaged chunk cannot be told from data); allowed: "
+                            "layout 4 (delete it or use another --store)")
 
 
 def test_different_params_are_refused(store):

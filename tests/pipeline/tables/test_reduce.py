@@ -186,8 +186,8 @@ def test_a_damaged_done_chunk_is_named_in_one_line(reference, tmp_path, capsys):
     store = _damaged_copy(reference[0], tmp_path, done=True)
     assert main(["reduce", str(store), "--out", str(tmp_path / "out")]) == 2
     err = capsys.readouterr().err.strip()
-    assert "positions[f = 60 Hz, family launched, chunk 0] is marked done but cannot be read" in err
-    assert "bbb verify" in err and "Traceback" not in err
+    assert "positions[f = 60 Hz, family launched, chunk 0] is damaged: unreadable" in err
+    assert "run `bbb run`" in err and "Traceback" not in err and "\n" not in err
 
 
 def test_task_seconds_sum_the_done_chunks_only(tmp_path):
