@@ -106,9 +106,12 @@ def run(args, tree: str | None, label: str | None) -> None:
     t0 = time.perf_counter()
     failures = []
     with ProcessPoolExecutor(args.jobs, initializer=use_tree, initargs=(tree,)) as pool:
-        for kw, err in pool.map(one, examples, chunksize=8):
+        for k, (kw, err) in enumerate(pool.map(one, examples, chunksize=8)):
             if err is not None:
                 failures.append((kw, err))
+            if (k + 1) % 100 == 0:
+                print(f"{k + 1} examples, {len(failures)} failures, {time.perf_counter() - t0:.0f} s",
+                      file=sys.stderr, flush=True)
     wall = time.perf_counter() - t0
     print(f"# bbb cusp contact property run  {datetime.datetime.now().isoformat(timespec='seconds')}")
     print(f"# CPU: {cpu_name()}  ({os.cpu_count()} cores, shared: loaded)  python "
