@@ -259,7 +259,11 @@ def main() -> None:
     print(f"# CPU: {cpu_name()}  python {platform.python_version()}  (numpy + scipy, none of bbb's "
           f"code; the checker: tests/bbb/trajectory_check.py)")
     print(f"# v_stick = {V_STICK} mm/s; u_out_n, u_out_t: the outgoing relative normal and "
-          f"tangential speeds (mm/s, t > 0 up the wall)")
+          f"tangential speeds (mm/s, t > 0 up the wall); row: in the particle's record (the "
+          f"checker's event k is row k - 1: its event 0 is the initial state); model: this "
+          f"script's verdict; kernel: what the record shows; δ: the exact excursion's length in x "
+          f"beside the recorded stop's distance from the cusp and the checker's resolution of the "
+          f"cusp there; times from the contact start")
     with tempfile.TemporaryDirectory() as tmp, tempfile.TemporaryDirectory() as c1, \
             tempfile.TemporaryDirectory() as c2:
         ref_tree, ref_label = baseline_tree(args.baseline, tmp)
