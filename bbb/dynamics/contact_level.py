@@ -32,17 +32,24 @@ def holds_at_rest(d, R, S, mu, flat):
 
 
 @njit(cache=True)
-def enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat):
+def enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat, v_stick):
     """After a collision that ended a bouncing cascade (outgoing normal speed < v_stick):
     the tangential speed v (mm/s) relative to the floor, the contact angle θ (or d on a
     flat floor), and whether the particle slides (else it is held at rest: N ≤ 0, i.e. it
-    can only leave when the floor lets go, or at rest where it stays at rest)."""
+    can only leave when the floor lets go, or at rest where it stays at rest).  In a cusp
+    (|d| = S/2) a tangential speed below v_stick (mm/s) is rest there, held by both walls,
+    whichever wall the collision met (as bbb.dynamics.contact_conveyor.enter_contact_c)."""
     nx, ny = arc_normal(d, R)
     v = vx * ny - (vy - floor_v(s, A, w)) * nx
     q = d if flat else math.asin(nx)
     n = normal_force(q, v, s, g, A, w, R, flat, None)
     if n <= 0.0:
         return v, q, False
+    if not flat and abs(v) < v_stick and abs(d) >= 0.5 * S:
+        # up a wall at below v_stick the exact model rattles between the two walls, ever
+        # closer to the cusp (an inelastic collapse, ~1e-14 mm, ~1e-9 s: below what x
+        # resolves); its limit is rest in the cusp, as after a cusp event
+        return 0.0, q, False
     if v == 0.0 and holds_at_rest(d, R, S, mu, flat):
         return v, q, False
     return v, q, True
@@ -128,9 +135,8 @@ def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, fl
     stuck = False
     sliding = False
     if un_out < v_stick:
-        vt, q, sliding = enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat)
-        # at rest in the cusp below v_stick: held by both walls
-        sliding = sliding and abs(vt) >= v_stick
+        # at rest in the cusp below v_stick: held by both walls (enter_contact)
+        vt, q, sliding = enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat, v_stick)
         stuck = not sliding
         if sliding:
             nx, ny = arc_normal(d, R)

@@ -61,7 +61,7 @@ def contact_step(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt,
 def start_contact(vx, vy, d, s, fl, frame, mu, flat, v_stick):
     # after a collision that ended a cascade: (vt, q, sliding) on the floor ``frame`` selects
     if frame is None:
-        return enter_contact(vx, vy, d, s, fl.g, fl.A, fl.w, fl.R, fl.S, mu, flat)
+        return enter_contact(vx, vy, d, s, fl.g, fl.A, fl.w, fl.R, fl.S, mu, flat, v_stick)
     return enter_contact_c(vx, vy, d, s, frame.gx, frame.gy, frame.Ax, frame.Ay, fl.w, fl.R,
                            fl.S, mu, flat, v_stick)
 
