@@ -20,8 +20,8 @@ from .dynamics.bounds_conveyor import (
     times_or_zero,
     upper_curvature,
 )
-from .dynamics.options import Frame
 from .dynamics.events import SEARCH_BURST
+from .dynamics.options import Frame
 from .dynamics.search import next_collision as _next_collision
 
 __all__ = ["CUSP_REACH", "cusp_side", "gap_c", "lower_bound_c", "nearest", "next_collision_c",

@@ -161,7 +161,8 @@ def simulate(
 def _raise_on_guard(status: np.ndarray, p: Params, numerics: Numerics,
                     seed: np.random.SeedSequence, initial: str) -> None:
     """The kernel's guards (bbb.dynamics.slide's step budget, bbb.dynamics.events' event and
-    search budgets) stop a particle with a flag the jitted code cannot put into words: here it becomes one error."""
+    search budgets) stop a particle with a flag the jitted code cannot put into words: here it
+    becomes one error."""
     stopped = np.nonzero(status[:, 0] != STOP_OK)[0]
     if not stopped.size:
         return
