@@ -42,9 +42,12 @@ class Range:
         return above and below
 
     def text(self, name: str) -> str:
+        unit = f" ({self.unit})" if self.unit else ""
+        if self.lo == -self.hi and not (self.lo_open or self.hi_open):
+            return f"|{name}| ≤ {self.hi:g}{unit}"
         lo = f"{self.lo:g} {'<' if self.lo_open else '≤'} "
         hi = f" {'<' if self.hi_open else '≤'} {self.hi:g}"
-        return f"{lo}{name}{hi}" + (f" ({self.unit})" if self.unit else "")
+        return f"{lo}{name}{hi}{unit}"
 
 
 #: the allowed range of every numeric Params field (docs/physics.md, "Parameter ranges"):
