@@ -74,6 +74,7 @@ class Worker:
         self.conn, child = ctx.Pipe()
         self.proc = ctx.Process(target=_serve, args=(child,), daemon=True)
         self.proc.start()
+        child.close()  # the worker's end: if the worker dies, this end sees EOF
         # load every compiled kernel (paper floor / conveyor, stick / contact models) untimed
         for extra in ({}, {"tilt": 2.0}, {"contact": "coulomb", "mu": 0.3},
                       {"contact": "slide", "throw": 60.0}):
@@ -90,7 +91,12 @@ class Worker:
             self.proc.join()
             self.proc = None
             pytest.fail(f"{kind}({kw!r}) did not return within {timeout:g} s")
-        return self.conn.recv()
+        try:
+            return self.conn.recv()
+        except EOFError:
+            self.proc.join()
+            code, self.proc = self.proc.exitcode, None
+            pytest.fail(f"{kind}({kw!r}): the worker died (exit code {code})")
 
     def stop(self) -> None:
         if self.proc is not None and self.proc.is_alive():
@@ -245,6 +251,13 @@ def test_the_watchdog_fails_a_call_that_hangs(worker):
         w.call("sleep", {}, timeout=0.5)
 
 
+def test_the_watchdog_fails_a_call_whose_worker_dies(worker):
+    w = Worker()
+    w.proc, w.conn = _sleeper(_exit_at_once)
+    with pytest.raises(pytest.fail.Exception, match="the worker died"):
+        w.call("exit", {}, timeout=WARMUP)
+
+
 def _sleep_forever(conn) -> None:
     import time
 
@@ -252,9 +265,17 @@ def _sleep_forever(conn) -> None:
     time.sleep(3600)
 
 
-def _sleeper():
+def _exit_at_once(conn) -> None:
+    import os
+
+    conn.recv()
+    os._exit(3)
+
+
+def _sleeper(target=_sleep_forever):
     ctx = mp.get_context("spawn")
     conn, child = ctx.Pipe()
-    proc = ctx.Process(target=_sleep_forever, args=(child,), daemon=True)
+    proc = ctx.Process(target=target, args=(child,), daemon=True)
     proc.start()
+    child.close()
     return proc, conn
