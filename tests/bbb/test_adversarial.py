@@ -15,7 +15,7 @@ import multiprocessing as mp
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 #: seconds a single call may take once the worker's kernels are loaded
@@ -223,6 +223,25 @@ def test_an_initial_state_returns_or_refuses_in_one_line(worker, data):
     returns_or_refuses(worker.call("state", state_arrays(VALID, 3, data.draw)))
 
 
+def issue_state(**values) -> dict:
+    """Two launched particles of the paper's floor at 60 Hz, one field of the first replaced."""
+    from bbb import Params
+    from bbb.ensemble import initial_state
+
+    st = initial_state(Params(**VALID), 2, np.random.SeedSequence(1), "launched")
+    arrays = {k: getattr(st, k).copy() for k in FIELDS}
+    for k, v in values.items():
+        arrays[k][0] = v
+    return dict(params=VALID, n_particles=2, t_max=1.0, seed=0, state=arrays)
+
+
+# the inputs that never returned before the checks and the search budget existed
+@example(kw=issue_state(d=math.nan))
+@example(kw=issue_state(vx=math.inf))
+@example(kw=issue_state(vx=1e300))
+@example(kw=issue_state(d=5.0, y=-3.0))
+@example(kw=dict(params=VALID | dict(S=1e300, R=1e300), n_particles=1, t_max=1.0, seed=0))
+@example(kw=dict(params=VALID | dict(f=1e300), n_particles=1, t_max=1.0, seed=0))
 @fast
 @given(kw=simulate_kw())
 def test_simulate_returns_or_refuses_within_the_watchdog(worker, kw):
