@@ -23,7 +23,7 @@ EVENT_WINDOW = 1.0 / 1024.0
 EVENT_BUDGET = 2**20
 STOP_OK, STOP_STEPS, STOP_EVENTS, STOP_SEARCH = 0.0, 1.0, 2.0, 3.0
 #: the search budget (no input loops without end, not even within one collision search): a
-#: particle holds at most SEARCH_BURST search steps (bracketing steps and arcs crossed,
+#: particle holds at most SEARCH_BURST search steps (fresh bracketing steps, halvings, arcs crossed;
 #: bbb.dynamics.search), earns SEARCH_RATE more per floor period of its simulated time, and
 #: pays one per step; a particle that runs out stops, and bbb.simulate raises.  So a call
 #: takes at most SEARCH_BURST + SEARCH_RATE · f·t_max search steps per particle, and a search

@@ -136,10 +136,6 @@ def search_piece(pa, pb, d0, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame, from
     h = h_max
     b = min(a + h, pb)
     while True:
-        # the step budget: an integer compare, so that no state loops here without end
-        left -= 1
-        if left < 0:
-            return SEARCH_SPENT, left
         Gb, G1b, db, d1b = gap_at(b, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame)
         width = b - a
         if Gb <= 0.0:
@@ -166,12 +162,21 @@ def search_piece(pa, pb, d0, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame, from
                 else:
                     if a >= pb:
                         return NO_COLLISION, left
+                    # the step budget pays for each fresh step and each halving (a pop
+                    # retraces a halving): integer compares, so that nothing loops here
+                    # without end, e.g. on a NaN bracket that halves for ever
+                    left -= 1
+                    if left < 0:
+                        return SEARCH_SPENT, left
                     h = min(2.0 * width, h_max)
                     b = min(a + h, pb)
                 continue
         if n < stack.shape[0]:
             stack[n] = b
             n += 1
+        left -= 1
+        if left < 0:
+            return SEARCH_SPENT, left
         b = 0.5 * (a + b)
 
 
