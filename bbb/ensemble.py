@@ -60,11 +60,11 @@ class InitialState:
     floor time s (s) within [0, 1/f), and flags.  On a thrown floor (Params.throw ≠ 90) d is
     the offset relative to the floor, whose sideways displacement X_f(s) adds to x.
 
-    On construction each field becomes a 1-d numpy array of one length (cell int64, flags
-    bool, the rest float64) and every value must be finite: else a ValueError naming the
-    field and the first bad particle.  :meth:`check` holds the states to a floor (bbb.simulate
-    calls it): |d| ≤ S/2, 0 ≤ s < 1/f, |cell| ≤ CELL_MAX, on or above the surface, speed at
-    most :func:`speed_cap` and height above the surface at most speed_cap²/(2g)."""
+    On construction each field becomes a 1-d numpy array of one length (cell int64 with
+    |cell| ≤ CELL_MAX, flags bool, the rest float64) and every value must be finite: else a
+    ValueError naming the field and the first bad particle.  :meth:`check` holds the states
+    to a floor (bbb.simulate calls it): |d| ≤ S/2, 0 ≤ s < 1/f, on or above the surface, speed
+    at most :func:`speed_cap` and height above the surface at most speed_cap²/(2g)."""
 
     cell: np.ndarray
     d: np.ndarray
