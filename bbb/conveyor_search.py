@@ -20,6 +20,7 @@ from .dynamics.bounds_conveyor import (
     times_or_zero,
     upper_curvature,
 )
+from .dynamics.events import SEARCH_BURST
 from .dynamics.options import Frame
 from .dynamics.search import next_collision as _next_collision
 
@@ -31,6 +32,6 @@ __all__ = ["CUSP_REACH", "cusp_side", "gap_c", "lower_bound_c", "nearest", "next
 @njit(cache=True)
 def next_collision_c(y, vy, vx, d0, s, from_surface, lifting, gx, gy, Ax, Ay, w, R, S,
                      tau_limit, tol_t, h_max, stack):
-    """bbb.dynamics.search.next_collision on the conveyor: τ only."""
+    """bbb.dynamics.search.next_collision on the conveyor, with a full step budget: τ only."""
     return _next_collision(y, vy, vx, d0, s, from_surface, lifting, 0.0, 0.0, w, R, S,
-                           Frame(gx, gy, Ax, Ay), tau_limit, tol_t, h_max, stack)[0]
+                           Frame(gx, gy, Ax, Ay), tau_limit, tol_t, h_max, stack, SEARCH_BURST)[0]

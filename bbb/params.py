@@ -8,7 +8,9 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass, fields, replace
 
-__all__ = ["CONTACT_MODELS", "Params", "PRESETS"]
+import numpy as np
+
+__all__ = ["CONTACT_MODELS", "GAMMA_MAX", "PARAM_RANGES", "Params", "PRESETS", "Range", "real"]
 
 #: what a particle does in sustained contact with an arc (docs/physics.md, "Contact models"):
 #: carried with the floor at fixed x (the default, today's model), frictionless sliding, or
@@ -19,6 +21,68 @@ CONTACT_MODELS = ("stick", "slide", "coulomb")
 #: above it (1 + 1e-9) the checker still flags the contact starts; 1.05 is the smallest ratio
 #: the hypothesis no-miss test has covered (docs/physics.md, "Contact models")
 VERTICAL_CUSP_R = 1.05
+
+
+
+@dataclass(frozen=True)
+class Range:
+    """An allowed interval of a number: ``lo`` to ``hi`` (each bound inclusive unless its
+    ``*_open`` says so), in ``unit``.  Its :meth:`text` is what an error and the workflow
+    reference (pipeline/README.md) say is allowed, so the bound is stated in one place."""
+
+    lo: float
+    hi: float
+    unit: str = ""
+    lo_open: bool = False
+    hi_open: bool = False
+
+    def __contains__(self, value: float) -> bool:
+        above = value > self.lo if self.lo_open else value >= self.lo
+        below = value < self.hi if self.hi_open else value <= self.hi
+        return above and below
+
+    def text(self, name: str) -> str:
+        unit = f" ({self.unit})" if self.unit else ""
+        if self.lo == -self.hi and not (self.lo_open or self.hi_open):
+            return f"|{name}| ≤ {self.hi:g}{unit}"
+        lo = f"{self.lo:g} {'<' if self.lo_open else '≤'} "
+        hi = f" {'<' if self.hi_open else '≤'} {self.hi:g}"
+        return f"{lo}{name}{hi}{unit}"
+
+
+#: the allowed range of every numeric Params field (docs/physics.md, "Parameter ranges"):
+#: wide enough for any floor the project studies (Earth's g = 9800 mm/s², the paper's
+#: A = 0.1 mm, S = 2 mm, R = 15 mm, f = 40-100 Hz sit deep inside), bounded so that the
+#: floor's period 1/f, ω = 2πf, its peak speed Aω and Γ = Aω²/g stay finite and far from
+#: overflow and underflow.  R is also ≥ S/2 (and may be inf: a flat floor); mu > 0 only with
+#: contact = "coulomb".
+PARAM_RANGES: dict[str, Range] = {
+    "g": Range(1.0, 1e8, "mm/s²"),
+    "A": Range(0.0, 1e6, "mm"),
+    "f": Range(1e-3, 1e5, "Hz"),
+    "R": Range(0.0, 1e15, "mm"),
+    "S": Range(1e-6, 1e6, "mm"),
+    "alpha": Range(0.0, 1.0, lo_open=True),
+    "beta": Range(0.0, 1.0),
+    "tilt": Range(-30.0, 30.0, "degrees"),
+    "throw": Range(10.0, 170.0, "degrees"),
+    "mu": Range(0.0, 1e12),
+}
+#: the largest peak floor acceleration Γ = A(2πf)²/g (in g): a particle thrown by such a
+#: floor flies ~Γ/π periods, each searched in steps of at most Numerics.max_step; the paper's
+#: scenes have Γ < 5, the extreme tests Γ = 29
+GAMMA_MAX = 1e3
+
+
+def real(owner: str, name: str, value: object) -> float:
+    """``value`` as a float if it is a real number (int, float, or a numpy integer or float
+    scalar; never a bool), else a ValueError naming ``owner.name`` (e.g. ``Params.f``)."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer,
+                                                                      np.floating)):
+        raise ValueError(f"{owner}.{name} must be a real number (int or float), got "
+                         f"{type(value).__name__} {value!r}")
+    return float(value)
+
 
 # The paper prints A = 0.01; with g = 9800 that gives Γ < 0.41 for f ≤ 100 Hz and
 # nothing ever lifts off.  A = 0.1 puts Γ = 1 at f ≈ 49.8 Hz, where the paper sees
@@ -33,11 +97,11 @@ PRESETS: dict[str, dict[str, float]] = {
 class Params:
     """One bouncing-ball-billiard configuration.
 
-    g     -- gravitational acceleration, mm/s² (> 0)
-    A     -- floor amplitude, mm (≥ 0); floor height y_f(t) = -A sin(2π f t)
-    f     -- floor frequency, Hz (> 0)
-    R     -- scatterer (arc) radius, mm (≥ S/2; ``inf`` is a flat floor)
-    S     -- distance between scatterer centres, mm (> 0)
+    g     -- gravitational acceleration, mm/s² (1 ≤ g ≤ 1e8)
+    A     -- floor amplitude, mm (0 ≤ A ≤ 1e6); floor height y_f(t) = -A sin(2π f t)
+    f     -- floor frequency, Hz (1e-3 ≤ f ≤ 1e5)
+    R     -- scatterer (arc) radius, mm (S/2 ≤ R ≤ 1e15; ``inf`` is a flat floor)
+    S     -- distance between scatterer centres, mm (1e-6 ≤ S ≤ 1e6)
     alpha -- normal restitution coefficient, Eq. (5) (0 < alpha ≤ 1)
     beta  -- tangential restitution coefficient, Eq. (6) (0 ≤ beta ≤ 1)
     tilt  -- inclination φ of the floor's plane, degrees (|tilt| ≤ 30; default 0): in floor
@@ -48,7 +112,11 @@ class Params:
     contact -- sustained-contact model: "stick" (default), "slide" or "coulomb" (also on a
              tilted or thrown floor: bbb.dynamics.contact_conveyor); only "stick" with vertical cusp
              walls, R < S/2 · (1 + 1e-9) (sliding there never ends: Zeno)
-    mu    -- Coulomb friction coefficient (≥ 0; only with contact = "coulomb", else 0)
+    mu    -- Coulomb friction coefficient (0 ≤ mu ≤ 1e12; only with contact = "coulomb", else 0)
+
+    Also Γ = A(2πf)²/g ≤ GAMMA_MAX = 1e3.  The ranges are :data:`PARAM_RANGES` (numbers may be
+    Python or numpy ints and floats, never bools); a value outside raises a one-line
+    ValueError naming the field, its value and the allowed range.
 
     ``tilt``, ``throw``, ``contact`` and ``mu`` are left out of :meth:`as_dict` at their
     defaults, so every store and fingerprint of a scene without them is what it was before they existed.
@@ -67,30 +135,28 @@ class Params:
     mu: float = 0.0
 
     def __post_init__(self) -> None:
-        if self.contact not in CONTACT_MODELS:
+        if not isinstance(self.contact, str) or self.contact not in CONTACT_MODELS:
             raise ValueError(f"Params.contact = {self.contact!r} is not a contact model; "
                              f"allowed: {', '.join(CONTACT_MODELS)}")
         for fl in fields(self):
             if fl.name == "contact":
                 continue
-            value = getattr(self, fl.name)
-            if isinstance(value, bool) or not isinstance(value, (int, float)):
-                raise ValueError(f"Params.{fl.name} must be a real number, got {value!r}")
-            object.__setattr__(self, fl.name, float(value))
+            value = real("Params", fl.name, getattr(self, fl.name))
+            object.__setattr__(self, fl.name, value)
             if math.isnan(value) or (math.isinf(value) and fl.name != "R"):
-                raise ValueError(f"Params.{fl.name} = {value!r} must be finite")
-        _check("g", self.g, self.g > 0, "g > 0")
-        _check("A", self.A, self.A >= 0, "A ≥ 0")
-        _check("f", self.f, self.f > 0, "f > 0")
-        _check("S", self.S, self.S > 0, "S > 0")
-        _check("R", self.R, self.R >= self.S / 2,
-               f"R ≥ S/2 = {self.S / 2:g} (arcs must close the floor), or inf")
-        _check("alpha", self.alpha, 0 < self.alpha <= 1, "0 < alpha ≤ 1")
-        _check("beta", self.beta, 0 <= self.beta <= 1, "0 ≤ beta ≤ 1")
-        _check("tilt", self.tilt, abs(self.tilt) <= 30, "|tilt| ≤ 30 (degrees)")
-        _check("throw", self.throw, 10 <= self.throw <= 170, "10 ≤ throw ≤ 170 (degrees)")
-        _check("mu", self.mu, self.mu >= 0 and (self.mu == 0 or self.contact == "coulomb"),
-               "mu ≥ 0, and mu = 0 unless contact = 'coulomb'")
+                raise ValueError(f"Params.{fl.name} = {value!r} must be finite; allowed: "
+                                 f"{PARAM_RANGES[fl.name].text(fl.name)}")
+        for name, rng in PARAM_RANGES.items():
+            if name != "R":
+                _check(name, getattr(self, name), getattr(self, name) in rng, rng.text(name))
+        _check("R", self.R, self.S / 2 <= self.R and (self.R <= PARAM_RANGES["R"].hi or self.flat),
+               f"S/2 = {self.S / 2:g} ≤ R ≤ {PARAM_RANGES['R'].hi:g} (mm; arcs must close the "
+               "floor), or inf")
+        _check("mu", self.mu, self.mu == 0 or self.contact == "coulomb",
+               "mu = 0 unless contact = 'coulomb'")
+        _check("A", self.A, self.gamma <= GAMMA_MAX,
+               f"Γ = A(2πf)²/g = {self.gamma:.6g} ≤ {GAMMA_MAX:g}, i.e. A ≤ "
+               f"{GAMMA_MAX * self.g / self.omega**2:.6g} mm at f = {self.f:g} Hz, g = {self.g:g}")
         if self.contact != "stick" and self.R < VERTICAL_CUSP_R * self.S / 2:
             # a particle sliding down a (near-)vertical cusp wall lifts off at once (N = g cos θ
             # − v²/R ≤ 0 at θ → 90°), hits the other wall and slides again: an endless

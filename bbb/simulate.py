@@ -6,16 +6,30 @@ import math
 
 import numpy as np
 
-from .dynamics.events import EVENT_BUDGET, EVENT_WINDOW, STOP_EVENTS, STOP_OK
+from .dynamics.events import (
+    EVENT_BUDGET,
+    EVENT_WINDOW,
+    SEARCH_BURST,
+    SEARCH_RATE,
+    STOP_EVENTS,
+    STOP_OK,
+    STOP_SEARCH,
+)
 from .dynamics.evolve import evolve_ensemble
 from .dynamics.options import Floor, Run, frame_of
 from .dynamics.slide import PAYBACK, STRETCH_BUDGET
 from .ensemble import InitialState, initial_state
 from .numerics import Numerics
-from .params import Params
+from .params import Params, real
 from .record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES, EVENT_FIELDS, SimRun
 
-__all__ = ["simulate"]
+__all__ = ["MAX_PERIODS", "simulate"]
+
+#: the longest run, in floor periods (t_max · f): the run's clock tp/f + s then resolves
+#: ~1e-4 of a period, and the search budget (SEARCH_RATE per period) stays within int64
+MAX_PERIODS = 1e12
+#: columns of a particle's guard status row (bbb.dynamics.events)
+GUARD_COLUMNS = 5
 
 
 def simulate(
@@ -48,15 +62,22 @@ def simulate(
     A floor with ``tilt`` or ``throw`` (bbb.Params) runs the conveyor's kernel (bbb.dynamics); positions and
     recorded x are then along the floor's plane in the lab (x = cell·S + d + X_f(t)).
     ``_force_conveyor`` runs that kernel on the paper's floor too (tests compare the two);
-    ``_guards`` (an array (n_particles, 4)) receives the guards' status rows (bbb.dynamics.events:
-    why each particle stopped, its peak step debt, its most events in one window, when) —
-    benchmarks/guards.py measures the budgets' margins with it.
+    ``_guards`` (an array (n_particles, 5)) receives the guards' status rows (bbb.dynamics.events:
+    why each particle stopped, its peak step debt, its most events in one window, when, its
+    deepest draw on the search budget) — benchmarks/guards.py measures the budgets' margins
+    with it.
     Memory is O(n_particles × (n_samples + record_collisions)), never O(collisions).
+
+    Inputs are checked first (ValueError, one line naming the argument): ``t_max`` finite,
+    > 0 and at most MAX_PERIODS = 1e12 floor periods; an explicit InitialState within its
+    floor (:meth:`bbb.ensemble.InitialState.check`: in its cell, on or above the surface,
+    below the speed cap); numbers may be numpy scalars, never bools.
 
     No input loops without end: a particle whose contact stretch takes more than
     ``bbb.dynamics.slide.STRETCH_BUDGET`` steps beyond ``PAYBACK`` per nominal step of the time it
-    covers, or that has more than
-    ``bbb.dynamics.events.EVENT_BUDGET`` events within ``EVENT_WINDOW`` floor periods, stops the run
+    covers, that has more than ``bbb.dynamics.events.EVENT_BUDGET`` events within
+    ``EVENT_WINDOW`` floor periods, or that takes more collision-search steps than
+    ``SEARCH_BURST`` plus ``SEARCH_RATE`` per floor period of its simulated time, stops the run
     with a RuntimeError naming the parameters, the seed and the particle.
     """
     if not isinstance(params, Params):
@@ -66,11 +87,13 @@ def simulate(
         raise ValueError(f"numerics must be a bbb.Numerics, got {type(numerics).__name__}")
     n_particles = _count("n_particles", n_particles)
     record_collisions = _count("record_collisions", record_collisions)
-    if not (isinstance(t_max, (int, float)) and math.isfinite(t_max) and t_max > 0):
-        raise ValueError(f"t_max = {t_max!r} is out of range; allowed: finite and > 0 (s)")
-    if not (isinstance(record_from, (int, float)) and math.isfinite(record_from)
-            and record_from >= 0):
-        raise ValueError(f"record_from = {record_from!r} is out of range; allowed: ≥ 0 (s)")
+    t_max = real("simulate", "t_max", t_max)
+    if not (math.isfinite(t_max) and 0 < t_max <= MAX_PERIODS / params.f):
+        raise ValueError(f"t_max = {t_max!r} is out of range; allowed: 0 < t_max ≤ "
+                         f"{MAX_PERIODS:g} floor periods = {MAX_PERIODS / params.f:.6g} s")
+    record_from = real("simulate", "record_from", record_from)
+    if not (math.isfinite(record_from) and record_from >= 0):
+        raise ValueError(f"record_from = {record_from!r} is out of range; allowed: finite, ≥ 0 (s)")
     if sample_times is None:
         times = np.zeros(0)
     else:
@@ -91,9 +114,13 @@ def simulate(
         if st.cell.shape != (n_particles,):
             raise ValueError(f"initial state holds {st.cell.shape} particles, n_particles = {n_particles}")
         initial = "custom"
+    elif not isinstance(initial, str):
+        raise ValueError(f"initial must be a family name or a bbb.InitialState, got "
+                         f"{type(initial).__name__}")
     else:
         st = initial_state(params, n_particles, seed, initial,
                            drop_height=drop_height, launch_speed=launch_speed)
+    st.check(params)
     pos = np.full((n_particles, times.size), np.nan)
     if not isinstance(record_liftoffs, bool):
         raise ValueError(f"record_liftoffs must be True or False, got {record_liftoffs!r}")
@@ -101,9 +128,9 @@ def simulate(
     rec = np.full((n_particles, record_collisions, len(fields)), np.nan)
     counters = np.zeros((n_particles, len(COUNTER_NAMES)), dtype=np.int64)
     held = np.zeros((n_particles, len(CONTACT_TIME_NAMES)))
-    status = np.zeros((n_particles, 4)) if _guards is None else _guards
-    if status.shape != (n_particles, 4) or status.dtype != np.float64:
-        raise ValueError(f"_guards must be a float64 array of shape ({n_particles}, 4)")
+    status = np.zeros((n_particles, GUARD_COLUMNS)) if _guards is None else _guards
+    if status.shape != (n_particles, GUARD_COLUMNS) or status.dtype != np.float64:
+        raise ValueError(f"_guards must be a float64 array of shape ({n_particles}, {GUARD_COLUMNS})")
     status[:] = 0.0
     p = params
     # a tilted or thrown floor runs the conveyor's compiled kernel (frame), the paper's floor
@@ -133,8 +160,9 @@ def simulate(
 
 def _raise_on_guard(status: np.ndarray, p: Params, numerics: Numerics,
                     seed: np.random.SeedSequence, initial: str) -> None:
-    """The kernel's guards (bbb.dynamics.slide's step budget, bbb.dynamics.events' event budget) stop a
-    particle with a flag the jitted code cannot put into words: here it becomes one error."""
+    """The kernel's guards (bbb.dynamics.slide's step budget, bbb.dynamics.events' event and
+    search budgets) stop a particle with a flag the jitted code cannot put into words: here it
+    becomes one error."""
     stopped = np.nonzero(status[:, 0] != STOP_OK)[0]
     if not stopped.size:
         return
@@ -142,6 +170,10 @@ def _raise_on_guard(status: np.ndarray, p: Params, numerics: Numerics,
     if status[i, 0] == STOP_EVENTS:
         what = (f"more than {EVENT_BUDGET} events within {EVENT_WINDOW:g} floor period "
                 "(a sequence of events that makes no progress in time)")
+    elif status[i, 0] == STOP_SEARCH:
+        what = (f"its collision searches took more than {SEARCH_BURST} steps beyond "
+                f"{SEARCH_RATE} per floor period of simulated time (a search that makes no "
+                "progress in time)")
     else:
         what = (f"a contact stretch ran a step debt above {STRETCH_BUDGET:g} (integration "
                 f"steps tried beyond {PAYBACK:g} per nominal step of the time covered)")

@@ -21,7 +21,16 @@ EV_CUSP = 7.0
 #: debt of its contact stretches, the most events in one window, the time (s) it stopped
 EVENT_WINDOW = 1.0 / 1024.0
 EVENT_BUDGET = 2**20
-STOP_OK, STOP_STEPS, STOP_EVENTS = 0.0, 1.0, 2.0
+STOP_OK, STOP_STEPS, STOP_EVENTS, STOP_SEARCH = 0.0, 1.0, 2.0, 3.0
+#: the search budget (no input loops without end, not even within one collision search): a
+#: particle holds at most SEARCH_BURST search steps (fresh bracketing steps, halvings, arcs crossed;
+#: bbb.dynamics.search), earns SEARCH_RATE more per floor period of its simulated time, and
+#: pays one per step; a particle that runs out stops, and bbb.simulate raises.  So a call
+#: takes at most SEARCH_BURST + SEARCH_RATE · f·t_max search steps per particle, and a search
+#: that makes no progress in time stops after SEARCH_BURST steps (~0.5 s).  Status column
+#: 4 holds the deepest a particle drew on it (margins measured by benchmarks/guards.py)
+SEARCH_BURST = 2**22
+SEARCH_RATE = 2**16
 
 
 @njit(cache=True, inline="always")

@@ -28,6 +28,9 @@ from .events import (
     EV_CONTACT,
     EV_LIFTOFF,
     EVENT_WINDOW,
+    SEARCH_BURST,
+    SEARCH_RATE,
+    STOP_SEARCH,
     STOP_STEPS,
     count_event,
     row_due,
@@ -37,7 +40,7 @@ from .events import (
 )
 from .liftoff import liftoff_wait_c, rest_wait
 from .motion import fill_carried, fill_flight, floor_velocity, fly, lab_x, on_arc_velocity, surface_y
-from .search import NO_COLLISION, STACK_DEPTH, next_collision
+from .search import SEARCH_SPENT, STACK_DEPTH, next_collision
 
 __all__ = ["evolve", "evolve_ensemble"]
 
@@ -79,7 +82,8 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
     0 for a collision; under the contact models also the contact events
     (bbb.record.EVENT_CODES).  ``counters`` receives collisions, sticking episodes,
     lift-offs, recorded rows, anomalies; ``times`` the time (s) held at rest relative to the
-    floor and the time sliding; ``status`` the guards' verdict (bbb.dynamics.events).
+    floor and the time sliding; ``status`` the guards' verdict (bbb.dynamics.events; a 5th
+    column, if there is one, gets the deepest draw on the search budget).
     ``friction`` is None for the stick model, else μ (0 for slide); ``frame`` None for the
     paper's floor, else the conveyor's Frame: their types select the compiled kernel."""
     pos, rec, counters, times, status = out
@@ -110,6 +114,10 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
     win = EVENT_WINDOW * T
     t_mark = -math.inf
     n_win = 0
+    # the search budget (bbb.dynamics.events): integers, topped up once per floor period
+    credit = SEARCH_BURST
+    low = SEARCH_BURST
+    tp_paid = 0
     while True:
         t_now = tp * T + (s - s0)
         if t_now >= t_max:
@@ -161,10 +169,22 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
             from_surface = True
             n_lift += 1
             continue
-        tau, j = next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, frame,
-                                t_max - t_now, tol_t, h_max, stack)
+        if tp > tp_paid:
+            if tp - tp_paid >= SEARCH_BURST // SEARCH_RATE:
+                credit = SEARCH_BURST
+            else:
+                credit = min(SEARCH_BURST, credit + SEARCH_RATE * (tp - tp_paid))
+            tp_paid = tp
+        tau, j, credit = next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S,
+                                        frame, t_max - t_now, tol_t, h_max, stack, credit)
+        low = min(low, credit)
         x0 = lab_x(cell, d, s, S, w, frame)
-        if tau == NO_COLLISION:
+        if tau < 0.0:
+            # NO_COLLISION (the flight outlasts the run) or SEARCH_SPENT (the budget ran out)
+            if tau == SEARCH_SPENT:
+                status[0] = STOP_SEARCH
+                status[3] = t_now
+                break
             isamp = fill_flight(pos, isamp, sample_times, math.inf, x0, vx, t_now, frame)
             break
         if lifting and tau == 0.0:
@@ -220,6 +240,8 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
                               code)
         from_surface = True
         lifting = False
+    if status.shape[0] > 4:
+        status[4] = SEARCH_BURST - low
     fill_carried(pos, isamp, sample_times, math.inf, cell * S + d, s, tp * T + (s - s0), w, frame)
     write_counters(counters, times, n_coll, n_stick, n_lift, n_rec, n_anom, t_held, t_slid)
 

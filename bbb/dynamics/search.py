@@ -20,6 +20,8 @@ from .bounds_conveyor import gap_c, lower_bound_c, offset_range, start_step_c, u
 from .bounds_level import curvature_bound, gap, lower_bound, start_step
 
 NO_COLLISION = -1.0
+#: what a search returns instead of τ when its step budget ran out (bbb.dynamics.events)
+SEARCH_SPENT = -2.0
 STACK_DEPTH = 96
 
 
@@ -108,27 +110,28 @@ def refine_root(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame, tol
 
 @njit(cache=True)
 def search_piece(pa, pb, d0, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame, from_surface,
-                 lifting, tol_t, h_max, stack):
-    """First root of G in [pa, pb] (offset d0 at τ = 0); NO_COLLISION if none."""
+                 lifting, tol_t, h_max, stack, left):
+    """(first root of G in [pa, pb] (offset d0 at τ = 0), or NO_COLLISION if none, and
+    ``left`` less the bracketing steps taken); SEARCH_SPENT once ``left`` runs out."""
     a = pa
     Ga, G1a, da, d1a = gap_at(a, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame)
     if from_surface:
         if pb <= pa:
             # zero-length piece (a cusp at τ = 0): only an approach into this arc counts
-            return a if G1a < 0.0 else NO_COLLISION
+            return (a if G1a < 0.0 else NO_COLLISION), left
         sigma = first_step(min(h_max, pb - pa), G1a, da, d1a, vx, s, g, A, w, R, S, Dx, frame,
                            lifting)
         if sigma <= 0.0:
-            return a
+            return a, left
         a = a + sigma
         if a >= pb:
-            return NO_COLLISION
+            return NO_COLLISION, left
         Ga, G1a, da, d1a = gap_at(a, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame)
         if Ga <= 0.0:
             # separation below rounding: the particle is back on the surface at a > 0
-            return a
+            return a, left
     elif Ga <= 0.0:
-        return a
+        return a, left
     n = 0
     h = h_max
     b = min(a + h, pb)
@@ -141,7 +144,7 @@ def search_piece(pa, pb, d0, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame, from
                           width, vx, g, A, w, R, S, Dx, frame)
             if G1a + max(M, 0.0) * width < 0.0 or width <= tol_t:
                 return refine_root(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame,
-                                   tol_t)
+                                   tol_t), left
         else:
             lb = gap_lower_bound(width, Ga, G1a, Gb, offset(a, d0, vx, da, frame),
                                  offset(b, d0, vx, db, frame), d1a, d1b, vx, g, A, w, R, S, Dx,
@@ -158,13 +161,22 @@ def search_piece(pa, pb, d0, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame, from
                     b = stack[n]
                 else:
                     if a >= pb:
-                        return NO_COLLISION
+                        return NO_COLLISION, left
+                    # the step budget pays for each fresh step and each halving (a pop
+                    # retraces a halving): integer compares, so that nothing loops here
+                    # without end, e.g. on a NaN bracket that halves for ever
+                    left -= 1
+                    if left < 0:
+                        return SEARCH_SPENT, left
                     h = min(2.0 * width, h_max)
                     b = min(a + h, pb)
                 continue
         if n < stack.shape[0]:
             stack[n] = b
             n += 1
+        left -= 1
+        if left < 0:
+            return SEARCH_SPENT, left
         b = 0.5 * (a + b)
 
 
@@ -192,13 +204,13 @@ def flight_windows(y, vy, g, top, bottom):
 
 @njit(cache=True, inline="always")
 def search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, tol_t, h_max,
-                 stack):
+                 stack, left):
     """The paper floor's search over [wa, wb], one arc at a time: (τ, cell offset j of the
-    arc hit), NO_COLLISION if none."""
+    arc hit, the step budget left), NO_COLLISION if none; each arc costs a step."""
     if math.isinf(R):
-        tau = search_piece(wa, wb, d, y, vy, s, 0.0, 0.0, g, A, w, R, S, 0.0, None,
-                           from_surface and wa == 0.0, lifting, tol_t, h_max, stack)
-        return tau, 0
+        tau, left = search_piece(wa, wb, d, y, vy, s, 0.0, 0.0, g, A, w, R, S, 0.0, None,
+                                 from_surface and wa == 0.0, lifting, tol_t, h_max, stack, left)
+        return tau, 0, left
     xr = d + vx * wa
     if vx > 0.0:
         j = math.floor(xr / S + 0.5)
@@ -210,6 +222,9 @@ def search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, 
         j = 0
     pa = wa
     while True:
+        left -= 1
+        if left < 0:
+            return SEARCH_SPENT, 0, left
         if vx > 0.0:
             tc = ((j + 0.5) * S - d) / vx
         elif vx < 0.0:
@@ -219,23 +234,24 @@ def search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, 
         pb = min(tc, wb)
         start = from_surface and pa == 0.0
         if pb > pa or (start and pb == pa):
-            tau = search_piece(pa, max(pb, pa), d - j * S, y, vy, s, vx, 0.0, g, A, w, R, S, 0.0,
-                               None, start, lifting, tol_t, h_max, stack)
+            tau, left = search_piece(pa, max(pb, pa), d - j * S, y, vy, s, vx, 0.0, g, A, w, R, S,
+                                     0.0, None, start, lifting, tol_t, h_max, stack, left)
             if tau != NO_COLLISION:
-                return tau, int(j)
+                return tau, int(j), left
         if tc >= wb:
             break
         pa = max(pa, tc)
         j += 1 if vx > 0.0 else -1
-    return NO_COLLISION, 0
+    return NO_COLLISION, 0, left
 
 
 @njit(cache=True)
 def next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, frame, tau_limit,
-                   tol_t, h_max, stack):
-    """Time τ (s) of the first collision after the current state, and the cell offset j
+                   tol_t, h_max, stack, left):
+    """Time τ (s) of the first collision after the current state, the cell offset j
     (relative to the current cell) of the arc hit (the conveyor's: 0, its flight's end takes
-    the nearest arc).  τ = NO_COLLISION if none before ``tau_limit``."""
+    the nearest arc) and the step budget ``left`` after the search (bbb.dynamics.events).
+    τ = NO_COLLISION if none before ``tau_limit``, SEARCH_SPENT if the budget ran out."""
     cmax = arc_depth(0.5 * S, R)
     if frame is None:
         gn = g
@@ -254,12 +270,13 @@ def next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, frame,
         if wb < wa or (wb == wa and not (wa == 0.0 and from_surface)):
             continue
         if frame is None:
-            tau, j = search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S,
-                                  tol_t, h_max, stack)
+            tau, j, left = search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w,
+                                        R, S, tol_t, h_max, stack, left)
         else:
-            tau = search_piece(wa, wb, d, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame,
-                               from_surface and wa == 0.0, lifting, tol_t, h_max, stack)
+            tau, left = search_piece(wa, wb, d, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame,
+                                     from_surface and wa == 0.0, lifting, tol_t, h_max, stack,
+                                     left)
             j = 0
         if tau != NO_COLLISION:
-            return tau, j
-    return NO_COLLISION, 0
+            return tau, j, left
+    return NO_COLLISION, 0, left

@@ -58,7 +58,10 @@ def load(workflow: str):
 
 
 def frequency_list(text: str) -> tuple[float, ...]:
-    """'60,72.5' -> (60.0, 72.5): distinct finite frequencies > 0 Hz, multiples of 1 mHz."""
+    """'60,72.5' -> (60.0, 72.5): distinct frequencies within bbb.Params' range, multiples of
+    1 mHz (pipeline.workflow.keys.ALLOWED_F)."""
+    from ..workflow.keys import ALLOWED_F, F_MAX
+
     allowed = "allowed: comma-separated frequencies in Hz, e.g. 60,72"
     out = []
     for item in text.split(","):
@@ -66,9 +69,8 @@ def frequency_list(text: str) -> tuple[float, ...]:
             f = float(item)
         except ValueError:
             raise argparse.ArgumentTypeError(f"{item.strip()!r} is not a number; {allowed}") from None
-        if not math.isfinite(f) or f <= 0 or abs(f * 1000 - f_key(f)) > 1e-6 * f:
-            raise argparse.ArgumentTypeError(f"{item.strip()} is out of range; allowed: "
-                                             "finite frequencies > 0 Hz, multiples of 0.001 Hz")
+        if not math.isfinite(f) or not 0 < f <= F_MAX or abs(f * 1000 - f_key(f)) > 1e-6 * f:
+            raise argparse.ArgumentTypeError(f"{item.strip()} is out of range; allowed: {ALLOWED_F}")
         if f_key(f) in {f_key(g) for g in out}:
             raise argparse.ArgumentTypeError(f"{item.strip()} is repeated; {allowed}")
         out.append(f)

@@ -30,8 +30,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from bbb.numerics import Numerics
-from bbb.params import CONTACT_MODELS
+from bbb.numerics import NUMERICS_RANGES, Numerics
+from bbb.params import CONTACT_MODELS, GAMMA_MAX, PARAM_RANGES
 from bbb.params import PRESETS as PARAM_PRESETS
 
 from .accuracy import ACCURACY_PRESETS, DEFAULT_ACCURACY, NUMERICS_KNOBS
@@ -47,7 +47,19 @@ __all__ = ["Family", "Accuracy", "RefineTable", "GridTable", "GridRefineTable", 
 
 INITIAL_KINDS = ("rest", "dropped", "launched")
 CI_METHODS = ("percentile", "bca", "basic")
-ALLOWED_F = "finite frequencies > 0 Hz, multiples of 0.001 Hz"
+F_MAX = PARAM_RANGES["f"].hi
+ALLOWED_F = f"frequencies {PARAM_RANGES['f'].text('f')}, multiples of 0.001 Hz"
+
+
+def _allowed(name: str) -> str:
+    # a [params] key's range as bbb.Params states it (bbb.params.PARAM_RANGES): one source
+    return PARAM_RANGES[name].text(name)
+
+
+def _knob(name: str) -> dict[str, float]:
+    # a bbb.Numerics knob's bounds (bbb.numerics.NUMERICS_RANGES), checked here as there
+    rng = NUMERICS_RANGES[name]
+    return {"gt" if rng.lo_open else "ge": rng.lo, "lt" if rng.hi_open else "le": rng.hi}
 
 
 # -- the declarations, one dataclass per TOML table -------------------------------------------
@@ -61,39 +73,43 @@ class StudyTable:
     seed: int = key(2004, "root of every chunk's SeedSequence", ge=0, lt=2**63)
 
 
-# bbb.Params checks its own ranges (R >= S/2 involves two keys) and says what is allowed; the
-# texts here state the same ranges for the reference and for type errors.
+# bbb.Params checks its own ranges (R >= S/2 involves two keys, Γ three) and says what is
+# allowed; the texts here are its texts (bbb.params.PARAM_RANGES), for the reference and for
+# type errors.
 @dataclass(frozen=True)
 class ParamsTable:
     preset: str = key("klages2004", "named parameter set (bbb.params.PRESETS)",
                       choices=tuple(sorted(PARAM_PRESETS)))
-    g: float | None = key(None, "gravitational acceleration", allowed="g > 0 (mm/s²)",
+    g: float | None = key(None, "gravitational acceleration", allowed=_allowed("g"),
                           default_doc="preset")
-    A: float | None = key(None, "floor amplitude; y_f = -A sin(2 pi f t)", allowed="A >= 0 (mm)",
+    A: float | None = key(None, "floor amplitude; y_f = -A sin(2 pi f t)",
+                          allowed=_allowed("A") + f", and Γ ≤ {GAMMA_MAX:g}",
                           default_doc="preset")
     # not a bbb.Params field: the workflow turns it into A at each point's f (study.resolve_params)
     Gamma: float | None = key(None, "peak floor acceleration Γ = A (2 pi f)² / g at each "
-                              "point's f, instead of A", ge=0, allowed="Gamma >= 0 (in g), not with A",
+                              "point's f, instead of A", ge=0, le=GAMMA_MAX,
+                              allowed=f"0 ≤ Gamma ≤ {GAMMA_MAX:g} (in g), not with A",
                               omit_default=True, default_doc="–")
-    R: float | None = key(None, "scatterer (arc) radius", allowed="R >= S/2 (mm), or inf",
+    R: float | None = key(None, "scatterer (arc) radius",
+                          allowed=f"S/2 ≤ R ≤ {PARAM_RANGES['R'].hi:g} (mm), or inf",
                           finite=False, default_doc="preset")
-    S: float | None = key(None, "distance between scatterer centres", allowed="S > 0 (mm)",
+    S: float | None = key(None, "distance between scatterer centres", allowed=_allowed("S"),
                           default_doc="preset")
-    alpha: float | None = key(None, "normal restitution, Eq. (5)", allowed="0 < alpha <= 1",
+    alpha: float | None = key(None, "normal restitution, Eq. (5)", allowed=_allowed("alpha"),
                               default_doc="preset")
-    beta: float | None = key(None, "tangential restitution, Eq. (6)", allowed="0 <= beta <= 1",
+    beta: float | None = key(None, "tangential restitution, Eq. (6)", allowed=_allowed("beta"),
                              default_doc="preset")
     # the conveyor (bbb.conveyor, docs/physics.md "Transport"); omit_default and left out of
     # Params.as_dict at 0 and 90, so every scene without them keeps its fingerprint
     tilt: float | None = key(None, "inclination of the floor's plane (downhill towards -x)",
-                             allowed="|tilt| <= 30 (degrees)", omit_default=True,
+                             allowed=_allowed("tilt"), omit_default=True,
                              default_doc="0 (level)")
     throw: float | None = key(None, "angle of the vibration to the floor's plane",
-                              allowed="10 <= throw <= 170 (degrees)", omit_default=True,
+                              allowed=_allowed("throw"), omit_default=True,
                               default_doc="90 (vertical, the paper's)")
     contact: str = key("stick", "sustained-contact model (docs/physics.md, Contact models)",
                        choices=CONTACT_MODELS)
-    mu: float | None = key(None, "Coulomb friction coefficient", allowed="mu >= 0",
+    mu: float | None = key(None, "Coulomb friction coefficient", allowed=_allowed("mu"),
                            when=("contact", "coulomb"), default_doc="0")
 
 
@@ -142,10 +158,10 @@ class GridRefine:
 class FrequenciesTable:
     values: tuple[float, ...] | None = key(None, "the frequencies, distinct after rounding to "
                                            "1 mHz (or `frequencies = [...]`)",
-                                           gt=0, allowed=ALLOWED_F)
+                                           gt=0, le=F_MAX, allowed=ALLOWED_F)
     start: float | None = key(None, "first frequency of an inclusive grid (instead of values)",
-                              gt=0, allowed=ALLOWED_F)
-    stop: float | None = key(None, "last frequency of the grid, >= start", gt=0,
+                              gt=0, le=F_MAX, allowed=ALLOWED_F)
+    stop: float | None = key(None, "last frequency of the grid, >= start", gt=0, le=F_MAX,
                              allowed=ALLOWED_F)
     step: float | None = key(None, "grid spacing; stop - start must be a multiple of it", gt=0,
                              allowed="a multiple of 0.001 Hz > 0")
@@ -213,13 +229,12 @@ class Accuracy:
     t_max: float = key(None, "simulated time per particle", units="s", gt=0, default_doc="preset")
     sample_dt: float = key(None, "spacing of the position samples", units="s", gt=0,
                            note="dividing t_max, at most 1e6 samples", default_doc="preset")
-    tol_t: float = key(None, "root-finding tolerance on the collision time", units="s", gt=0,
-                       note="and <= 1e-6 (bbb.Numerics)", default_doc="preset")
-    v_stick: float = key(None, "sticking threshold of creeping cascades", units="mm/s", gt=0,
-                         default_doc="preset")
+    tol_t: float = key(None, "root-finding tolerance on the collision time", units="s",
+                       default_doc="preset", **_knob("tol_t"))
+    v_stick: float = key(None, "sticking threshold of creeping cascades", units="mm/s",
+                         default_doc="preset", **_knob("v_stick"))
     max_step: float = key(None, "first bracketing step of the collision search",
-                          units="floor periods", gt=0, note="and <= 1 (bbb.Numerics)",
-                          default_doc="preset")
+                          units="floor periods", default_doc="preset", **_knob("max_step"))
     n_resamples: int = key(None, "bootstrap resamples per diffusion coefficient", ge=10,
                            allowed=">= 10 (an integer)", default_doc="preset")
     # Target-driven sampling (pipeline/execute/adaptive.py); off (None) = a fixed n_particles.

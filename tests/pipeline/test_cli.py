@@ -163,10 +163,11 @@ def test_frequency_subset_reproduces_the_chunks_of_the_whole_sweep(reference, ti
     ("60,abc", "argument --frequencies: 'abc' is not a number; allowed: comma-separated"),
     ("", "argument --frequencies: '' is not a number"),
     ("60,60", "argument --frequencies: 60 is repeated"),
-    ("-60", "argument --frequencies: -60 is out of range; allowed: finite frequencies > 0 Hz"),
+    ("-60", "argument --frequencies: -60 is out of range; allowed: frequencies 0.001 ≤ f ≤ 100000 (Hz)"),
+    ("2e5", "argument --frequencies: 2e5 is out of range; allowed: frequencies 0.001 ≤ f ≤ 100000 (Hz)"),
     ("nan", "argument --frequencies: nan is out of range"),
-    ("60.0001", "argument --frequencies: 60.0001 is out of range; allowed: finite frequencies "
-                "> 0 Hz, multiples of 0.001 Hz"),
+    ("60.0001", "argument --frequencies: 60.0001 is out of range; allowed: frequencies "
+                "0.001 ≤ f ≤ 100000 (Hz), multiples of 0.001 Hz"),
 ])
 def test_bad_frequencies_exit_2_in_one_line(value, needle, tiny_workflow, tmp_path, capsys):
     store = tmp_path / "s.zarr"

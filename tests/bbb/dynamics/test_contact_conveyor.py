@@ -167,8 +167,9 @@ def test_a_bounce_exactly_at_a_cusp_leaving_both_arcs_flies(side):
     y = -Ay * math.sin(w * s) - (p.R - math.sqrt(p.R**2 - d0 * d0))
     # relative velocity (3, 5) mm/s: the walls' slopes are ±1/15, so it leaves both
     vx, vy = -Ax * w * math.cos(w * s) + 3.0, -Ay * w * math.cos(w * s) + 5.0
-    tau, _ = next_collision(y, vy, vx, d0, s, True, False, 0.0, 0.0, w, p.R, p.S,
-                            Frame(gx, gy, Ax, Ay), 1.0, 1e-12, 1.0 / p.f, np.empty(STACK_DEPTH))
+    tau, _, _ = next_collision(y, vy, vx, d0, s, True, False, 0.0, 0.0, w, p.R, p.S,
+                               Frame(gx, gy, Ax, Ay), 1.0, 1e-12, 1.0 / p.f, np.empty(STACK_DEPTH),
+                               2**24)
     assert tau > 1e-4
 
 
@@ -328,7 +329,7 @@ def test_a_coulomb_particle_sliding_slowly_into_a_cusp_reaches_it_without_crawli
     p = Params(g=9800.0, A=0.03752289548439736, f=120.66361006138334, R=1.05, S=2.0, alpha=0.05,
                beta=0.1182055142536225, tilt=29.60906544749591, throw=29.60906544749591,
                contact="coulomb", mu=2.0)
-    guards = np.zeros((3, 4))
+    guards = np.zeros((3, 5))
     simulate(p, 3, 60.0 / p.f, seed=341, initial=initial_state(
         p, 3, np.random.SeedSequence(341), "dropped", drop_height=(0.0, 1.0)), _guards=guards)
     assert np.max(guards[:, 1]) < 3.1e6 / 100

@@ -117,7 +117,7 @@ BAD = {
     "duplicates as int and float": (with_grid("R = [15, 15.0]"), "wf.toml:32: grid.R: repeated "
                                     "values [15.0]", "allowed: a non-empty list"),
     "nan": (with_grid("alpha = [0.5, nan]"), "wf.toml:32: grid.alpha: must be finite",
-            "allowed: a non-empty list of distinct values, each a number: 0 < alpha <= 1"),
+            "allowed: a non-empty list of distinct values, each a number: 0 < alpha ≤ 1"),
     "Gamma with A in params": (with_param("A = 0.2", with_grid("Gamma = [1.5]")), "wf.toml:33: "
                                "grid.Gamma: Gamma with A", "allowed: A (mm) or Gamma (peak floor "
                                "acceleration in g), not both"),
@@ -127,7 +127,7 @@ BAD = {
                                     "params.Gamma: given with A", "allowed: A (mm) or Gamma"),
     "negative Gamma": (with_grid("Gamma = [-1.0]"), "wf.toml:32: grid.Gamma: -1.0 is out of "
                        "range", "allowed: a non-empty list of distinct values, each a number: "
-                       "Gamma >= 0 (in g), not with A"),
+                       "0 ≤ Gamma ≤ 1000 (in g), not with A"),
     "no axis": (with_grid('invalid = "skip"'), "wf.toml:31: grid: no axis",
                 "allowed: one or more axes such as alpha = [0.5, 0.7]"),
     "unknown invalid policy": (with_grid('alpha = [0.5]\ninvalid = "drop"'), "wf.toml:33: "
