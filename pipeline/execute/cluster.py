@@ -19,6 +19,9 @@ it joins, before its first task, one process per host at a time (numba issue #48
 
 ``python -m pipeline.execute.cluster`` prints the resolved settings and the job script, submitting
 nothing: the way to check a configuration on a login node.
+
+Size: just over 400 lines, one idea (a run's SLURM jobs from submission to cancellation);
+the check that a damaged store still has work left added the last lines.
 """
 
 from __future__ import annotations

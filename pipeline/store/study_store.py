@@ -17,6 +17,10 @@ opened by any workflow of the same axes and settings, and grows by the points it
 Root attributes are netCDF-safe (``xr.open_zarr(store).to_netcdf(...)`` works): flat strings
 and numbers; the nested ones (:data:`JSON_ATTRS`) are JSON strings, decoded by
 :func:`read_attrs`.
+
+Size: over 400 lines while opening, resume checks and the checked reads of one store stay
+together; the damage records themselves live in :mod:`pipeline.store.integrity` and the
+metadata checks in :mod:`pipeline.store.metadata`.
 """
 
 from __future__ import annotations

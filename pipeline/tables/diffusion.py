@@ -201,14 +201,16 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
 
 def _unless_moved(r, n_moving: int, ci: float):
     """D's interval ``r`` (bbb.analysis.stats.interval.DInterval), or, where none of its
-    particles left its cell (``n_moving`` = 0), the same D with the status "no mover": D_hi
-    NaN, the bound on the share of movers.  A failed estimator stays failed (D blank)."""
+    particles left its cell (``n_moving`` = 0), the same D and CI with the status "no mover"
+    and the bound on the share of movers: the CI stays the one the stopping rule read (one CI
+    for the stop and the table), and the note says it is motion within the cells, not
+    diffusion.  A failed estimator stays failed (D blank)."""
     from bbb.analysis.stats.interval import FAILED, NO_MOVER
     from bbb.analysis.stats.rare import mover_share_bound
 
     if r is None or n_moving > 0 or r.status in (FAILED, NO_MOVER):
         return r
-    return r._replace(hi=math.nan, status=NO_MOVER, coverage=math.nan,
+    return r._replace(status=NO_MOVER, coverage=math.nan,
                       mover_share_hi=mover_share_bound(r.n, ci))
 
 

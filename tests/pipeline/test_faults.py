@@ -249,7 +249,8 @@ def test_invalid_parameters_stop_the_run_before_anything_is_written(tiny_workflo
     naming the cause, and leaves no store behind."""
     study = dataclasses.replace(load_workflow(tiny_workflow), frequencies=(54.0, -60.0))
     store = tmp_path / "bad.zarr"
-    with pytest.raises(ValueError, match=r"Params\.f = -60\.0 is out of range; allowed: f > 0"):
+    with pytest.raises(ValueError,
+                       match=r"Params\.f = -60\.0 is out of range; allowed: 0\.001 ≤ f ≤ 100000 \(Hz\)"):
         run_study(study, store, workers=1, **QUIET)
     assert not store.exists()
 

@@ -14,7 +14,10 @@ status                the interval [lo, hi]
                       ``benchmarks/rare_movers.py --json``)
 ``no mover``          no D_i > 0: the data bound the share of movers (< ``mover_share_hi``
                       at level ci, :func:`bbb.analysis.stats.rare.mover_share_bound`), not D: hi is
-                      NaN (no upper bound), lo the sample's D; coverage NaN
+                      NaN (no upper bound), lo the sample's D; coverage NaN.  Also (set by
+                      `bbb reduce`) where some D_i > 0 but no particle left its cell: [lo, hi]
+                      is then the CI the stopping rule read, of motion within the cells, not
+                      of diffusion, and the note says so
 ``estimator failed``  the interval lies below 0: D < 0 significantly, impossible for a
                       diffusion coefficient (e.g. particles still settling within the fit
                       window, so their MSD falls with the lag): D is not measured and (D, lo,
@@ -78,6 +81,10 @@ class DInterval(NamedTuple):
 
     def note(self) -> str:
         """One line for a table or a report: what the interval means."""
+        if self.status == NO_MOVER and not math.isnan(self.hi):
+            return (f"no mover among {self.n}: none left its cell, mover share < "
+                    f"{100 * self.mover_share_hi:.2g} % (one-sided); D [{self.lo:.3g}, "
+                    f"{self.hi:.3g}] mm²/s is motion within the cells, not diffusion")
         if self.status == NO_MOVER:
             return (f"no mover among {self.n}: mover share < {100 * self.mover_share_hi:.2g} % "
                     "(one-sided); D not bounded above by the data")

@@ -75,7 +75,11 @@ def test_reduce_adds_transport_columns_only_for_a_conveyor(tmp_path):
     tilted = _reduced(_with("tilt = 10.0"), tmp_path / "tilted")
     assert TRANSPORT_COLUMNS <= set(tilted.columns)
     # downhill is -x (gravity along the plane -g sin φ): every frequency drifts that way
-    assert (tilted["v_hi"] < 0).all(), tilted[["f", "v", "v_lo", "v_hi"]]
+    # a steady drift has its CI below 0; an accelerating one (no v CI) speeds up downhill
+    steady = tilted["v_status"] == "ok"
+    assert (tilted.loc[steady, "v_hi"] < 0).all(), tilted[["f", "v", "v_lo", "v_hi", "v_status"]]
+    assert (tilted.loc[~steady, "v_status"] == "accelerating").all()
+    assert (tilted.loc[~steady, "a_hi"] < 0).all(), tilted[["f", "a", "a_lo", "a_hi"]]
     assert (tilted["D_drift"] < tilted["D"]).all()  # the drift's v² Δ² is out of the MSD
 
 
@@ -103,7 +107,7 @@ TRANSPORT_BEFORE = {  # transport_t5 uses pairs (benchmarks/transport_mirror.py)
 }
 ODD = {"v", "v_lo", "v_hi", "dv", "dv_lo", "dv_hi", "dv_tol", "steady", "Pe", "v_by", "D_drift",
        "D_drift_lo", "D_drift_hi", "msd_slope_ratio", "msd_slope_ratio_lo", "msd_slope_ratio_hi",
-       "diffusive"}
+       "diffusive", "v_status", "a", "a_lo", "a_hi"}
 LEVEL = _with("tilt = 0.0\nthrow = 90.0")  # the transport columns on the paper's floor
 
 
