@@ -351,7 +351,7 @@ def cuts(claim: Claim, ctx) -> Measured:
 _MAP_SCOPE = {"scenes": [MAP], "lines": "alpha: the values the scene lists in its [grid]",
               "families": ["rest"], "frequencies": "the scene's, 46–100 Hz"}
 _REG_A = "2026-11-25 2fb6b9a"
-_REG_NEW = "2026-11-28 h36-claims"
+_REG_NEW = "2026-11-28 e570863"
 _LEVEL_WHY = ("rule: on every judged α line the onset (its CI) within f({sym}) ± 2.5 Hz (claim "
               "1's tolerance); a line without a verdict: not measured; the trend only a note")
 _CUT_WHY = ("rule: D within the combined CIs at ≥ 95 % of the shared frequencies, resolved zeros "

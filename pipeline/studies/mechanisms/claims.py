@@ -198,7 +198,7 @@ def _rule_why() -> str:
 _SCOPE = {"scenes": ["mechanisms"], "families": ["rest"],
           "frequencies": "f0 and its grid neighbours"}
 _REG_M, _REG_M6 = "2026-11-25 0e548ac", "2026-11-23 8178e6b"
-_REG_NEW = "2026-11-28 h36-claims"
+_REG_NEW = "2026-11-28 e570863"
 CLAIMS = [
     Claim(f"The {kind}imum of D at {f0:g} Hz: carried by the random walk (D_0) or by the "
           "memory (D_∞/D_0), against both grid neighbours", extremum_carrier, "mechanisms",

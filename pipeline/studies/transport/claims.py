@@ -404,7 +404,7 @@ def liftoff_vs_throw_number(claim: Claim, ctx) -> Measured:
 
 
 _REG_T, _REG_T5, _REG_T6 = "2026-11-23 d98ddae", "2026-11-23 328f226", "2026-11-25 1b0f70e"
-_REG_NEW = "2026-11-28 h36-claims"
+_REG_NEW = "2026-11-28 e570863"
 _SCOPE_MAP = {"scenes": [MAP], "lines": {s: LINES[s] for s in HOPPING}, "families": ["rest"],
               "frequencies": "the scene's"}
 _SCOPE_T1 = {**_SCOPE_MAP, "lines": {HOPPING[0]: LINES[HOPPING[0]]}}

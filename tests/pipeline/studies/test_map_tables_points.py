@@ -8,6 +8,7 @@ makes missing) fails here."""
 from __future__ import annotations
 
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -40,6 +41,20 @@ def _table_points(df: pd.DataFrame, axes: list[str]) -> dict[tuple, int]:
     return out
 
 
+#: a failed estimator's numbers, as `bbb reduce` writes them into the status (its columns blank)
+_FAILED_FIT = re.compile(r"fit D = (\S+) \[(\S+), (\S+)\]")
+
+
+def _value(r: pd.Series, col: str) -> tuple[float, float, float]:
+    """(value, lo, hi) of ``col`` at a table row as the run's refinement read it: a failed
+    estimator's blank D is the fit's own numbers (kept in D_status to 3 digits)."""
+    if col == "D" and isinstance(r.get("D_status"), str) and math.isnan(r["D"]):
+        m = _FAILED_FIT.search(r["D_status"])
+        if m:
+            return tuple(float(v) for v in m.groups())
+    return r[col], r[f"{col}_lo"], r[f"{col}_hi"]
+
+
 def _replayed(study, df: pd.DataFrame, axes: list[str]) -> set[tuple]:
     """The scene's points, grown by its refinement rule replayed on the table's D (pooled, as
     the run's waves read it) until nothing is added; a point the rule adds that the table
@@ -56,8 +71,7 @@ def _replayed(study, df: pd.DataFrame, axes: list[str]) -> set[tuple]:
         for p in points:
             i = have.get(_key(p.f, p.grid))
             r = df.iloc[i] if i is not None else None
-            rows.append((math.nan,) * 3 if r is None else
-                        (r[col], r[f"{col}_lo"], r[f"{col}_hi"]))
+            rows.append((math.nan,) * 3 if r is None else _value(r, col))
         new = refine_grid(points, np.array(rows, dtype=np.float64), rule,
                           ci=study.analysis.ci, own=own)
         if not new:
