@@ -265,6 +265,17 @@ def _repair(store: StudyStore, report: RunReport, start, execute, echo) -> bool:
     return True
 
 
+def _check_address(scheduler: str) -> None:
+    """ValueError if a tcp/tls ``scheduler`` address has no host:port to reach (a Client made
+    on one failed, on a loaded machine, with an AssertionError from its own threads)."""
+    from distributed.comm import parse_address
+    from distributed.comm.addressing import parse_host_port
+
+    scheme, loc = parse_address(scheduler)
+    if scheme in ("tcp", "tls"):
+        parse_host_port(loc)
+
+
 def connect(scheduler: str | None, workers: int | None, dashboard: bool):
     """(client, cluster): a client of the running scheduler at ``scheduler`` (cluster None), or
     of a new LocalCluster of ``workers`` processes (None: one per core)."""
@@ -272,6 +283,7 @@ def connect(scheduler: str | None, workers: int | None, dashboard: bool):
 
     if scheduler:
         try:
+            _check_address(scheduler)  # malformed: said here, before Client's own threads
             return Client(scheduler, timeout="20s"), None
         except (OSError, ValueError, TypeError) as e:
             raise SchedulerUnreachable(f"--scheduler {scheduler}: cannot reach a Dask scheduler "
