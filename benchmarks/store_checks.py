@@ -121,7 +121,7 @@ def main(paths: list[str]) -> None:
             t_checked = best(read_checked, StudyStore.open(path), done)  # digests not cached
             t_scan = best(store.damage)
             shutil.rmtree(plain)
-        print(f"\n## {store.study.name}: {path}")
+        print(f"\n## {store.study.name}: {os.path.basename(path)}")  # no machine paths
         print(f"{int(done.sum())} done chunks, {len(store.checked)} data arrays, {mb:.1f} MB of "
               "decoded data values")
         print("| size | chunk files | bytes | on disk |")
