@@ -6,9 +6,8 @@ only on (parameters, frequency, family, chunk) through its SeedSequence, so the 
 same bit for bit whatever the worker count or task order.  Chunks already marked done are
 skipped, so re-running the same workflow on the same store resumes it; first, every done
 chunk is read and checked (:meth:`pipeline.store.study_store.StudyStore.damage`), and the
-damaged ones -- a chunk file deleted, cut or altered, a done-marker unreadable -- are
-recomputed, which rewrites exactly their bytes.  This module is the
-client side; what a task computes on a worker is :mod:`pipeline.execute.task`.
+damaged ones (a chunk file deleted, cut or altered, a done-marker unreadable) recomputed:
+exactly their bytes.  Client side; a task on a worker is :mod:`pipeline.execute.task`.
 
 Fault injection (for tests): the environment variable ``BBB_FAIL_CHUNKS`` lists chunks, as
 ``F:FAMILY:CHUNK`` separated by commas (F in Hz), whose task writes its data and then fails
@@ -265,25 +264,16 @@ def _repair(store: StudyStore, report: RunReport, start, execute, echo) -> bool:
     return True
 
 
-def _check_address(scheduler: str) -> None:
-    """ValueError if a tcp/tls ``scheduler`` address has no host:port to reach (a Client made
-    on one failed, on a loaded machine, with an AssertionError from its own threads)."""
-    from distributed.comm import parse_address
-    from distributed.comm.addressing import parse_host_port
-
-    scheme, loc = parse_address(scheduler)
-    if scheme in ("tcp", "tls"):
-        parse_host_port(loc)
-
-
 def connect(scheduler: str | None, workers: int | None, dashboard: bool):
     """(client, cluster): a client of the running scheduler at ``scheduler`` (cluster None), or
     of a new LocalCluster of ``workers`` processes (None: one per core)."""
     from distributed import Client, LocalCluster
+    from distributed.comm.addressing import parse_address, parse_host_port
 
     if scheduler:
-        try:
-            _check_address(scheduler)  # malformed: said here, before Client's own threads
+        try:  # no host:port: refused before a Client (one failed with an AssertionError)
+            scheme, loc = parse_address(scheduler)
+            _ = parse_host_port(loc) if scheme in ("tcp", "tls") else None
             return Client(scheduler, timeout="20s"), None
         except (OSError, ValueError, TypeError) as e:
             raise SchedulerUnreachable(f"--scheduler {scheduler}: cannot reach a Dask scheduler "
