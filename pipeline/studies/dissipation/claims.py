@@ -101,11 +101,13 @@ from .lines import (
     threshold_frequency,
 )
 
-__all__ = ["MAP", "LOCKING", "R25", "CUTS", "OWN_SEEDS_CUT", "ONSET_TOL", "LEVEL_SHARE", "P_TREND",
-           "NEAR_ONSET",
-           "BEYOND_MAX", "CUT_SHARE", "CLAIMS", "threshold_frequency", "cut_line"]
+__all__ = ["MAP", "LOCKING", "R25", "OWN_SEEDS", "CUTS", "OWN_SEEDS_CUT", "ONSET_TOL",
+           "LEVEL_SHARE", "P_TREND", "NEAR_ONSET", "BEYOND_MAX", "CUT_SHARE", "CLAIMS",
+           "threshold_frequency", "cut_line"]
 
 MAP, LOCKING, R25 = "dissipation", "dissipation_locking", "dissipation_r25"
+#: the map's α = 0.7 line run with a seed of its own (A6c's line against Fig. 2)
+OWN_SEEDS = "dissipation_own_seeds"
 #: (label, the cut's α) of the cuts table's ``cut`` column
 CUTS = {"figure2": ("Fig. 2 (α = 0.7, R = 15)", 0.7),
         "figure2_matyas2004": ("Mátyás & Klages' Fig. 2 (α = 0.5, R = 25)", 0.5)}
@@ -365,7 +367,7 @@ def _own_seed_null(ctx) -> str:
     if agree is None or agree.empty or not (agree == 0).any():
         return ""
     n, k = len(agree), int((agree == 0).sum())
-    p = 1.0 - float(load_scene("dissipation_own_seeds").analysis.ci)
+    p = 1.0 - float(load_scene(OWN_SEEDS).analysis.ci)
     tail = sum(math.comb(n, j) * p ** j * (1 - p) ** (n - j) for j in range(k, n + 1))
     allowed = math.floor(n * (1 - CUT_SHARE) + 1e-9)
     return (f"Were both curves the same, each of the {n} shared frequencies would disagree "

@@ -14,15 +14,13 @@ from ...claims.markdown import markdown_table
 from ...claims.record import evaluate
 from ...tables.collisions import as_store, locking_table
 from ..klages2004.committed import TABLE_FILES
-from .claims import CLAIMS, CUTS, LOCKING, MAP, OWN_SEEDS_CUT, R25, cut_line
+from .claims import CLAIMS, CUTS, LOCKING, MAP, OWN_SEEDS, OWN_SEEDS_CUT, R25, cut_line
 from .cuts import compare_cut
 from .figures import figure_cuts, figure_map, files
 from .lines import judged_lines, listed_alphas
 
 __all__ = ["SCENES", "OWN_SEEDS", "draw", "cuts_table", "report_lines"]
 
-#: the map's α = 0.7 line run with a seed of its own (A6c's line against Fig. 2)
-OWN_SEEDS = "dissipation_own_seeds"
 SCENES = (MAP, LOCKING, R25, OWN_SEEDS)
 #: each cut: (the scene of its line, the committed scene it is compared with)
 _CUT_SCENES = {"figure2": (MAP, "figure2"), "figure2_matyas2004": (R25, "figure2_matyas2004"),

@@ -54,7 +54,8 @@ def test_the_committed_own_seed_cut_is_the_cut_of_the_committed_tables():
     ref = pd.read_csv(FIGURES / "diffusion_figure2.csv")
     want = compare_cut(line, ref, load_scene(OWN_SEEDS).accuracy.d_resolved,
                        load_scene("figure2").accuracy.d_resolved)
-    assert got["f"].round(3).tolist() == [round(f, 3) for f in load_scene(OWN_SEEDS).frequencies]
+    listed = [round(f, 3) for f in load_scene(OWN_SEEDS).frequencies]
+    assert line["f"].round(3).tolist() == got["f"].round(3).tolist() == listed
     pd.testing.assert_frame_equal(got, want, check_dtype=False, rtol=1e-5)
 
 
