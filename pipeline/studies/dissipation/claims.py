@@ -52,8 +52,13 @@ A5b             two-sample comparisons (Newcombe's interval of a difference of s
 A6b             the cuts of A6 as what they are: the map's α = 0.7 and R = 25 lines share their
                 scenes' seeds and chunks, so they are a consistency check ('consistent'), not a
                 test of the paper.
-A6c             the α = 0.7 cut with seeds of its own against Fig. 2 (the cuts rule): needs a
-                run of that line, not made yet ('not measured').
+A6c             the α = 0.7 cut with seeds of its own against Fig. 2 (the cuts rule): the
+                scene ``dissipation_own_seeds`` (the map's α = 0.7 line at the frequencies
+                Fig. 2 shares, seed 7007), cut ``figure2_own_seeds`` of the cuts table.  When
+                it does not agree, a note gives the chance of as many disagreements if both
+                curves were the same (each shared frequency disagreeing with probability
+                1 − the CI level, independently): the rule's threshold is not calibrated
+                for that.
 
 Size: over 400 lines because a registered claim stays once judged: the frozen rules of
 A1, A2, A5, A6 and their measures sit beside the ids that supersede them (one study's claims, one
@@ -96,11 +101,13 @@ from .lines import (
     threshold_frequency,
 )
 
-__all__ = ["MAP", "LOCKING", "R25", "CUTS", "OWN_SEEDS_CUT", "ONSET_TOL", "LEVEL_SHARE", "P_TREND",
-           "NEAR_ONSET",
-           "BEYOND_MAX", "CUT_SHARE", "CLAIMS", "threshold_frequency", "cut_line"]
+__all__ = ["MAP", "LOCKING", "R25", "OWN_SEEDS", "CUTS", "OWN_SEEDS_CUT", "ONSET_TOL",
+           "LEVEL_SHARE", "P_TREND", "NEAR_ONSET", "BEYOND_MAX", "CUT_SHARE", "CLAIMS",
+           "threshold_frequency", "cut_line"]
 
 MAP, LOCKING, R25 = "dissipation", "dissipation_locking", "dissipation_r25"
+#: the map's α = 0.7 line run with a seed of its own (A6c's line against Fig. 2)
+OWN_SEEDS = "dissipation_own_seeds"
 #: (label, the cut's α) of the cuts table's ``cut`` column
 CUTS = {"figure2": ("Fig. 2 (α = 0.7, R = 15)", 0.7),
         "figure2_matyas2004": ("Mátyás & Klages' Fig. 2 (α = 0.5, R = 25)", 0.5)}
@@ -348,6 +355,27 @@ def cuts(claim: Claim, ctx) -> Measured:
     return Measured(parts) if parts else Measured(missing="no cut compared")
 
 
+def _own_seed_null(ctx) -> str:
+    """A6c's note: with n shared frequencies compared and k of them disagreeing, the chance of
+    k or more disagreements were the two curves the same -- each frequency disagreeing
+    independently with probability 1 − the CI level of the own-seed scene (the combined-CI
+    test of two independent estimates) -- and how many disagreements the rule allows."""
+    from ...workflow.scenes import load_scene
+
+    t = ctx["tables"].get(f"{MAP}_cuts")
+    agree = None if t is None else t[t["cut"] == OWN_SEEDS_CUT]["agree"].dropna()
+    if agree is None or agree.empty or not (agree == 0).any():
+        return ""
+    n, k = len(agree), int((agree == 0).sum())
+    p = 1.0 - float(load_scene(OWN_SEEDS).analysis.ci)
+    tail = sum(math.comb(n, j) * p ** j * (1 - p) ** (n - j) for j in range(k, n + 1))
+    allowed = math.floor(n * (1 - CUT_SHARE) + 1e-9)
+    return (f"Were both curves the same, each of the {n} shared frequencies would disagree "
+            f"with probability {p:g} (1 − the CIs' level), and {k} or more of {n} with "
+            f"probability {tail:.2f}; the rule allows {allowed}: its ≥ {100 * CUT_SHARE:g} % "
+            "is not calibrated against that chance.")
+
+
 _MAP_SCOPE = {"scenes": [MAP], "lines": "alpha: the values the scene lists in its [grid]",
               "families": ["rest"], "frequencies": "the scene's, 46–100 Hz"}
 _REG_A = "2026-11-25 2fb6b9a"
@@ -427,7 +455,7 @@ CLAIMS += [
                    "seed of its own (scene dissipation.toml at alpha = 0.7 with [study] seed ≠ "
                    "2004, Fig. 2's) and its cut against figures/diffusion_figure2.csv "
                    "(cut 'figure2_own_seeds' of the cuts table)"},
-          id="A6c", registered=_REG_NEW,
+          id="A6c", registered=_REG_NEW, explain=_own_seed_null,
           scope={"scenes": [MAP, "figure2"], "lines": {"figure2": "alpha = 0.7, own seed"},
                  "families": ["rest"], "frequencies": "those both share"},
           cases=own_seed_cut_cases),

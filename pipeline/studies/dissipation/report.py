@@ -14,15 +14,17 @@ from ...claims.markdown import markdown_table
 from ...claims.record import evaluate
 from ...tables.collisions import as_store, locking_table
 from ..klages2004.committed import TABLE_FILES
-from .claims import CLAIMS, CUTS, LOCKING, MAP, R25, cut_line
+from .claims import CLAIMS, CUTS, LOCKING, MAP, OWN_SEEDS, OWN_SEEDS_CUT, R25, cut_line
 from .cuts import compare_cut
 from .figures import figure_cuts, figure_map, files
 from .lines import judged_lines, listed_alphas
 
-__all__ = ["SCENES", "draw", "cuts_table", "report_lines"]
+__all__ = ["SCENES", "OWN_SEEDS", "draw", "cuts_table", "report_lines"]
 
-SCENES = (MAP, LOCKING, R25)
-_CUT_SCENE = {"figure2": MAP, "figure2_matyas2004": R25}
+SCENES = (MAP, LOCKING, R25, OWN_SEEDS)
+#: each cut: (the scene of its line, the committed scene it is compared with)
+_CUT_SCENES = {"figure2": (MAP, "figure2"), "figure2_matyas2004": (R25, "figure2_matyas2004"),
+               OWN_SEEDS_CUT: (OWN_SEEDS, "figure2")}
 
 
 def _d_resolved(store: str) -> float:
@@ -32,14 +34,17 @@ def _d_resolved(store: str) -> float:
 def cuts_table(tables: Mapping[str, pd.DataFrame], refs: Mapping[str, pd.DataFrame],
                stores: Mapping[str, str]) -> pd.DataFrame | None:
     """The cuts compared frequency by frequency (:func:`.cuts.compare_cut`, a column ``cut``
-    naming the committed scene), for every cut whose map line and committed table exist."""
+    naming the cut: the committed scene, or ``figure2_own_seeds`` for the own-seed line
+    against Fig. 2), for every cut whose line and committed table exist."""
     parts = []
-    for name in CUTS:
-        line, ref = cut_line(tables, name), refs.get(name)
-        if line is None or ref is None or name not in stores:
+    for name, (scene, ref_scene) in _CUT_SCENES.items():
+        line = (cut_line(tables, name) if name in CUTS
+                else tables.get(f"{scene}_diffusion"))
+        ref = refs.get(ref_scene)
+        if line is None or ref is None or scene not in stores or ref_scene not in stores:
             continue
-        parts.append(compare_cut(line, ref, _d_resolved(stores[_CUT_SCENE[name]]),
-                                 _d_resolved(stores[name])).assign(cut=name))
+        parts.append(compare_cut(line, ref, _d_resolved(stores[scene]),
+                                 _d_resolved(stores[ref_scene])).assign(cut=name))
     return pd.concat(parts, ignore_index=True) if parts else None
 
 

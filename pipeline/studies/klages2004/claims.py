@@ -4,7 +4,8 @@ to a claim that fails.  The few measures only this paper needs (the loops of the
 ergodicity, the spiral approximation, Mátyás 2004) are :mod:`.measures`; each claim holds
 its measure function.  :func:`evaluate` judges them on a study's tables.
 
-To add a claim: append one record to :data:`CLAIMS`.  Tolerances were set before the data
+To add a claim: append one record to :data:`CLAIMS`, and its synthetic cases (inputs that
+turn it each way, a perturbation that flips it) to :data:`.cases.CASES`.  Tolerances were set before the data
 (they are those of the first report) and are only explained here, not tuned.
 """
 
@@ -23,14 +24,14 @@ from bbb.analysis.period1 import frequency_at, gamma_prime
 from ...claims import record as _claims
 from ...claims.measures import extremum, growth, onset_measure, table_value
 from ...claims.record import Band, Claim, Row
+from .cases import CASES
 
 # the paper's own measures, held by the claims below; K_TOL, MAIN, families and
 # spiral_closeness stay importable from here
 from .measures import (
     K_TOL,
     MAIN,
-    curve_extrema,
-    curves_and_meta,
+    context,
     ergodic_above_58,
     families,
     finescale_extrema,
@@ -207,7 +208,7 @@ _REGISTERED = {**{i: "2026-11-22 7c3ea53" for i in (*range(1, 11), 15, 16, 17, 1
                **{i: "2026-11-23 ac62bc4" for i in (11, 12, 13, 14)}, 19: "2026-11-23 8faaa93"}
 #: the paper's claims, registered as "1" … "19" (their numbers in the report)
 CLAIMS: list[Claim] = [
-    replace(c, id=str(i), registered=_REGISTERED[i],
+    replace(c, id=str(i), registered=_REGISTERED[i], cases=CASES[str(i)],
             scope={"scenes": [c.scene], "families": [c.family],
                    "frequencies": (f"{c.f0:g} ± {c.window:g} Hz" if math.isfinite(c.f0)
                                    else "the scene's")})
@@ -226,8 +227,5 @@ def evaluate(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str] | Non
     params   -- the Fig. 2 scene's parameters (g, A, alpha, ...), for explanatory notes
     claims   -- the claim records to judge (default: the paper's)
     """
-    cv, meta = curves_and_meta(tables)
-    ctx = {"tables": tables, "stores": dict(stores or {}), "curves": cv, "curve_meta": meta,
-           "extrema": {label: curve_extrema(t, cols) for label, (t, cols) in cv.items()},
-           "f_gamma1": f_gamma1, "params": params}
+    ctx = context(tables, stores, f_gamma1, params)
     return _claims.evaluate(claims, ctx), ctx["extrema"]

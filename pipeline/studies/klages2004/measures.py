@@ -22,7 +22,7 @@ from ...claims.record import Band, Claim, Measured, Part, Quantity, combine, jud
 from ...tables.collisions import as_store, states
 
 __all__ = ["MAIN", "K_TOL", "DEPTH_FRACTION", "families", "spiral_closeness", "curve_columns",
-           "curves", "curves_and_meta", "curve_extrema", "loops", "nonergodic_near_55",
+           "curves", "curves_and_meta", "curve_extrema", "context", "loops", "nonergodic_near_55",
            "ergodic_above_58", "spiral_approx", "matyas_integer", "finescale_extrema"]
 
 MAIN = "rest"  # the main initial-condition family (Fig. 2's curve)
@@ -66,6 +66,17 @@ def curve_extrema(table: pd.DataFrame, cols: tuple[str, str, str]) -> list[Extre
     D = table[cols[0]].to_numpy(float)
     depth = DEPTH_FRACTION * float(np.nanmax(D)) if np.isfinite(D).any() else 0.0
     return find_extrema(table["f"], D, table[cols[1]], table[cols[2]], min_depth=max(depth, 0.0))
+
+
+def context(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str] | None = None,
+            f_gamma1: float | None = None, params: Mapping[str, float] | None = None) -> dict:
+    """What the paper's claims read: the tables, the stores, the D(f) curves with their
+    scenes and families, every curve's significant extrema, f at Γ = 1 (Hz) and the Fig. 2
+    scene's parameters (for notes)."""
+    cv, meta = curves_and_meta(tables)
+    return {"tables": tables, "stores": dict(stores or {}), "curves": cv, "curve_meta": meta,
+            "extrema": {label: curve_extrema(t, cols) for label, (t, cols) in cv.items()},
+            "f_gamma1": f_gamma1, "params": params}
 
 
 def families(table: pd.DataFrame) -> list[str]:
