@@ -283,8 +283,8 @@ def test_a_frequency_where_nothing_moves_reports_the_mover_share_bound_not_zero_
 
 
 def test_a_store_that_recorded_no_mover_as_resolved_zero_is_reopened_and_finished(tmp_path):
-    """A store decided by the old rule (no mover after chunk 1: stop_reason 2, "resolved to ±d_resolved") is reopened
-    by the next run and ends where a fresh run ends."""
+    """A store decided by the old rule (no mover after chunk 1: stop_reason 2, "resolved to
+    ±d_resolved") is reopened by the next run and ends where a fresh run ends."""
     study = parse_workflow(STILL, "still.toml")
     fresh, old = tmp_path / "fresh.zarr", tmp_path / "old.zarr"
     run_study(study, fresh, workers=1, **QUIET)
