@@ -106,3 +106,29 @@ def test_every_maps_default_plan_is_within_30_percent_of_what_it_cost():
     ratios = [float(r) for ln in rows for r in re.findall(r"\((\d+\.\d+)\)", ln)]
     assert len(rows) == 5 and len(ratios) == 15
     assert all(0.7 <= r <= 1.3 for r in ratios), ratios
+
+
+def _prose(section: str) -> str:
+    """The first paragraph under a README heading, its lines joined."""
+    return " ".join(README.split(section, 1)[1].strip().split("\n\n", 1)[0].split())
+
+
+def test_the_readmes_stopping_rule_is_figure2s_scene_and_its_table():
+    """The rule's numbers are the scene's; the rows the resolution stopped above D ~ 0 are
+    counted from the committed Fig. 2 table."""
+    from pipeline.store.layout import STOP_LEGEND, TARGET, ZERO
+    from pipeline.workflow.load import load_workflow
+
+    study = load_workflow(ROOT / "workflows" / "figure2.toml")
+    acc = study.accuracy
+    text = _prose("## What `make figures` computes")
+    table = pd.read_csv(ROOT / "figures" / "diffusion_figure2.csv")
+    above = table[(table["stop"] == STOP_LEGEND[ZERO]) & (table["D"] > acc.d_resolved)]
+    rel = ((above["D_hi"] - above["D_lo"]) / 2 / above["D"]).max()
+    for quoted in (f"{len(study.points)} frequencies", f"≤ {100 * acc.target_ci:g} % of D",
+                   f'("{STOP_LEGEND[TARGET]}") or ≤ {acc.d_resolved:g} mm²/s ("{STOP_LEGEND[ZERO]}")',
+                   f"{acc.max_particles} particles", f"D < {acc.d_resolved / acc.target_ci:.0f} mm²/s",
+                   f"{len(above)} frequencies of {above['f'].min():g}–{above['f'].max():g} Hz",
+                   f"D of {above['D'].min():.0f}–{above['D'].max():.0f} mm²/s",
+                   f"up to {100 * rel:.1f} % of D"):
+        assert quoted in text, quoted
