@@ -170,3 +170,30 @@ def test_the_readmes_stopping_rule_is_figure2s_scene_and_its_table():
                    f"D of {above['D'].min():.0f}–{above['D'].max():.0f} mm²/s",
                    f"up to {100 * rel:.1f} % of D"):
         assert quoted in text, quoted
+
+
+def test_the_readmes_times_of_the_two_commands_are_read_from_results_files():
+    """make test's time is its measured run; make figures' is the runs of the generated table,
+    the D(f, α) map's measured wall time and the other separately run maps' measured CPU-s
+    over 2 cores."""
+    results = ROOT / "benchmarks" / "results"
+    test_s = float(re.search(r"^make test: (\d+) s wall$",
+                             (results / "make-test-2026-11-28.txt").read_text(encoding="utf-8"), re.M)[1])
+    runs_s = float(re.search(r"\*\*all of the above\*\* \| \*\*[\d.]+ min \((\d+) s\)\*\*", README)[1])
+    regen = (results / "dissipation-regeneration-2026-11-28.txt").read_text(encoding="utf-8")
+    map_s = float(re.search(r"collisions in ([\d.]+) s wall", regen)[1])
+    others = [_cells(ln) for ln in MAP_COSTS.read_text(encoding="utf-8").splitlines()
+              if ln.startswith("| `") and not ln.startswith("| `dissipation` ")
+              and "not the default" not in ln]
+    cpu = sum(float(c[4].split("/")[1].split("(")[0]) for c in others)
+    total_h = (runs_s + map_s + cpu / 2) / 3600
+    block = README.split("## Two commands", 1)[1].split("```", 2)[1]
+    assert f"test suite: {test_s / 60:.1f} min on 2 cores (measured: below)" in block
+    assert f"about {total_h:.1f} h on 2 cores from nothing (measured: below)" in block
+    text = " ".join(README.split("<!-- times:", 1)[1].split("\n\n", 1)[0].split())
+    words = dict(enumerate(("none", "one", "two", "three", "four", "five", "six", "seven")))
+    for quoted in (f"`make test` took {test_s / 60:.1f} min ({test_s:.0f} s:",
+                   f"`make figures` about {total_h:.1f} h: the runs above, {runs_s / 60:.1f} min",
+                   f"the {words[len(others) + 1]} maps", f"the D(f, α) map {map_s / 60:.1f} min",
+                   f"the other {words[len(others)]} {cpu:.0f} CPU-s, {cpu / 2 / 60:.1f} min over 2 cores"):
+        assert quoted in text, quoted
