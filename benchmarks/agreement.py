@@ -6,7 +6,7 @@
 Both tables are `bbb reduce` CSVs (columns f, D, D_lo, D_hi, mm²/s; optionally stop).  At each
 frequency both hold, one of two rules judges (column "by"):
 
-* **resolution** ("res"), where a table says sampling stopped as "resolved zero" (column stop;
+* **resolution** ("res"), where a table says sampling stopped as "resolved to ±d_resolved" (column stop;
   every family): that scene measured D only to ±d_resolved (its CI's half-width reached
   d_resolved, docs/accuracy.md), so the two agree when both |D| ≤ d_resolved, or else by the
   CI rule below.  d_resolved is read from the target-driven scene's workflow (--workflow) or
@@ -36,7 +36,8 @@ import os
 import sys
 from typing import NamedTuple
 
-RESOLVED = "resolved zero"
+#: the stop text of pipeline.store.layout.STOP_LEGEND for a CI half-width <= d_resolved
+RESOLVED = "resolved to ±d_resolved"
 
 
 class Row(NamedTuple):
@@ -74,8 +75,8 @@ def _measured(d: float, lo: float, hi: float, resolved: bool) -> tuple[float, fl
 
 
 def _resolved(stop: str) -> bool:
-    """Whether every family of a stop text ("resolved zero" or "rest: resolved zero; ...")
-    stopped as resolved zero."""
+    """Whether every family of a stop text (RESOLVED, or "rest: " RESOLVED "; ...")
+    stopped as RESOLVED."""
     parts = [p.strip() for p in stop.split(";") if p.strip()]
     return bool(parts) and all(p.endswith(RESOLVED) for p in parts)
 
@@ -152,7 +153,7 @@ def main(argv: list[str] | None = None) -> int:
     res = [r for r in rows if r.by == "res"]
     print(f"{n_ok}/{len(rows)} frequencies agree ({100 * share:.1f} %; required "
           f"{100 * a.min_share:.0f} %): within the combined 95 % CIs, or, at the {len(res)} "
-          f"frequencies that stopped as resolved zero, at the scene's resolution "
+          f"frequencies that stopped as {RESOLVED}, at the scene's resolution "
           + (f"(both |D| <= d_resolved = {d_res:g} mm²/s)" if d_res is not None else
              "(not applied: no d_resolved given)")
           + f"; by the CIs alone {sum(r.by != 'n/a' and abs(r.z) <= 1 for r in rows)}"

@@ -10,7 +10,8 @@ chunks (in index order: never at whichever chunks happened to finish first) and 
 or asks for the first ``n_next`` chunks:
 
 * *target met*    (D > 0 and half-width hw <= target_ci * D),
-* *resolved zero* (hw <= d_resolved: D is known to +-d_resolved, typically D ~ 0),
+* *resolved to ±d_resolved* (hw <= d_resolved: D is known to +-d_resolved; below onset D ~ 0,
+  near onset, where the target is not met yet, D may be far above d_resolved),
 * *cap*           (n reached max_particles / chunk_size),
 * else ``n_next = min(2 n, cap, max(n + 1, ceil(n (hw / goal)^2)))`` with
   goal = max(target_ci * D, d_resolved): the 1/sqrt(N) law's prediction of the chunks that

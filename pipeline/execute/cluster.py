@@ -190,7 +190,7 @@ def work_left(study, store_path) -> bool:
 
     An adaptive store never has every chunk done (a (frequency, family) stops short of the
     cap): it is finished when the wave rule, replayed as the run would (recorded stops are
-    read, not recomputed, except a "resolved zero" where nothing moved, which reopens),
+    read, not recomputed, except a "resolved to ±d_resolved" where nothing moved, which reopens),
     leaves no (frequency, family) open and refinement adds nothing.  A store with damaged
     chunks has work left: their recomputation."""
     from ..store.lock import run_lock

@@ -91,7 +91,7 @@ class Waves:
                 self._drop_beyond(fi, mi, done[fi, mi])
 
     def _recheck_zero(self, fi, mi, state: UnitState, done_fm: np.ndarray) -> UnitState:
-        """A recorded "resolved zero" stands only if the rule still takes it: a store decided
+        """A recorded "resolved to ±d_resolved" stands only if the rule still takes it: a store decided
         before a sample with no mover had an unbounded CI (it had [0, 0], "resolved") is
         reopened and sampled on.  One bootstrap per such unit, so cheap; other stops are
         unaffected by that change and are not re-derived."""
@@ -102,7 +102,7 @@ class Waves:
             return state
         study = self.store.study
         self.echo(f"{study.name}: {study.points[fi].label()}, {study.families[mi].name}: "
-                  f"recorded as resolved zero after {state.n} chunks, but no particle moved "
+                  f"recorded as resolved to ±d_resolved after {state.n} chunks, but no particle moved "
                   f"(D has no upper bound yet): reopened, next wave {n_next} chunks")
         g = self.store.group("r+")
         g["stop_reason"][fi, mi] = OPEN  # first: an interrupted reopening stays open
@@ -295,7 +295,7 @@ class Waves:
 
     def progress_line(self, done_counts: dict[Unit, int] | None = None) -> str:
         """What the waves still need, e.g. "waves: 12 (f, family) mid-wave, need ~40 more
-        chunks; 100 target met, 20 resolved zero" (the need from the 1/sqrt(N) law).
+        chunks; 100 target met, 20 resolved to ±d_resolved" (the need from the 1/sqrt(N) law).
         ``done_counts``: chunks done per (fi, mi) if the caller keeps them; else read."""
         if done_counts is None:
             done = self.store.done()

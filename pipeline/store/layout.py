@@ -83,8 +83,11 @@ __all__ = ["COUNTERS", "CODECS", "chunk_digest", "DIGEST_NONE", "default_store_p
            "n_periods", "OPEN", "TARGET", "ZERO", "CAP", "STOP_LEGEND"]
 
 OPEN, TARGET, ZERO, CAP = 0, 1, 2, 3
-#: stop_reason codes as stored (the store's ``stop_reason`` array and its ``legend``)
-STOP_LEGEND = {OPEN: "open", TARGET: "target met", ZERO: "resolved zero", CAP: "cap"}
+#: stop_reason codes as stored (the store's ``stop_reason`` array and its ``legend``), each named
+#: by what :func:`pipeline.execute.adaptive.decide` tested: "target met", D > 0 and the CI's
+#: half-width <= target_ci * D; "resolved to ±d_resolved", the half-width <= d_resolved (D known
+#: to ± d_resolved, whatever its size: not a claim that D is zero); "cap", max_particles reached
+STOP_LEGEND = {OPEN: "open", TARGET: "target met", ZERO: "resolved to ±d_resolved", CAP: "cap"}
 
 #: the bytes-to-bytes codecs of every array: zstd, then a CRC-32C of the compressed bytes
 CODECS = (ZstdCodec(level=0, checksum=False), Crc32cCodec())

@@ -22,7 +22,7 @@ STATUS_KEYS = {
     "target_ci": "relative CI half-width of D a target-driven store stops at, else null",
     "points": "one object per point: f (Hz), grid ({axis: value}, {} without a grid), refined "
               "(added by refinement), families ({name: {done, total, stop}}; stop: why a "
-              "target-driven family stopped -- open, target met, resolved zero, cap -- else null)",
+              "target-driven family stopped -- open, target met, resolved to ±d_resolved, cap -- else null)",
     "jobs": "null, or the batch jobs of a run writing the store: record, run_alive, queue "
             "([{job_id, state, time, nodes_or_reason}] from squeue, or null), queue_error",
 }

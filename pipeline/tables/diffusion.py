@@ -52,9 +52,10 @@ dD, dD_lo, dD_hi  D_half2 - D_half1 with its paired bootstrap CI over particles,
 dD_tol       what that CI must clear to flag: 5 % of D plus 1e-6 mm^2/s
 stationary   False where D depends on the run length (the CI of dD lies beyond +-dD_tol)
 verdict      the verdict's reasons, '; '-joined
-stop         (target-driven stores only) why sampling stopped: "target met", "resolved zero"
-             (D known to +-d_resolved only: quote |D| <= d_resolved there, not D +- its CI,
-             docs/accuracy.md), "cap" or "open"; "family: reason; ..." with several families
+stop         (target-driven stores only) why sampling stopped: "target met" (CI half-width
+             <= target_ci * D), "resolved to ±d_resolved" (half-width <= d_resolved before the
+             target was met: D known to +-d_resolved only, at any size of D; docs/accuracy.md),
+             "cap" or "open"; "family: reason; ..." with several families
 v, v_lo, v_hi  (scenes with tilt or throw only) drift velocity, mm/s, with its bootstrap CI
              over particles (bbb.analysis.transport: slope of the mean displacement over the fit
              lags); v_lo, v_hi NaN unless v_status is "ok" or "by construction"

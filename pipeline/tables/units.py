@@ -193,7 +193,7 @@ TABLE_COLUMNS: dict[str, tuple[tuple[str, bool, str], ...]] = {
         ("EB_decay_<family>", False, "EB_decay of one family"),
         ("verdict", False, "the ergodicity verdict's reasons, '; '-joined"),
         ("stop", False, "target-driven stores only: why sampling stopped (target met, "
-         "resolved zero, cap, open), per family"),
+         "resolved to ±d_resolved, cap, open), per family"),
         ("D_half1", False, "D of the analysed run's first half (pooled)"),
         ("D_half2", False, "D of its second half"),
         ("dD", True, "D_half2 − D_half1, paired bootstrap CI over particles"),

@@ -1,5 +1,5 @@
 """benchmarks/agreement.py: two D(f) tables agree within their combined CIs, or, where a
-target-driven scene stopped as "resolved zero", at that scene's resolution d_resolved."""
+target-driven scene stopped as "resolved to ±d_resolved", at that scene's resolution d_resolved."""
 
 from __future__ import annotations
 
@@ -14,6 +14,7 @@ agreement = importlib.util.module_from_spec(_spec)
 _spec.loader.exec_module(agreement)
 
 NAN = float("nan")
+RES = agreement.RESOLVED
 OLD = pd.DataFrame({"f": [50.0, 54.0, 58.0, 60.0, 62.0],
                     "D": [1e-3, 2e-3, 100.0, 300.0, 200.0],
                     "D_lo": [9e-4, 1.8e-3, 95.0, 291.0, 194.0],
@@ -22,8 +23,7 @@ NEW = pd.DataFrame({"f": [50.0, 54.0, 58.0, 60.0, 62.0],
                     "D": [3e-6, 4e-6, 120.0, 301.0, NAN],
                     "D_lo": [1e-6, 2e-6, 116.0, 292.0, NAN],
                     "D_hi": [5e-6, 6e-6, 124.0, 310.0, NAN],
-                    "stop": ["resolved zero", "rest: resolved zero; launched: cap",
-                             "resolved zero", "target met", "resolved zero"]})
+                    "stop": [RES, f"rest: {RES}; launched: cap", RES, "target met", RES]})
 
 
 def _files(tmp_path):
@@ -33,7 +33,7 @@ def _files(tmp_path):
     return str(old), str(new)
 
 
-def test_a_resolved_zero_agrees_at_the_scenes_resolution_and_nowhere_else(tmp_path):
+def test_a_point_resolved_to_d_resolved_agrees_at_the_scenes_resolution_and_nowhere_else(tmp_path):
     old, new = _files(tmp_path)
     rows = {r.f: r for r in agreement.compare(agreement.read_table(old),
                                               agreement.read_table(new), d_resolved=9.0)}
@@ -98,3 +98,10 @@ def test_the_readme_and_accuracy_doc_quote_the_latest_figure2_agreement():
     assert f"({by_ci} of {total})" in readme
     assert f"{agree} of {total} frequencies agree ({percent} %; within the CIs alone {by_ci})" \
         in accuracy
+
+
+def test_the_benchmarks_resolved_label_is_the_stores():
+    """agreement.py stands alone (no pipeline import): its label must be the legend's."""
+    from pipeline.store.layout import STOP_LEGEND, ZERO
+
+    assert agreement.RESOLVED == STOP_LEGEND[ZERO]

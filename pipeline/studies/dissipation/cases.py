@@ -8,6 +8,7 @@ import numpy as np
 import pandas as pd
 
 from ...claims.record import Case
+from ...store.layout import STOP_LEGEND, ZERO
 from .lines import threshold_frequency
 
 __all__ = ["ALPHAS", "F", "line", "dmap", "lock", "cut_table"]
@@ -21,13 +22,13 @@ RULE_FN = 0.0  # the calibrated rate of calling an ergodic population non-ergodi
 
 def line(f_on: float, f_max: float, alpha: float, rel: float = 0.03,
          nonergodic=lambda f, f_on: False, f_grid=F) -> pd.DataFrame:
-    """One α line: D = 0 (resolved zero) below f_on; above it a peak of 300 mm²/s at f_max on
+    """One α line: D = 0 (resolved to ±d_resolved) below f_on; above it a peak of 300 mm²/s at f_max on
     a rise to 3000 mm²/s at 100 Hz, CI ± rel; ``ergodic`` False where nonergodic(f, f_on)
     (None there: no verdict)."""
     rows = []
     for f in f_grid:
         if f < f_on:
-            D, lo, hi, stop = 1e-7, 0.0, 2e-7, "resolved zero"
+            D, lo, hi, stop = 1e-7, 0.0, 2e-7, STOP_LEGEND[ZERO]
         else:
             D = (300.0 * np.exp(-0.5 * ((f - f_max) / 1.5) ** 2)
                  + 3000.0 * ((f - f_on) / max(54.0, 100.0 - f_on)) ** 2 + 50.0)

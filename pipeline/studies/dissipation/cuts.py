@@ -5,9 +5,9 @@ At a shared frequency the two D's agree when |D_map − D_ref| ≤ sqrt(h_map² 
 the half-width of the 95 % CI on the side facing the other value (the CI of a difference of
 two independent estimates; where the two runs share chunks, as a map line and the scene with
 its seed do, the estimates are positively correlated and the test is lenient, a consistency
-check).  Resolved zeros are judged at their scene's resolution: a point whose run stopped as
-"resolved zero" (CI half-width ≤ ``d_resolved`` at a D that small) has h at least that
-``d_resolved``.  A frequency where either estimator failed (no D) is not compared and is
+check).  A point whose run stopped as "resolved to ±d_resolved" (CI half-width ≤
+``d_resolved`` before it was ≤ target_ci · D) is judged at its scene's resolution: its h is at
+least that ``d_resolved``.  A frequency where either estimator failed (no D) is not compared and is
 counted as such.  Units: f in Hz, D in mm²/s.
 """
 
@@ -18,9 +18,12 @@ import math
 import numpy as np
 import pandas as pd
 
-__all__ = ["RESOLVED_ZERO", "CUT_COLUMNS", "CUT_UNITS", "compare_cut"]
+from ...store.layout import STOP_LEGEND, ZERO
 
-RESOLVED_ZERO = "resolved zero"
+__all__ = ["RESOLVED", "CUT_COLUMNS", "CUT_UNITS", "compare_cut"]
+
+#: the stop of a point whose D is known to ± d_resolved (pipeline.store.layout.STOP_LEGEND)
+RESOLVED = STOP_LEGEND[ZERO]
 CUT_COLUMNS = ("f", "D", "D_lo", "D_hi", "stop", "D_ref", "D_ref_lo", "D_ref_hi", "stop_ref",
                "d_resolved", "d_resolved_ref", "agree")
 #: the units of the cuts table's own columns (``cut`` names the committed scene; ``agree`` 1/0)
@@ -30,7 +33,7 @@ CUT_UNITS = {"cut": "", "D_ref": "mm^2/s", "D_ref_lo": "mm^2/s", "D_ref_hi": "mm
 
 def _half(D, lo, hi, other, stop, d_res):
     h = np.where(other >= D, hi - D, D - lo)
-    return np.where(stop == RESOLVED_ZERO, np.maximum(h, d_res), h)
+    return np.where(stop == RESOLVED, np.maximum(h, d_res), h)
 
 
 def compare_cut(line: pd.DataFrame, ref: pd.DataFrame, d_resolved: float,
@@ -39,7 +42,7 @@ def compare_cut(line: pd.DataFrame, ref: pd.DataFrame, d_resolved: float,
     1 mHz; columns f, D, D_lo, D_hi, and stop where the scene has a target):
     :data:`CUT_COLUMNS`, ``agree`` 1/0, NaN
     where either D is missing (estimator failed)."""
-    # a fixed-size scene (a draft) has no stop column: none of its points is a resolved zero
+    # a fixed-size scene (a draft) has no stop column: none of its points stopped at the resolution
     a = line.assign(_k=np.round(line["f"].to_numpy(float) * 1000).astype(np.int64),
                     stop=line["stop"] if "stop" in line else "")
     b = ref.assign(_k=np.round(ref["f"].to_numpy(float) * 1000).astype(np.int64),

@@ -3,7 +3,7 @@ curves.  Units: f Hz, D mm²/s.
 
 The map draws each judged α line (:func:`.lines.judged_lines`) as a row of cells, one per
 frequency it holds (refined ones included), coloured by log D; a point whose D is below
-:data:`D_FLOOR` (creeping, resolved zero) is grey, one whose estimator failed is white.  α
+:data:`D_FLOOR` (creeping: not diffusing) is grey, one whose estimator failed is white.  α
 values refinement added hold a few points: drawn as dots in the same colours.  On top: the
 contour lines k_max = 1, 2, 3, ... of the locking map (white), the flat-floor thresholds
 f(Γ₁(α)) and f(Γ'(α)) (:mod:`bbb.analysis.period1`), lift-off from rest (Γ = 1), and per line

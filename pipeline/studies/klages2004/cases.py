@@ -24,6 +24,7 @@ from bbb.analysis.approx import spiral
 from bbb.record import COLLISION_FIELDS
 
 from ...claims.record import Case
+from ...store.layout import STOP_LEGEND, TARGET, ZERO
 from .measures import MAIN, context
 
 __all__ = ["F", "K_SCALE", "figure2", "locking", "ergodicity", "matyas", "finescale",
@@ -40,13 +41,13 @@ K_SCALE = 1.5
 
 
 def _table(f, D, rel: float) -> pd.DataFrame:
-    """A D(f) table: D with a ± rel CI, a still ensemble (D = 0) as a resolved zero."""
+    """A D(f) table: D with a ± rel CI, a still ensemble (D = 0) resolved to ±d_resolved."""
     D = np.asarray(D, float)
     zero = D <= 0
     D = np.where(zero, 1e-7, D)
     return pd.DataFrame({"f": f, "D": D, "D_lo": np.where(zero, 0.0, D * (1 - rel)),
                          "D_hi": np.where(zero, 2e-7, D * (1 + rel)),
-                         "stop": np.where(zero, "resolved zero", "target met")})
+                         "stop": np.where(zero, STOP_LEGEND[ZERO], STOP_LEGEND[TARGET])})
 
 
 def figure2(shift: float = 0.0, flat_from: float | None = None, rel: float = 0.01) -> pd.DataFrame:

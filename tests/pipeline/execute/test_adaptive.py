@@ -32,7 +32,7 @@ from pipeline.workflow.load import WorkflowError, parse_workflow
 from ..helpers import QUIET, assert_same_store
 
 # 3 frequencies x 2 families, chunks of 8 particles, at most 8 chunks: 54 Hz from rest stays
-# at D = 0 (resolved zero after one chunk), 54 Hz launched decays into creeping (the cap), the
+# at D = 0 (resolved to ±d_resolved after one chunk), 54 Hz launched decays into creeping (the cap), the
 # others meet 30 % after 1-8 chunks (measured: chunks used 1, 8 / 8, 8 / 1, 6).
 SCENE = """\
 [study]
@@ -160,8 +160,8 @@ def test_the_reduced_table_says_where_d_is_only_resolved_to_zero(two_workers, tm
 
     t = reduce_store(two_workers, tmp_path / "out", echo=lambda _: None)["diffusion"]
     stop = dict(zip(t["f"], t["stop"], strict=True))
-    assert stop[54.0] == "rest: resolved zero; launched: cap"
-    assert "resolved zero" not in stop[72.0] and "cap" not in stop[72.0]
+    assert stop[54.0] == "rest: resolved to ±d_resolved; launched: cap"
+    assert "resolved to" not in stop[72.0] and "cap" not in stop[72.0]
 
 
 # -- the stopping rule ---------------------------------------------------------------------------
@@ -283,8 +283,8 @@ def test_a_frequency_where_nothing_moves_reports_the_mover_share_bound_not_zero_
 
 
 def test_a_store_that_recorded_no_mover_as_resolved_zero_is_reopened_and_finished(tmp_path):
-    """A store decided by the old rule (no mover after chunk 1: "resolved zero") is reopened
-    by the next run and ends where a fresh run ends."""
+    """A store decided by the old rule (no mover after chunk 1: stop_reason 2, "resolved to
+    ±d_resolved") is reopened by the next run and ends where a fresh run ends."""
     study = parse_workflow(STILL, "still.toml")
     fresh, old = tmp_path / "fresh.zarr", tmp_path / "old.zarr"
     run_study(study, fresh, workers=1, **QUIET)

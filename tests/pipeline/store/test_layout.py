@@ -39,3 +39,14 @@ def test_every_collision_field_has_a_unit_in_the_store(store):
     for name in ("field", "collisions"):
         assert g[name].attrs["units"].split(", ") == list(units), name
     assert all(f in g["collisions"].attrs["long_name"] for f in COLLISION_FIELDS)
+
+
+def test_the_stop_at_d_resolved_is_named_by_its_resolution_not_as_zero():
+    """The rule stops D = 300 ± 8.6 mm²/s at d_resolved = 9 (a 2 % target not met): its stop
+    names the resolution it tested, and says nothing of zero."""
+    from pipeline.execute.adaptive import StoppingRule, decide
+    from pipeline.store.layout import STOP_LEGEND, ZERO
+
+    reason, _ = decide(StoppingRule(0.02, 9.0, 32), 4, (300.0, 291.4, 308.6))
+    assert reason == ZERO
+    assert "d_resolved" in STOP_LEGEND[reason] and "zero" not in STOP_LEGEND[reason]

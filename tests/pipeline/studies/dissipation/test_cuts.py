@@ -3,7 +3,7 @@ import math
 import pandas as pd
 import pytest
 
-from pipeline.studies.dissipation.cuts import compare_cut
+from pipeline.studies.dissipation.cuts import RESOLVED, compare_cut
 
 
 def table(rows):
@@ -23,8 +23,8 @@ def test_two_values_agree_within_the_combined_half_widths_facing_each_other():
     assert compare_cut(a, table([(60.0, 114.0, 110.0, 130.0, "target met")]), 9, 9)["agree"][0] == 0
 
 
-def test_a_resolved_zero_is_judged_at_its_scenes_resolution():
-    zero = table([(54.0, 0.0, 0.0, 1e-6, "resolved zero")])
+def test_a_point_resolved_to_d_resolved_is_judged_at_its_scenes_resolution():
+    zero = table([(54.0, 0.0, 0.0, 1e-6, RESOLVED)])
     small = table([(54.0, 6.0, 5.0, 7.0, "target met")])
     assert compare_cut(zero, small, 9.0, 9.0)["agree"][0] == 1  # within the 9 mm²/s resolution
     assert compare_cut(zero, small, 0.75, 0.75)["agree"][0] == 0  # not at 0.75 mm²/s
