@@ -14,9 +14,9 @@ import numpy as np
 import pandas as pd
 
 from bbb.analysis.approx import spiral
-from bbb.analysis.extrema import Extremum, find_extrema
 from bbb.analysis.locking import creep_speed, flight_time_max, flight_times
 
+from ...claims.curves import DEPTH_FRACTION, curve_columns, curve_extrema, families
 from ...claims.measures import row_at
 from ...claims.record import Band, Claim, Measured, Part, Quantity, combine, judge, measure
 from ...tables.collisions import as_store, states
@@ -27,16 +27,6 @@ __all__ = ["MAIN", "K_TOL", "DEPTH_FRACTION", "families", "spiral_closeness", "c
 
 MAIN = "rest"  # the main initial-condition family (Fig. 2's curve)
 K_TOL = 0.15  # k: the paper quotes k to 2 decimals read off Fig. 3
-
-
-DEPTH_FRACTION = 0.01  # extrema: differences below this fraction of max D do not count
-
-
-def curve_columns(table: pd.DataFrame, family: str | None) -> tuple[str, str, str]:
-    """The (D, lo, hi) columns of ``family``'s curve in a reduce table (None: the pooled D)."""
-    if family is None:
-        return "D", "D_lo", "D_hi"
-    return f"D_{family}", f"D_{family}_lo", f"D_{family}_hi"
 
 
 def curves_and_meta(tables: Mapping[str, pd.DataFrame]) -> tuple[dict, dict]:
@@ -58,20 +48,6 @@ def curves_and_meta(tables: Mapping[str, pd.DataFrame]) -> tuple[dict, dict]:
 def curves(tables: Mapping[str, pd.DataFrame]) -> dict[str, tuple[pd.DataFrame, tuple[str, str, str]]]:
     """{label: (table, (D, lo, hi) columns)} of every D(f) curve in the tables."""
     return curves_and_meta(tables)[0]
-
-
-def curve_extrema(table: pd.DataFrame, cols: tuple[str, str, str]) -> list[Extremum]:
-    """Significant extrema of one D(f) curve (D in mm²/s, f in Hz; differences below 1 % of
-    its max D ignored): the extrema rule of the claims and the report."""
-    D = table[cols[0]].to_numpy(float)
-    depth = DEPTH_FRACTION * float(np.nanmax(D)) if np.isfinite(D).any() else 0.0
-    return find_extrema(table["f"], D, table[cols[1]], table[cols[2]], min_depth=max(depth, 0.0))
-
-
-def families(table: pd.DataFrame) -> list[str]:
-    """The initial-condition families of a reduce table (from its D_<fam>_lo columns)."""
-    return [c[2:-3] for c in table.columns if c.startswith("D_") and c.endswith("_lo")
-            and c != "D_lo" and not c.startswith("D_half")]
 
 
 @measure("klages2004.loops")

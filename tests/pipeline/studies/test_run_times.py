@@ -5,7 +5,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from pipeline.studies.klages2004.run_times import BEGIN, END, table, update_readme
+from pipeline.studies.run_times import BEGIN, END, table, update_readme
 
 ROOT = Path(__file__).resolve().parents[4]
 
