@@ -40,18 +40,18 @@ def make_tables(stores: Mapping[str, str], echo: Callable[[str], None] = print
 def draw(tables: dict[str, pd.DataFrame], stores: Mapping[str, str], out_dir) -> list[Path]:
     """Figs. 1-3, k(f), the R = 25 Fig. 2 and the fine scales into ``out_dir``; adds the fine
     scales' extrema table (``finescale_extrema``, written beside the others)."""
-    from . import figures as fg
+    from .figures import figure1, figure2, figure3, figure_files, figure_locking
     from .finescale import figure_finescale
     from .finescale import write_table as write_finescale
 
     out = Path(out_dir)
     figs = [
-        fg.figure1(stores["locking"], None, out),
-        fg.figure2(stores["figure2"], {"diffusion": tables["figure2"],
+        figure1(stores["locking"], None, out),
+        figure2(stores["figure2"], {"diffusion": tables["figure2"],
                                        "ergodicity": tables["ergodicity"]}, out),
-        fg.figure3([stores["figure3"], stores["locking"]], None, out),
-        fg.figure_locking(stores["locking"], {"locking": tables["locking"]}, out),
-        fg.figure2(stores["figure2_matyas2004"],
+        figure3([stores["figure3"], stores["locking"]], None, out),
+        figure_locking(stores["locking"], {"locking": tables["locking"]}, out),
+        figure2(stores["figure2_matyas2004"],
                    {"diffusion": tables["figure2_matyas2004"],
                     "locking": tables["locking_matyas2004"]},
                    out, name="fig2_matyas2004", letters=None, inset=None,
@@ -59,7 +59,7 @@ def draw(tables: dict[str, pd.DataFrame], stores: Mapping[str, str], out_dir) ->
         figure_finescale(tables["finescale"], out),
     ]
     write_finescale(tables["finescale"], out)
-    return [p for fig in figs for p in fg.figure_files(out, fig.get_label())]
+    return [p for fig in figs for p in figure_files(out, fig.get_label())]
 
 
 @functools.cache

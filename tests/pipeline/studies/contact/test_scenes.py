@@ -7,9 +7,10 @@ import json
 
 import pytest
 
-from pipeline.make_figures import SCENES as PAPER_SCENES
-from pipeline.studies.contact import SCENES
-from pipeline.studies.contact.claims import LINES
+from pipeline.studies.contact.claims import LINES, SCENES
+from pipeline.studies.registry import study
+
+PAPER_SCENES = study("klages2004").scenes
 from pipeline.workflow.scenes import load_scene, scene_label, shipped_draft
 
 from ...helpers import run_outside
