@@ -184,7 +184,7 @@ def further_lines(tables: Mapping[str, pd.DataFrame], verdicts=None) -> list[str
                 L.append(f"| {r['f']:g} | {fam} | {100 * r['frac_creep']:.0f} % | {r['v_max']:.0f} | "
                          f"{_ci(r, 'k_max')} | {r['v_peak']:.0f} | {_ci(r, 'k_peak')} | "
                          f"{1e3 * r['t_max']:.1f} | {r['loops']:.2f} |")
-        L.append("\nThe whole table: `locking.csv` beside this report.")
+        L += ["", "The whole table: `locking.csv` beside this report."]
     n_main = len(tables["figure2"]) if tables.get("figure2") is not None else 0
     L += ["", "## Definitions", "",
           f"- **Creeping band**: v_y⁺ ≤ (1 + {CREEP_MARGIN:g}) A 2πf, the floor's peak speed plus "

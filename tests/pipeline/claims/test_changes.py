@@ -7,7 +7,7 @@ from pathlib import Path
 
 from pipeline.claims.changes import HEADING, changes_section, verdicts
 
-REPORT = Path(__file__).resolve().parents[4] / "figures" / "REPORT.md"
+REPORT = Path(__file__).resolve().parents[3] / "figures" / "REPORT.md"
 
 
 def _claim_rows(text: str) -> list[str]:

@@ -46,3 +46,23 @@ def test_a_superseded_claim_is_judged_in_the_report_beside_the_one_that_replaces
     pairs = {(c.supersedes, c.id) for c in CLAIMS if c.supersedes}
     assert ("T3", "T3b") in pairs
     assert [p for p in pairs if not set(p) <= judged] == []
+
+
+def test_every_scene_of_a_study_folder_is_run_by_that_study_and_every_run_scene_is_shipped():
+    from pipeline.studies.registry import studies
+    from pipeline.workflow.scenes import scene_names, scene_study
+
+    declared = {n: s.name for s in studies() for n in s.scenes}
+    in_folders = {n: scene_study(n) for n in scene_names() if scene_study(n) != "workflows"}
+    assert {n: declared.get(n) for n in in_folders} == in_folders
+    assert set(declared) <= set(scene_names())
+
+
+def test_a_study_is_its_packages_record_under_its_own_name():
+    import pytest as _pytest
+
+    from pipeline.studies.registry import STUDIES, study
+
+    assert [study(n).name for n in STUDIES] == list(STUDIES)
+    with _pytest.raises(KeyError, match="registered: klages2004"):
+        study("impact_phase")

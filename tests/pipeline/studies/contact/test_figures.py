@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pipeline.studies.contact import draw
+from pipeline.studies.contact.figures import draw
 from pipeline.studies.contact.claims import MODELS
 from pipeline.studies.contact.figures import figure_contact, figure_contact_high
 

@@ -3,7 +3,7 @@
 import numpy as np
 import pandas as pd
 
-from pipeline.studies.transport import draw
+from pipeline.studies.transport.figures import draw
 from pipeline.studies.transport.claims import COMBINED, HOPPING, LINES
 
 
