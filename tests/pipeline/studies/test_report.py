@@ -11,7 +11,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from pipeline.studies.registry import STUDIES, study, studies
+from pipeline.studies.registry import STUDIES, studies, study
 from pipeline.studies.report import claim_sections
 from pipeline.tables.files import study_file, write_csv
 

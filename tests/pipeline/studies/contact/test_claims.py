@@ -9,6 +9,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from pipeline.studies.contact import STUDY
 from pipeline.studies.contact.claims import (
     CLAIMS,
     LINES,
@@ -16,7 +17,6 @@ from pipeline.studies.contact.claims import (
     model_differences,
     model_rows,
 )
-from pipeline.studies.contact import STUDY
 
 
 def report_lines(tables):

@@ -9,11 +9,11 @@ import pytest
 
 from pipeline.studies.contact.claims import LINES, SCENES
 from pipeline.studies.registry import study
-
-PAPER_SCENES = study("klages2004").scenes
 from pipeline.workflow.scenes import load_scene, scene_label, shipped_draft
 
 from ...helpers import run_outside
+
+PAPER_SCENES = study("klages2004").scenes
 
 
 @pytest.mark.parametrize("name", SCENES)

@@ -11,12 +11,12 @@ from pathlib import Path
 import pytest
 
 from pipeline.studies.registry import study
-
-SCENES = study("klages2004").scenes  # the paper's scenes
 from pipeline.workflow.scenes import draft_text, load_scene, scene_label, scene_names, scene_path
 from pipeline.workflow.scenes import toml_dump as _toml_dump
 
 from ...helpers import run_outside
+
+SCENES = study("klages2004").scenes  # the paper's scenes
 
 
 @pytest.mark.parametrize("name", SCENES)

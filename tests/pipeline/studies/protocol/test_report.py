@@ -3,8 +3,8 @@ the tables."""
 
 from __future__ import annotations
 
-from pipeline.studies.protocol.claims import verdicts_table
 from pipeline.studies.protocol import STUDY
+from pipeline.studies.protocol.claims import verdicts_table
 from pipeline.studies.protocol.report import paragraph
 from pipeline.studies.protocol.tables import protocol_name
 
