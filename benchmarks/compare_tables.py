@@ -86,8 +86,8 @@ def compare_lines(base: str, folder: str) -> list[str]:
     if sys.path[0] != root:
         sys.path.insert(0, root)
         sys.modules.pop("pipeline", None)
-    from pipeline.studies.klages2004.committed import read_study_tables
-    from pipeline.studies.klages2004.scene_list import EXTRA_STUDIES
+    from pipeline.studies.registry import STUDIES as EXTRA_STUDIES
+    from pipeline.tables.files import read_study_tables
 
     out = []
     for study in EXTRA_STUDIES:

@@ -1,7 +1,8 @@
 """The house rules of the layout (docs/design.md, issues 11 and 24), read off the source files:
 modules stay under 400 lines unless they say why, ``bbb/`` never imports ``pipeline/``, the
 kernel (the modules ``bbb.provenance`` hashes) never imports the analyses (``bbb/analysis/``),
-the engine (``pipeline/`` outside ``studies/``) never imports a study, the engine's layers import
+the engine (``pipeline/`` outside ``studies/``) never imports a study, no study imports another
+(each study folder is listed in the registry), the engine's layers import
 one way (workflow <- store <- execute <- tables <- plot <- claims <- the entry points and studies: a
 layer imports only layers below it), no module imports a path kept only as a re-export of a
 moved module, no import cycle of any length among the modules of ``bbb/`` and ``pipeline/``
@@ -50,8 +51,8 @@ BBB_REEXPORT_TESTS = ("tests/bbb/test_old_kernel_paths.py", "tests/bbb/analysis/
 #: engine modules allowed to import pipeline.studies: the entry points over engine and
 #: studies (docs/design.md), each with why
 ENTRY_POINTS = {
-    "pipeline/make_figures.py": "the shim of `python -m pipeline.make_figures`, which runs the "
-                                "paper's study (pipeline.studies.klages2004.make_figures)",
+    "pipeline/make_figures.py": "`python -m pipeline.make_figures` runs every study the "
+                                "registry (pipeline.studies.registry) lists",
     "pipeline/commands/run.py": "`bbb accuracy` runs the accuracy study (a lazy import in its command)",
 }
 #: over 400 lines without a 'Size:' line yet, being changed on other branches (the lead splits
@@ -149,6 +150,36 @@ def test_no_engine_module_imports_a_study_except_the_entry_points():
     # the entry points do import a study (else they need no exception)
     assert all(any(m.startswith("pipeline.studies") for m in imported_modules(ROOT / f))
                for f in ENTRY_POINTS)
+
+
+def study_folders(root: Path = ROOT) -> list[str]:
+    """The study folders: packages directly under pipeline/studies/."""
+    return sorted(p.parent.name for p in (root / "pipeline" / "studies").glob("*/__init__.py"))
+
+
+def cross_study_imports(root: Path = ROOT) -> list[tuple[str, str]]:
+    """(module, imported module) of every import by a module of one study folder of a module of
+    another, or by a shared module of pipeline/studies/ (interface, report, ...) of any study's
+    (lazy imports count): a study is reached only through the registry, which imports none."""
+    folders = set(study_folders(root))
+    out = []
+    for p in modules("pipeline/studies", root=root):
+        parts = p.relative_to(root / "pipeline" / "studies").parts
+        own = parts[0] if len(parts) > 1 else None  # None: a shared module
+        out += [(module_name(p, root), m) for m in sorted(imported_modules(p, root))
+                if m.split(".")[:2] == ["pipeline", "studies"] and len(m.split(".")) > 2
+                and m.split(".")[2] in folders and m.split(".")[2] != own]
+    return out
+
+
+def test_no_study_imports_another_study():
+    assert cross_study_imports() == []
+
+
+def test_every_study_folder_is_registered():
+    from pipeline.studies.registry import STUDIES, TOOLS
+
+    assert sorted(STUDIES + TOOLS) == study_folders()
 
 
 def import_graph(*packages: str, root: Path = ROOT) -> dict[str, set[str]]:
@@ -334,6 +365,24 @@ def _tree(root: Path, files: dict[str, str]) -> Path:
         path.parent.mkdir(parents=True, exist_ok=True)
         path.write_text(text, encoding="utf-8")
     return root
+
+
+def test_a_study_importing_another_study_is_caught(tmp_path):
+    root = _tree(tmp_path, {
+        "pipeline/__init__.py": "", "pipeline/studies/__init__.py": "",
+        "pipeline/studies/registry.py": "import importlib\n",
+        "pipeline/studies/a/__init__.py": "", "pipeline/studies/b/__init__.py": "",
+        "pipeline/studies/a/claims.py": "from . import figures\nfrom ..registry import study\n",
+        "pipeline/studies/a/figures.py": "",
+        "pipeline/studies/b/claims.py": "def f():\n    from ..a.claims import study\n",
+        "pipeline/studies/report.py": "from .a import figures\n",
+    })
+    assert cross_study_imports(root) == [("pipeline.studies.b.claims", "pipeline.studies.a.claims"),
+                                         ("pipeline.studies.b.claims",
+                                          "pipeline.studies.a.claims.study"),
+                                         ("pipeline.studies.report", "pipeline.studies.a"),
+                                         ("pipeline.studies.report",
+                                          "pipeline.studies.a.figures")]
 
 
 def test_an_import_cycle_closed_by_a_lazy_import_is_caught(tmp_path):

@@ -48,14 +48,15 @@ from dataclasses import dataclass, field
 
 __all__ = ["VERDICTS", "KINDS", "CONSISTENT", "INCONSISTENT", "BY_CONSTRUCTION", "Quantity",
            "Band", "Part", "Measured", "Claim", "Case", "Row", "Measure", "measure", "judge",
-           "combine", "evaluate"]
+           "combine", "evaluate", "POSITIVE"]
 
 CONSISTENT, INCONSISTENT, BY_CONSTRUCTION = "consistent", "inconsistent", "by construction"
 VERDICTS = ("agrees", "agrees within the CI", "inconclusive", "partly", "disagrees",
             "not measured", CONSISTENT, INCONSISTENT, BY_CONSTRUCTION)
 #: what a claim is: a measurement of the paper's claim, or a check of a result against itself
 KINDS = ("measurement", "consistency")
-_POSITIVE = ("agrees", "agrees within the CI")
+#: the verdicts that say a claim holds (alone, or with its CI reaching beyond the band)
+POSITIVE = ("agrees", "agrees within the CI")
 #: a measure: (claim, ctx) -> Measured (ctx: the tables, stores, curves, ... it reads)
 Measure = Callable[["Claim", Mapping], "Measured"]
 
@@ -248,7 +249,7 @@ def combine(verdicts: Sequence[str]) -> str:
         return "not measured"
     if all(v == "agrees" for v in vs):
         return "agrees"
-    if all(v in _POSITIVE for v in vs):
+    if all(v in POSITIVE for v in vs):
         return "agrees within the CI"
     if all(v == "disagrees" for v in vs):
         return "disagrees"
@@ -301,12 +302,12 @@ def evaluate_claim(claim: Claim, ctx: Mapping) -> Row:
         verdict = m.verdict
     else:
         verdict = combine(main_v) if main_v else "disagrees"
-        if verdict not in _POSITIVE and any(v in _POSITIVE for v in other_v):
+        if verdict not in POSITIVE and any(v in POSITIVE for v in other_v):
             verdict = "partly"
         if claim.all_parts and "not measured" in main_v + other_v:
             verdict = "not measured"
     if claim.kind == "consistency" and verdict != "not measured":
-        verdict = CONSISTENT if verdict in _POSITIVE else INCONSISTENT
+        verdict = CONSISTENT if verdict in POSITIVE else INCONSISTENT
     notes = [claim.note, m.note]
     if flips:
         notes.append("The verdict flips inside the CI: " + "; ".join(flips) + ".")

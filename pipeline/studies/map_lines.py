@@ -7,7 +7,7 @@ A grid line -- one value per axis -- is bit for bit the scene without a grid tha
 values in ``[params]`` (same seed, so same chunks and same bootstraps), so the rows of one line
 without the axis columns are exactly the table that scene gave: :func:`line_table`.
 :func:`split_lines` turns a study's map tables, keyed ``<scene>_<table>``
-(:func:`pipeline.studies.klages2004.committed.study_key`), into per-line tables keyed
+(:func:`pipeline.tables.files.study_key`), into per-line tables keyed
 ``<line>_<table>``, which is what the study's rules and figures read.
 """
 
@@ -51,7 +51,7 @@ def split_lines(tables: Mapping[str, pd.DataFrame | None], scene: str,
     ``study_key(scene, name)``: ``<scene>_<name>``, or ``<name>`` when the table is named after
     the scene) at ``lines[line]``}, for every line and every table ``name`` the map has (those
     ``tables`` lacks are left out)."""
-    from .klages2004.committed import study_key
+    from ..tables.files import study_key
 
     out = {}
     for name in names:

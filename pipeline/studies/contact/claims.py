@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from itertools import combinations
 from statistics import NormalDist
 
@@ -32,14 +32,13 @@ import pandas as pd
 
 from bbb.params import Params
 
-from ...claims.record import Row
-from ..klages2004.claims import CLAIMS as PAPER_CLAIMS
-from ..klages2004.claims import evaluate
+from ...claims.record import POSITIVE, Row, evaluate
 from ..map_lines import split_lines
+from ..registry import claim, study
 
-__all__ = ["MODELS", "LABELS", "LINES", "SCENES", "CLAIM_PREFIXES", "CLAIMS", "FWER",
+__all__ = ["MODELS", "LABELS", "LINES", "SCENES", "CLAIM_IDS", "CLAIMS", "FWER",
            "Difference", "line_tables", "model_tables", "model_rows", "model_differences",
-           "report_lines"]
+           "WORDS", "LEAD", "verdicts", "paragraph"]
 
 #: contact models of the study, in order: scene suffix -> label
 LABELS = {"stick": "stick", "slide": "slide", "coulomb005": "Coulomb μ = 0.05",
@@ -54,17 +53,14 @@ SCENES = ("contact", "contact_proj")
 ONSET_RANGE = (46.0, 62.0)  # Hz: the onset claims' range; above it, Fig. 2's (from rest)
 FAMILIES = ("rest", "launched")
 PROJ_F = 54.0  # Hz, the projection scenes' frequency
-#: the paper's claims judged per model (1–4 and 16 of klages2004.claims), by their text
-CLAIM_PREFIXES = ("Onset of diffusion around f = 50", "Local maximum of D(f) around f = 54",
-                  "f = 54: 1/1 frequency locking", "Local minimum around f = 58",
-                  "Non-ergodic (depends on the initial condition) only near the peak")
-CLAIMS = [next(c for c in PAPER_CLAIMS if c.text.startswith(p)) for p in CLAIM_PREFIXES]
+#: the paper's claims judged per model: records 1–4 and 16 of the claims registry
+CLAIM_IDS = ("1", "2", "3", "4", "16")
+CLAIMS = [claim("klages2004", i) for i in CLAIM_IDS]
 #: their short names in the generated paragraph
 SHORT = ("the onset near 50 Hz", "the maximum near 54 Hz", "the 1/1 spot at 54 Hz",
          "the minimum near 58 Hz", "non-ergodicity only near 55 Hz")
 FWER = 0.05  # family-wise error rate of the model-dependence rule
 _Z95 = NormalDist().inv_cdf(0.975)
-_POSITIVE = ("agrees", "agrees within the CI")
 
 
 def line_tables(tables: Mapping[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
@@ -97,10 +93,13 @@ def model_tables(tables: Mapping[str, pd.DataFrame], model: str) -> dict[str, pd
 
 
 def model_rows(tables: Mapping[str, pd.DataFrame]) -> dict[str, list[Row]]:
-    """{model: the claim rows of CLAIMS judged on that model's tables}."""
+    """{model: the claim rows of CLAIMS judged on that model's tables} (the per-model tables of
+    :func:`line_tables`), in the paper's context (its study's, from the registry)."""
     p = Params.preset("klages2004", f=60.0)
     f_gamma1 = math.sqrt(p.g / p.A) / (2 * math.pi)
-    return {m: evaluate(model_tables(tables, m), {}, f_gamma1, p.as_dict(), claims=CLAIMS)[0]
+    paper = study("klages2004")
+    return {m: evaluate(CLAIMS, {**paper.context(model_tables(tables, m), {}),
+                                 "f_gamma1": f_gamma1, "params": p.as_dict()})
             for m in MODELS}
 
 
@@ -209,27 +208,31 @@ def _measured(text: str) -> str:
     return "; ".join(parts).replace(" (Fig. 2 scene)", "").replace(" (ergodicity scene)", "")
 
 
-def report_lines(tables: Mapping[str, pd.DataFrame]) -> list[str]:
-    """The REPORT.md section: a verdict column per contact model for claims 1–4 and 16, the
-    measured values, and the generated paragraph, from the maps' tables."""
+#: the section's own words, and the line before what was measured
+WORDS = ("Scenes `pipeline/studies/contact/scenes/` (docs/contact.md), maps with one line per "
+         "contact model: D(f) at 46–99 Hz from rest and launched, and post-collision states at "
+         "54 Hz from rest, under each contact model; verdicts by the rules of the claims above, "
+         "evaluated on each model's tables (the rest family is the main curve).")
+LEAD = "Measured (the rest curve is the main one; launched from the same scene):"
+
+
+def verdicts(tables: Mapping[str, pd.DataFrame]) -> dict[str, list[Row]]:
+    """{model label: the rows of CLAIMS judged on its line}, what was measured said in this
+    study's terms (:func:`_measured`)."""
+    rows = model_rows(line_tables(tables))
+    return {LABELS[m]: [replace(r, measured=_measured(r.measured)) for r in rows[m]]
+            for m in MODELS}
+
+
+def paragraph(tables: Mapping[str, pd.DataFrame], verdicts: Mapping[str, list[Row]]
+              ) -> list[str]:
+    """The paragraph after the verdicts, generated from them and the tables: which models
+    reproduce the onset and the maximum, where the verdict depends on the model, where D does
+    (:func:`model_differences`), and the time in contact."""
     tables = line_tables(tables)
-    rows = model_rows(tables)
-    L = ["", "## Contact models: the onset claims under stick, slide and Coulomb friction", "",
-         "Scenes `pipeline/studies/contact/scenes/` (docs/contact.md), maps with one line per "
-         "contact model: D(f) at 46–99 Hz from "
-         "rest and launched, and post-collision states at 54 Hz from rest, under each contact "
-         "model; verdicts by the rules of the claims above, evaluated on each model's tables "
-         "(the rest family is the main curve).", "",
-         "| claim | " + " | ".join(LABELS[m] for m in MODELS) + " |",
-         "| --- |" + " --- |" * len(MODELS)]
-    for i, c in enumerate(CLAIMS):
-        L.append(f"| {c.text} | " + " | ".join(rows[m][i].verdict for m in MODELS) + " |")
-    L += ["", "Measured (the rest curve is the main one; launched from the same scene):", ""]
-    for i, c in enumerate(CLAIMS):
-        L.append(f"- {c.text}: " + "; ".join(
-            f"**{LABELS[m]}**: {_measured(rows[m][i].measured)}" for m in MODELS))
-    onset_ok = [m for m in MODELS if rows[m][0].verdict in _POSITIVE]
-    max_ok = [m for m in MODELS if rows[m][1].verdict in _POSITIVE]
+    rows = {m: verdicts[LABELS[m]] for m in MODELS}
+    onset_ok = [m for m in MODELS if rows[m][0].verdict in POSITIVE]
+    max_ok = [m for m in MODELS if rows[m][1].verdict in POSITIVE]
     both = [m for m in onset_ok if m in max_ok]
 
     def names(ms):
@@ -257,5 +260,4 @@ def report_lines(tables: Mapping[str, pd.DataFrame]) -> list[str]:
     para += (_differences_text(d1, m1, f"{lo:g}–{hi:g} Hz (rest, launched)", grid) + " "
              + _differences_text(d2, m2, f"above {hi:g} Hz (rest)", grid))
     frac = _fractions_text(tables)
-    L += ["", para + (" " + frac if frac else ""), ""]
-    return L
+    return ["", para + (" " + frac if frac else ""), ""]

@@ -9,11 +9,27 @@ figures (``figures``), the claims as data (``claims``: the onset against the fla
 thresholds Γ₁, Γ', the first maximum and the loops against α, where ergodicity breaks, the
 cuts against the committed Fig. 2 curves), read off the map's judged lines (``lines``).
 
-The interface make_figures uses: :data:`SCENES`, :func:`draw`, :func:`report_lines`.
+The study record: :data:`STUDY`.
 """
 
+from ...claims.section import Section
+from ..interface import Study
 from .claims import CLAIMS
 from .figures import CAPTIONS
-from .report import SCENES, draw, report_lines
+from .report import SCENES, WORDS, context, draw, facts
 
-__all__ = ["SCENES", "CLAIMS", "CAPTIONS", "draw", "report_lines"]
+STUDY = Study(
+    name="dissipation",
+    scenes=SCENES,
+    section=Section("D(f, α): dissipation (scenes dissipation, dissipation_locking, "
+                    "dissipation_r25)", WORDS, prefix="A"),
+    claims=tuple(CLAIMS),
+    context=context,
+    draw=draw,
+    reads=("dissipation_diffusion", "dissipation_locking_locking", "dissipation_cuts",
+           "dissipation_r25_diffusion"),
+    captions=CAPTIONS,
+    facts=facts,
+)
+
+__all__ = ["STUDY"]

@@ -76,7 +76,7 @@ import pandas as pd
 from bbb.analysis.stats.proportion import share_difference, wilson
 
 from ...claims.rank import rank_trend
-from ...claims.record import Band, Claim, Measured, Part, Quantity, judge, measure
+from ...claims.record import POSITIVE, Band, Claim, Measured, Part, Quantity, judge, measure
 from .cases import (
     cuts_cases,
     cuts_consistency_cases,
@@ -120,7 +120,6 @@ CUT_SHARE = 0.95
 #: the cut A6c needs: the α = 0.7 line run with seeds of its own (not Fig. 2's), against Fig. 2
 OWN_SEEDS_CUT = "figure2_own_seeds"
 VHO = (0.7, 60.0, 2.0)  # α, the paper's f, its tolerance (claim 5)
-_GOOD = ("agrees", "agrees within the CI")
 
 
 def _trend_part(label: str, x, y, sign: int = 0) -> Part:
@@ -153,7 +152,7 @@ def onset_threshold(claim: Claim, ctx) -> Measured:
     for a, line in lines.items():
         q, fp = onset(line), float(threshold_frequency(name, a)) + shift
         v = judge(q, Band.around(fp, ONSET_TOL, ""))
-        good += v in _GOOD
+        good += v in POSITIVE
         alphas.append(a), ons.append(q.value), preds.append(fp)
         texts.append(f"α = {a:g}: {q.text('g') if math.isfinite(q.value) else 'none'} vs "
                      f"{fp:.1f}")

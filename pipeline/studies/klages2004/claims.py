@@ -2,7 +2,7 @@
 record each, with the tolerance it is judged by and why, and the explanations a report adds
 to a claim that fails.  The few measures only this paper needs (the loops of the spiral,
 ergodicity, the spiral approximation, Mátyás 2004) are :mod:`.measures`; each claim holds
-its measure function.  :func:`evaluate` judges them on a study's tables.
+its measure function; :func:`context` is what they are judged in.
 
 To add a claim: append one record to :data:`CLAIMS`, and its synthetic cases (inputs that
 turn it each way, a perturbation that flips it) to :data:`.cases.CASES`.  Tolerances were set before the data
@@ -12,22 +12,18 @@ turn it each way, a perturbation that flips it) to :data:`.cases.CASES`.  Tolera
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
 from dataclasses import replace
 
 import numpy as np
-import pandas as pd
 
-from bbb.analysis.extrema import Extremum
 from bbb.analysis.period1 import frequency_at, gamma_prime
 
-from ...claims import record as _claims
 from ...claims.measures import extremum, growth, onset_measure, table_value
-from ...claims.record import Band, Claim, Row
-from .cases import CASES
+from ...claims.record import POSITIVE, Band, Claim
 
 # the paper's own measures, held by the claims below; K_TOL, MAIN, families and
 # spiral_closeness stay importable from here
+from .cases import CASES
 from .measures import (
     K_TOL,
     MAIN,
@@ -42,7 +38,7 @@ from .measures import (
     spiral_closeness,
 )
 
-__all__ = ["CLAIMS", "MAIN", "K_TOL", "spiral_closeness", "families", "evaluate"]
+__all__ = ["CLAIMS", "MAIN", "K_TOL", "spiral_closeness", "families", "context"]
 
 _AROUND = ("'around f0' in the paper; ± 2 Hz = the spacing of the landmarks it names "
            "(58, 60, 62 Hz) — a value read off its Fig. 2, not a fit")
@@ -94,7 +90,7 @@ def _protocol_note(ctx) -> str:
     v = ctx["tables"].get("protocol_verdicts")
     if v is None or v.empty:
         return ""
-    positive = v["verdict"].isin(("agrees", "agrees within the CI"))
+    positive = v["verdict"].isin(POSITIVE)
     claim = v["claim"].astype(str)
     curves = v[claim != "16"]
     n = curves["protocol"].nunique()
@@ -214,18 +210,3 @@ CLAIMS: list[Claim] = [
                                    else "the scene's")})
     for i, c in enumerate(_PAPER, 1)]
 
-
-def evaluate(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str] | None = None,
-             f_gamma1: float | None = None, params: Mapping[str, float] | None = None,
-             claims: Sequence[Claim] = CLAIMS
-             ) -> tuple[list[Row], dict[str, list[Extremum]]]:
-    """All claim rows, and the significant extrema of every D(f) curve.
-
-    tables   -- the study's reduce tables by scene ("figure2", "locking", ...)
-    stores   -- store paths by scene, for the claims that read post-collision states
-    f_gamma1 -- f (Hz) at which Γ = 1, for explanatory notes
-    params   -- the Fig. 2 scene's parameters (g, A, alpha, ...), for explanatory notes
-    claims   -- the claim records to judge (default: the paper's)
-    """
-    ctx = context(tables, stores, f_gamma1, params)
-    return _claims.evaluate(claims, ctx), ctx["extrema"]

@@ -14,29 +14,19 @@ import numpy as np
 import pandas as pd
 
 from bbb.analysis.approx import spiral
-from bbb.analysis.extrema import Extremum, find_extrema
 from bbb.analysis.locking import creep_speed, flight_time_max, flight_times
 
+from ...claims.curves import DEPTH_FRACTION, curve_columns, curve_extrema, families
 from ...claims.measures import row_at
 from ...claims.record import Band, Claim, Measured, Part, Quantity, combine, judge, measure
 from ...tables.collisions import as_store, states
 
-__all__ = ["MAIN", "K_TOL", "DEPTH_FRACTION", "families", "spiral_closeness", "curve_columns",
-           "curves", "curves_and_meta", "curve_extrema", "context", "loops", "nonergodic_near_55",
+__all__ = ["MAIN", "context", "K_TOL", "DEPTH_FRACTION", "families", "spiral_closeness", "curve_columns",
+           "curves", "curves_and_meta", "curve_extrema", "loops", "nonergodic_near_55",
            "ergodic_above_58", "spiral_approx", "matyas_integer", "finescale_extrema"]
 
 MAIN = "rest"  # the main initial-condition family (Fig. 2's curve)
 K_TOL = 0.15  # k: the paper quotes k to 2 decimals read off Fig. 3
-
-
-DEPTH_FRACTION = 0.01  # extrema: differences below this fraction of max D do not count
-
-
-def curve_columns(table: pd.DataFrame, family: str | None) -> tuple[str, str, str]:
-    """The (D, lo, hi) columns of ``family``'s curve in a reduce table (None: the pooled D)."""
-    if family is None:
-        return "D", "D_lo", "D_hi"
-    return f"D_{family}", f"D_{family}_lo", f"D_{family}_hi"
 
 
 def curves_and_meta(tables: Mapping[str, pd.DataFrame]) -> tuple[dict, dict]:
@@ -60,29 +50,20 @@ def curves(tables: Mapping[str, pd.DataFrame]) -> dict[str, tuple[pd.DataFrame, 
     return curves_and_meta(tables)[0]
 
 
-def curve_extrema(table: pd.DataFrame, cols: tuple[str, str, str]) -> list[Extremum]:
-    """Significant extrema of one D(f) curve (D in mm²/s, f in Hz; differences below 1 % of
-    its max D ignored): the extrema rule of the claims and the report."""
-    D = table[cols[0]].to_numpy(float)
-    depth = DEPTH_FRACTION * float(np.nanmax(D)) if np.isfinite(D).any() else 0.0
-    return find_extrema(table["f"], D, table[cols[1]], table[cols[2]], min_depth=max(depth, 0.0))
-
-
 def context(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str] | None = None,
             f_gamma1: float | None = None, params: Mapping[str, float] | None = None) -> dict:
-    """What the paper's claims read: the tables, the stores, the D(f) curves with their
-    scenes and families, every curve's significant extrema, f at Γ = 1 (Hz) and the Fig. 2
-    scene's parameters (for notes)."""
+    """The context the paper's claims are judged in (by :func:`pipeline.claims.record.evaluate`),
+    with the significant extrema of every D(f) curve under ``"extrema"``.
+
+    tables   -- the study's reduce tables by scene ("figure2", "locking", ...)
+    stores   -- store paths by scene, for the claims that read post-collision states
+    f_gamma1 -- f (Hz) at which Γ = 1, for explanatory notes
+    params   -- the Fig. 2 scene's parameters (g, A, alpha, ...), for explanatory notes
+    """
     cv, meta = curves_and_meta(tables)
     return {"tables": tables, "stores": dict(stores or {}), "curves": cv, "curve_meta": meta,
             "extrema": {label: curve_extrema(t, cols) for label, (t, cols) in cv.items()},
             "f_gamma1": f_gamma1, "params": params}
-
-
-def families(table: pd.DataFrame) -> list[str]:
-    """The initial-condition families of a reduce table (from its D_<fam>_lo columns)."""
-    return [c[2:-3] for c in table.columns if c.startswith("D_") and c.endswith("_lo")
-            and c != "D_lo" and not c.startswith("D_half")]
 
 
 @measure("klages2004.loops")

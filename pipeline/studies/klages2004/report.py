@@ -1,6 +1,7 @@
-"""``figures/REPORT.md``: the paper's claims beside what the stores and tables measure.
+"""The paper's section of ``figures/REPORT.md`` beyond its claims table, and its figures'
+captions: the extrema, stationarity, ergodicity, locking and definitions.
 
-Every number in the report is computed from the reduce tables (D(f) with bootstrap CIs,
+Every number in it is computed from the reduce tables (D(f) with bootstrap CIs,
 stationarity and ergodicity columns), the locking tables (:mod:`pipeline.tables.collisions`, with
 bootstrap CIs of k) and the stores' attributes; nothing measured is typed in.  The claims are
 data (:data:`pipeline.studies.klages2004.claims.CLAIMS`), judged by :mod:`pipeline.claims.record` with the
@@ -11,11 +12,8 @@ restated in the report).  Significant extrema: :func:`bbb.analysis.extrema.find_
 
 from __future__ import annotations
 
-import datetime as _dt
 import math
-import os
-from collections.abc import Mapping, Sequence
-from pathlib import Path
+from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
@@ -25,16 +23,12 @@ from bbb.analysis.locking import CREEP_MARGIN, FLIGHT_TOL, MAX_QUANTILE, TMAX_QU
 from bbb.analysis.stationarity import TOLERANCE as STATIONARITY_TOL
 from bbb.analysis.stats.ergodicity import cv2_ci_coverage
 
-from ...claims.markdown import markdown_table, md_cell
-from ...claims.measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
-from ...claims.record import Row
-from ...tables.collisions import as_store
-from .claims import CLAIMS, evaluate  # evaluate: importable from here as before
-from .committed import CLAIMS_HEADING, CLAIMS_INTRO, claim_rows, summary_line
-from .measures import DEPTH_FRACTION, curve_extrema, curves, spiral_closeness
+from ...claims.curves import DEPTH_FRACTION
+from ...claims.measures import ONSET_FRACTION, fmt_d, row_at, stationarity_mark
+from .claims import context
+from .measures import curves
 
-__all__ = ["Row", "CLAIMS", "curve_extrema", "onset", "evaluate", "write_report",
-           "spiral_closeness", "summary_line"]
+__all__ = ["CAPTIONS", "further_lines"]
 
 _fmt_d = fmt_d
 _row_at = row_at
@@ -104,75 +98,6 @@ def _ci(r: pd.Series, col: str) -> str:
     return f"{r[col]:.2f}" + (f" [{lo:.2f}, {hi:.2f}]" if np.isfinite([lo, hi]).all() else "")
 
 
-def _scene_rows(stores: Mapping[str, str], run_log: Mapping | None) -> list[str]:
-    lines = ["| scene | workflow | accuracy | particles × t_max | points × families | chunks "
-             "done | task time (sum of chunk_seconds) | wall time of the run |",
-             "| --- | --- | --- | --- | --- | --- | --- | --- |"]
-    total = 0.0
-    for name, path in stores.items():
-        try:
-            st = as_store(path)
-        except Exception as e:  # a store that cannot be opened is reported, not fatal
-            lines.append(f"| {name} | – | – | – | – | – | – | cannot open: {md_cell(e)} |")
-            continue
-        g = st.group()
-        secs = float(np.nansum(np.asarray(g["chunk_seconds"][...])))
-        total += secs
-        done = st.done()
-        acc = st.study.accuracy
-        log = (run_log or {}).get("scenes", {}).get(name, {})
-        wall = (f"{log['wall_s']:.0f} s ({log.get('computed', 0)} chunks computed on "
-                f"{log.get('workers', '?')} workers)" if "wall_s" in log else "–")
-        if log.get("separate_run"):
-            wall = (f"{log.get('wall_s', 0.0):.0f} s (its chunks computed by a separate "
-                    "`bbb run`)")
-        lines.append(f"| {name} | `{log.get('workflow', st.study.source)}` | {acc.preset} | "
-                     f"{acc.n_particles} × {acc.t_max:g} s | {_points(st.study)} × "
-                     f"{len(st.study.families)} | {int(done.sum())}/{done.size} | {secs:.0f} s | "
-                     f"{wall} |")
-    lines.append(f"\nTotal task time over all scenes: {total:.0f} s ≈ {total / 3600:.2f} core-hours.")
-    return lines
-
-
-def _points(study) -> str:
-    """A scene's points as the runs table says them: "124" frequencies, or for a map
-    "234 (26 f × 9 lines of tilt, throw)"."""
-    if not study.grid:
-        return f"{len(study.frequencies)}"
-    lines = len({p.grid for p in study.points})
-    axes = ", ".join(a for a, _ in study.grid)
-    return (f"{len(study.points)} ({len(study.frequencies)} f × {lines} lines of {axes})")
-
-
-def _params_lines(stores: Mapping[str, str]) -> list[str]:
-    path = stores.get("figure2") or next(iter(stores.values()), None)
-    if path is None:
-        return ["(no store)"]
-    st = as_store(path)
-    attrs = st.attrs()  # JSON-string attributes decoded
-    p = attrs.get("params", {})
-    lines = ["| quantity | value |", "| --- | --- |"]
-    for k, unit in (("g", "mm/s²"), ("A", "mm"), ("R", "mm"), ("S", "mm"), ("alpha", ""),
-                    ("beta", "")):
-        if k in p:
-            lines.append(f"| {k} | {p[k]:g} {unit} |")
-    for k, v in attrs.get("numerics", {}).items():
-        lines.append(f"| numerics.{k} | {v:g} |")
-    lines.append(f"| accuracy preset (Fig. 2 scene) | {attrs.get('accuracy', {}).get('preset')} |")
-    lines.append(f"| bbb version | {attrs.get('bbb_version')} |")
-    lines.append(f"| store created | {attrs.get('created')} |")
-    A = p.get("A")
-    g = p.get("g", 9800.0)
-    lines += ["", (
-        f"**Amplitude.** The paper prints A = 0.01 (units of 1 mm) with g = 9800 mm/s². With "
-        "A = 0.01 the peak floor acceleration Γ = A(2πf)²/g stays below 0.41 for f ≤ 100 Hz and "
-        "no particle ever leaves the floor (docs/amplitude.md). The paper's own landmarks — "
-        "onset near 50 Hz, the 1/1 spot at v_y⁺ ≈ 100 near 54 Hz, the VHO at ≈ 70 near 60 Hz — "
-        f"fit A = 0.1, which we use (A = {A:g} mm here; Γ = 1 at f = "
-        f"{math.sqrt(g / A) / (2 * math.pi):.1f} Hz)." if A else "")]
-    return lines
-
-
 CAPTIONS = {
     "fig1_geometry": (
         "Fig. 1 — The bouncing ball billiard drawn from `bbb.surface`: arcs of radius R centred "
@@ -214,35 +139,12 @@ CAPTIONS = {
 }
 
 
-def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
-                 tables: Mapping[str, pd.DataFrame], figures: Sequence[str | os.PathLike] = (),
-                 run_log: Mapping | None = None, captions: Mapping[str, str] | None = None) -> Path:
-    """Write ``<out_dir>/REPORT.md`` and return its path.
-
-    stores  -- scene name -> store path (figure2, ergodicity, figure3, locking, ...)
-    tables  -- "figure2", "ergodicity", "figure2_matyas2004" (reduce diffusion tables) and
-               "locking", "locking_matyas2004" (locking tables); any may be missing
-    figures -- paths of the figures drawn (listed with captions)
-    run_log -- make_figures' log: per-scene wall time of this invocation, FAST flag
-    captions -- figure stem -> caption of further studies' figures (beside :data:`CAPTIONS`)
-    """
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
-    fast = bool((run_log or {}).get("fast"))
-    rows, extrema = claim_rows(tables, stores, fast)  # the Fig. 2 scene's params for the notes
-    L = ["# Klages, Barna & Mátyás (2004): the claims beside our measurements", ""]
-    L.append(f"Written {_dt.datetime.now(_dt.UTC).isoformat(timespec='seconds')} by "
-             f"`python -m pipeline.make_figures{' --fast' if fast else ''}`"
-             + (" — **draft accuracy (FAST): numbers are rough**" if fast else "") + ". "
-             "Every measured number below is computed from the stores and tables; regenerate, "
-             "do not edit.")
-    if run_log and "wall_s" in run_log:
-        L.append(f"\nWall time of the runs and reductions behind it: {run_log['wall_s']:.0f} s "
-                 f"({run_log['wall_s'] / 60:.1f} min; per scene below).")
-    L += ["", CLAIMS_HEADING, "", CLAIMS_INTRO,
-          ""] + markdown_table(rows, claim_header="the paper says")
-    L += ["", summary_line(rows)]
-    L += ["", "## Significant extrema of D(f), located by `bbb.analysis.extrema`", ""]
+def further_lines(tables: Mapping[str, pd.DataFrame], verdicts=None) -> list[str]:
+    """The lines of the paper's section after its claims table: the significant extrema of
+    every D(f) curve, stationarity, the ergodicity verdicts, locking at the paper's
+    frequencies and the definitions, all from ``tables``."""
+    extrema = context(tables)["extrema"]
+    L = ["", "## Significant extrema of D(f), located by `bbb.analysis.extrema`", ""]
     for label, ext in extrema.items():
         tbl = curves(tables)[label][0]
         L.append(f"- **{label}**: " + ("; ".join(_fmt_ext(e) + f", z = {e.z:.1f}"
@@ -282,9 +184,7 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
                 L.append(f"| {r['f']:g} | {fam} | {100 * r['frac_creep']:.0f} % | {r['v_max']:.0f} | "
                          f"{_ci(r, 'k_max')} | {r['v_peak']:.0f} | {_ci(r, 'k_peak')} | "
                          f"{1e3 * r['t_max']:.1f} | {r['loops']:.2f} |")
-        L.append("\nThe whole table: `locking.csv` beside this report.")
-    L += ["", "## Parameters actually used", ""] + _params_lines(stores)
-    L += ["", "## Runs", ""] + _scene_rows(stores, run_log)
+        L += ["", "The whole table: `locking.csv` beside this report."]
     n_main = len(tables["figure2"]) if tables.get("figure2") is not None else 0
     L += ["", "## Definitions", "",
           f"- **Creeping band**: v_y⁺ ≤ (1 + {CREEP_MARGIN:g}) A 2πf, the floor's peak speed plus "
@@ -311,14 +211,4 @@ def write_report(out_dir: str | os.PathLike, *, stores: Mapping[str, str],
           "tolerance times its Brownian value, or it falls like 1/T (EB over the first half of "
           "the run / EB over all of it ≥ halfway between 1 and the Brownian ratio ≈ 2; a "
           "population mixing different D keeps the ratio near 1); `ergodic` needs both."]
-    if figures:
-        L += ["", "## Figures", ""]
-        for p in figures:
-            p = Path(p)
-            if p.suffix != ".png":
-                continue
-            text = {**CAPTIONS, **(captions or {})}.get(p.stem, "")
-            L.append(f"- [`{p.name}`]({p.name}) (and `.pdf`): {text}")
-    path = out / "REPORT.md"
-    path.write_text("\n".join(L) + "\n", encoding="utf-8")
-    return path
+    return L

@@ -37,15 +37,14 @@ import pandas as pd
 
 from bbb.analysis.gk_contrast import Contrast, calibrated_rule, carrier, combine_sides
 
-from ...claims.markdown import markdown_table
 from ...claims.measures import row_at
-from ...claims.record import Band, Claim, Measured, Part, Quantity, evaluate, measure
+from ...claims.record import Band, Claim, Measured, Part, Quantity, measure
 from .cases import (
     carrier_cases,
     lyapunov_cases,
 )
 
-__all__ = ["CLAIMS", "EXTREMA", "SIDES", "STEPS", "neighbour_moves", "report_lines",
+__all__ = ["CLAIMS", "EXTREMA", "SIDES", "STEPS", "neighbour_moves", "context", "WORDS",
            "side_contrast", "combine_both_sides"]
 
 #: the paper's extrema of D(f) (Fig. 2 and its text) and their kind
@@ -225,22 +224,18 @@ CLAIMS = [
 CLAIMS.sort(key=lambda c: (int(c.id[1:].rstrip("b")), c.id))
 
 
-def report_lines(tables) -> list[str]:
-    """The REPORT.md section: the claim rows judged from ``tables["mechanisms"]`` (and the
-    scene's diffusion table), and the λ table of moving and confined particles."""
-    from .lyapunov_table import lyapunov_lines
+def context(tables, stores=None) -> dict:
+    """The context the claims are judged in: the scene's mechanisms and diffusion tables."""
+    return {"tables": {"mechanisms": tables.get("mechanisms"),
+                       "mechanisms_diffusion": tables.get("mechanisms_diffusion")}}
 
-    ctx = {"tables": {"mechanisms": tables.get("mechanisms"),
-                      "mechanisms_diffusion": tables.get("mechanisms_diffusion")}}
-    rows = evaluate(CLAIMS, ctx)
-    L = ["", "## Mechanisms: which part of D makes the extrema, and chaos where particles move "
-         "(scene mechanisms)", "",
-         "M1–M5 split the contrast of D between each paper extremum and its grid neighbours, "
+
+#: the section's own words
+WORDS = ("M1–M5 split the contrast of D between each paper extremum and its grid neighbours, "
          "ln D_∞(f0)/D_∞(f_nb) = ln D_0 ratio (random walk) + ln (D_∞/D_0) ratio (memory), "
          "per floor period and per collision, with paired bootstrap CIs; the verdict names the "
          "part that carries the extremum: **memory**, **random walk**, **both**, **undecided** "
          "(a CI across the rule's edges, or the two step choices differ), **no extremum** (a "
          "neighbour's contrast has the wrong sign), **not resolved** (no contrast resolved), "
          "**not measured** (nothing moves at f0, or the expansion has not converged). "
-         "pipeline/studies/mechanisms/claims.py states the rules.", ""]
-    return L + markdown_table(rows, prefix="M") + lyapunov_lines(tables.get("mechanisms"))
+         "pipeline/studies/mechanisms/claims.py states the rules.")

@@ -6,12 +6,25 @@ the moving ones under the two definitions of :mod:`bbb.analysis.moving`), from t
 re-judged per protocol (``claims``), the figures (``figures``) and the report section with
 its generated paragraph (``report``).
 
-The interface make_figures uses: :data:`SCENES`, :func:`draw`, :func:`report_lines` and
-:data:`CAPTIONS`.
+The study record: :data:`STUDY`.
 """
 
-from .claims import SCENES
+from ..interface import Study
+from .claims import CURVE_CLAIMS, ERGODIC_CLAIM, SCENES
 from .figures import CAPTIONS, draw
-from .report import report_lines
+from .report import LABELS, SECTION, further, verdicts
 
-__all__ = ["SCENES", "CAPTIONS", "draw", "report_lines"]
+STUDY = Study(
+    name="protocol",
+    scenes=SCENES,
+    section=SECTION,
+    claims=(*CURVE_CLAIMS.values(), ERGODIC_CLAIM),
+    draw=draw,
+    reads=("protocol_verdicts", "protocol_curves"),
+    captions=CAPTIONS,
+    verdicts=verdicts,
+    further=further,
+    labels=LABELS,
+)
+
+__all__ = ["STUDY"]

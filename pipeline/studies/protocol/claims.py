@@ -20,29 +20,26 @@ import pandas as pd
 
 from bbb.params import Params
 
-from ..klages2004.claims import CLAIMS as PAPER_CLAIMS
-from ..klages2004.claims import evaluate
+from ...claims.record import POSITIVE, evaluate
+from ..registry import claim, study
 from .tables import DEFINITIONS, MIXTURE, WINDOWS, protocol_name
 
-__all__ = ["SCENES", "CURVE_CLAIMS", "ERGODIC_CLAIM", "KEYS", "POSITIVE", "protocols",
+__all__ = ["SCENES", "CURVE_CLAIMS", "ERGODIC_CLAIM", "KEYS", "protocols",
            "curve_table", "families_table", "verdicts_table", "reproducing"]
 
 #: the scene whose store the study reads
 SCENES = ("protocol",)
-_PREFIXES = {"1": "Onset of diffusion around f = 50", "2": "Local maximum of D(f) around f = 54",
-             "4": "Local minimum around f = 58", "5": "Local maximum at f = 60",
-             "16": "Non-ergodic (depends on the initial condition) only near the peak"}
-
-
-def _claim(prefix: str):
-    return next(c for c in PAPER_CLAIMS if c.text.startswith(prefix))
-
-
-#: the per-curve claims, keyed by their number in the paper's list
-CURVE_CLAIMS = {k: _claim(p) for k, p in _PREFIXES.items() if k != "16"}
-ERGODIC_CLAIM = _claim(_PREFIXES["16"])
+#: the paper's claims re-judged per protocol: records of the claims registry, keyed by their id
+#: (their number in the paper's list); 16 on the families' curves, the others on each curve
+CURVE_CLAIMS = {k: claim("klages2004", k) for k in ("1", "2", "4", "5")}
+ERGODIC_CLAIM = claim("klages2004", "16")
 KEYS = (*CURVE_CLAIMS, "16")
-POSITIVE = ("agrees", "agrees within the CI")
+
+
+def _judged_in(tables, f_gamma1: float, params: dict) -> dict:
+    """The paper's context (its study's, from the registry) of ``tables``, with the preset's
+    f(Γ = 1) and parameters for the notes."""
+    return {**study("klages2004").context(tables, {}), "f_gamma1": f_gamma1, "params": params}
 
 
 def _context() -> tuple[float, dict]:
@@ -101,16 +98,17 @@ def verdicts_table(curves: pd.DataFrame) -> pd.DataFrame:
     f_gamma1, params = _context()
     rows = []
     for e, T, d in protocols(curves):
-        res, _ = evaluate({"figure2": curve_table(curves, e, T, d)}, {}, f_gamma1, params,
-                          claims=list(CURVE_CLAIMS.values()))
+        res = evaluate(list(CURVE_CLAIMS.values()),
+                       _judged_in({"figure2": curve_table(curves, e, T, d)}, f_gamma1, params))
         for key, r in zip(CURVE_CLAIMS, res, strict=True):
             rows.append({"protocol": protocol_name(e, T, d), "ensemble": e, "T": T,
                          "definition": d, "claim": key, "verdict": r.verdict,
                          "measured": _short(r.measured)})
     for T in sorted(set(curves["T"].astype(float))):
         for d in DEFINITIONS:
-            res, _ = evaluate({"ergodicity": families_table(curves, T, d)}, {}, f_gamma1,
-                              params, claims=[ERGODIC_CLAIM])
+            res = evaluate([ERGODIC_CLAIM],
+                           _judged_in({"ergodicity": families_table(curves, T, d)}, f_gamma1,
+                                      params))
             rows.append({"protocol": protocol_name("families", T, d), "ensemble": "families",
                          "T": T, "definition": d, "claim": "16", "verdict": res[0].verdict,
                          "measured": res[0].measured})

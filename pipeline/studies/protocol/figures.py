@@ -135,7 +135,7 @@ def _as_committed(df: pd.DataFrame) -> pd.DataFrame:
     verdicts drawn here and those the report regenerates from the CSV are the same."""
     from io import StringIO
 
-    from ..klages2004.committed import FLOAT_FORMAT
+    from ...tables.files import FLOAT_FORMAT
 
     return pd.read_csv(StringIO(df.to_csv(index=False, float_format=FLOAT_FORMAT)))
 

@@ -1,6 +1,7 @@
-"""The protocol section of REPORT.md: the verdicts of claims 1, 2, 4 and 5 per protocol and of
-claim 16 per (T, definition), the decomposition check, and a paragraph generated from the
-tables (``protocol_verdicts``, ``protocol_curves``; every number read from them)."""
+"""The protocol section of REPORT.md: its words, its records (the verdicts of claims 1, 2, 4 and
+5 per protocol and of claim 16 per (T, definition), read from the table ``protocol_verdicts``),
+the decomposition check, and a paragraph generated from the tables (``protocol_verdicts``,
+``protocol_curves``; every number read from them)."""
 
 from __future__ import annotations
 
@@ -12,11 +13,13 @@ import pandas as pd
 from bbb.analysis.period1 import frequency_at, gamma_prime
 from bbb.params import Params
 
-from ...claims.markdown import md_cell
-from .claims import CURVE_CLAIMS, ERGODIC_CLAIM, POSITIVE, reproducing
+from ...claims.record import POSITIVE, Row
+from ...claims.section import Section, verdict_lines
+from .claims import CURVE_CLAIMS, ERGODIC_CLAIM, reproducing
 from .tables import MIXTURE
 
-__all__ = ["SHORT", "report_lines", "paragraph", "decomposition_text"]
+__all__ = ["SHORT", "WORDS", "LABELS", "SECTION", "verdicts", "further", "paragraph",
+           "decomposition_text"]
 
 #: the claims' short names (by their number in the paper's list)
 SHORT = {"1": "the onset near 50 Hz", "2": "the maximum near 54 Hz",
@@ -172,31 +175,50 @@ def paragraph(verdicts: pd.DataFrame, curves: pd.DataFrame) -> str:
     return text
 
 
-def report_lines(tables: Mapping[str, pd.DataFrame]) -> list[str]:
-    """The REPORT.md section from the tables ``protocol_verdicts`` and ``protocol_curves``."""
-    verdicts, curves = tables.get("protocol_verdicts"), tables.get("protocol_curves")
-    L = ["", "## Protocol: how the paper may have measured D near onset", ""]
-    if verdicts is None or curves is None or verdicts.empty:
-        return L + ["Not measured: no protocol tables (scene protocol).", ""]
-    claim = verdicts["claim"].astype(str)
-    L += ["Scene `pipeline/studies/protocol/scenes/protocol.toml`: five initial-condition "
-          "families (rest; dropped from 0–2 and 2–10 mm; launched at 0–200 and 200–400 mm/s) "
-          "and their mixture, 46–62 Hz, each run's first T s analysed as bbb reduce analyses a "
-          "run of length T, and D averaged over all particles or over the moving ones under "
-          "two definitions fixed before the data (`bbb.analysis.moving`). Verdicts by the "
-          "paper's claim records and rules above, unchanged, with each protocol's D(f) as the "
-          "Fig. 2 curve.", "",
-          "| protocol | " + " | ".join(f"{k}: {SHORT[k]}" for k in CURVE_CLAIMS) + " |",
-          "| --- |" + " --- |" * len(CURVE_CLAIMS)]
-    v = verdicts[claim != "16"]
+#: the section's own words
+WORDS = ("Scene `pipeline/studies/protocol/scenes/protocol.toml`: five initial-condition "
+         "families (rest; dropped from 0–2 and 2–10 mm; launched at 0–200 and 200–400 mm/s) "
+         "and their mixture, 46–62 Hz, each run's first T s analysed as bbb reduce analyses a "
+         "run of length T, and D averaged over all particles or over the moving ones under "
+         "two definitions fixed before the data (`bbb.analysis.moving`). Verdicts by the "
+         "paper's claim records and rules above, unchanged, with each protocol's D(f) as the "
+         "Fig. 2 curve.")
+#: the claims' names in the verdict table
+LABELS = tuple(f"{k}: {SHORT[k]}" for k in CURVE_CLAIMS)
+SECTION = Section("Protocol: how the paper may have measured D near onset", WORDS,
+                  layout="by line", claim_header="protocol")
+
+
+def _records(verdicts: pd.DataFrame | None, keys) -> dict[str, list[Row]]:
+    """{protocol: its rows of the claims ``keys``} of the verdicts table (its records)."""
+    if verdicts is None or verdicts.empty:
+        return {}
+    v = verdicts.assign(claim=verdicts["claim"].astype(str))
+    v = v[v["claim"].isin(keys)]
+    claims = {**CURVE_CLAIMS, "16": ERGODIC_CLAIM}
+    out: dict[str, list[Row]] = {}
     for p in dict.fromkeys(v["protocol"]):
-        rows = v[v["protocol"] == p].set_index(v[v["protocol"] == p]["claim"].astype(str))
-        L.append(f"| {md_cell(p)} | " + " | ".join(
-            f"**{rows.loc[k, 'verdict']}**: {md_cell(rows.loc[k, 'measured'])}"
-            if k in rows.index else "–" for k in CURVE_CLAIMS) + " |")
-    L += ["", f"Claim 16, {ERGODIC_CLAIM.text}, judged on the five families' curves:", "",
-          "| protocol | verdict | measured |", "| --- | --- | --- |"]
-    for _, r in verdicts[claim == "16"].iterrows():
-        L.append(f"| {md_cell(r['protocol'])} | **{r['verdict']}** | {md_cell(r['measured'])} |")
-    L += ["", decomposition_text(curves), "", paragraph(verdicts, curves), ""]
-    return L
+        rows = v[v["protocol"] == p].set_index("claim")
+        out[p] = [Row(claims[k].text, str(rows.loc[k, "measured"]), str(rows.loc[k, "verdict"]),
+                      id=k) if k in rows.index else
+                  Row(claims[k].text, "no row in the verdicts table", "not measured", id=k)
+                  for k in keys]
+    return out
+
+
+def verdicts(tables: Mapping[str, pd.DataFrame]) -> dict[str, list[Row]]:
+    """The records of claims 1, 2, 4 and 5 per protocol, from the table ``protocol_verdicts``
+    (judged while drawing, :func:`~.claims.verdicts_table`)."""
+    return _records(tables.get("protocol_verdicts"), tuple(CURVE_CLAIMS))
+
+
+def further(tables: Mapping[str, pd.DataFrame], records=None) -> list[str]:
+    """After the verdicts: claim 16 per (T, definition), the decomposition check and the
+    paragraph generated from the tables; or why nothing was measured."""
+    v, curves = tables.get("protocol_verdicts"), tables.get("protocol_curves")
+    if v is None or curves is None or v.empty:
+        return ["Not measured: no protocol tables (scene protocol).", ""]
+    c16 = _records(v, ("16",))
+    return (["", f"Claim 16, {ERGODIC_CLAIM.text}, judged on the five families' curves:", ""]
+            + verdict_lines(SECTION, c16)
+            + ["", decomposition_text(curves), "", paragraph(v, curves), ""])

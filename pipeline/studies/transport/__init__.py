@@ -11,10 +11,25 @@ conveyor theory's throw number Γ_v = Γ sin ψ / cos φ = 1, its threshold chec
 floors by ``hopping_calibration``).  The figures (``figures``) and the claims as data
 (``claims``, the sign rules in ``signs``) read each line's table (``claims.line_tables``).
 
-The interface make_figures uses: :data:`SCENES`, :func:`draw`, :func:`report_lines`.
+The study record: :data:`STUDY`.
 """
 
-from .claims import CLAIMS, SCENES, report_lines
+from ...claims.section import Section
+from ..interface import Study
+from .claims import CLAIMS, SCENES, WORDS, context, sliding_liftoff
 from .figures import CAPTIONS, draw
 
-__all__ = ["SCENES", "CLAIMS", "CAPTIONS", "draw", "report_lines"]
+STUDY = Study(
+    name="transport",
+    scenes=SCENES,
+    section=Section("Transport on a vibro-conveyor (scenes transport, transport_sliding, "
+                    "transport_reversal)", WORDS, prefix="T"),
+    claims=tuple(CLAIMS),
+    context=context,
+    draw=draw,
+    reads=tuple(f"{s}_{t}" for s in SCENES for t in ("diffusion", "contact", "counters")),
+    captions=CAPTIONS,
+    facts=lambda tables, verdicts: {"liftoff": sliding_liftoff()},
+)
+
+__all__ = ["STUDY"]

@@ -93,7 +93,6 @@ from bbb.analysis.extrema import find_extrema
 from bbb.analysis.liftoff import liftoff_frequency
 from bbb.analysis.transport import SYMMETRY
 
-from ...claims.markdown import markdown_table
 from ...claims.record import (
     BY_CONSTRUCTION,
     Band,
@@ -101,7 +100,6 @@ from ...claims.record import (
     Measured,
     Part,
     Quantity,
-    evaluate,
     measure,
 )
 from ..map_lines import split_lines
@@ -137,7 +135,7 @@ from .signs import V_MIN, reversals, significant_signs, steady_rows
 
 __all__ = ["SCENES", "MAP", "SLIDING_MAP", "LINES", "HOPPING", "COMBINED", "CONVEYORS",
            "LABELS", "SLIDING", "SLIDING_LABELS", "SLIDING_GEOMETRY", "GEOMETRIES",
-           "line_tables", "sliding_liftoff", "CLAIMS", "report_lines"]
+           "line_tables", "sliding_liftoff", "CLAIMS", "context", "WORDS"]
 
 from .lines import (  # noqa: E402  (the lines, importable from here as before)
     COMBINED,
@@ -500,20 +498,19 @@ def line_tables(tables) -> dict[str, pd.DataFrame]:
                           ("diffusion", "contact", "counters"))}
 
 
-def report_lines(tables) -> list[str]:
-    """The REPORT.md section: the claim rows judged from each line's diffusion table."""
+def context(tables, stores=None) -> dict:
+    """The context the claims are judged in: each line's diffusion table, and the contact and
+    counters tables of the reversal map's lines."""
     lines = line_tables(tables)
     names = HOPPING + COMBINED + tuple(s for s, _, _ in SLIDING) + tuple(REVERSAL_LINES)
-    ctx = {"tables": {sc: lines.get(f"{sc}_diffusion") for sc in names},
-           **{k: {sc: lines[f"{sc}_{k}"] for sc in REVERSAL_LINES if f"{sc}_{k}" in lines}
-              for k in ("contact", "counters")}}
-    rows = evaluate(CLAIMS, ctx)
-    L = ["", "## Transport on a vibro-conveyor (scenes transport, transport_sliding, "
-         "transport_reversal)", "",
-         "Drift v with its bootstrap CI and D about the drift (bbb.analysis.transport) along f per "
+    return {"tables": {sc: lines.get(f"{sc}_diffusion") for sc in names},
+            **{k: {sc: lines[f"{sc}_{k}"] for sc in REVERSAL_LINES if f"{sc}_{k}" in lines}
+               for k in ("contact", "counters")}}
+
+
+#: the section's own words ({liftoff}: f of lift-off on the sliding floor, Hz)
+WORDS = ("Drift v with its bootstrap CI and D about the drift (bbb.analysis.transport) along f per "
          "(tilt φ, throw ψ), on one floor (φ = 0°, ψ = 30°) per contact model from low Γ "
-         f"to above lift-off ({sliding_liftoff():.1f} Hz, bbb.analysis.liftoff), and over "
+         "to above lift-off ({liftoff:.1f} Hz, bbb.analysis.liftoff), and over "
          "(throw ψ, f) on a floor tilted 2° against its throw per contact model, with the "
-         "share of the run in flight; pipeline/studies/transport/claims.py states the rules.",
-         ""]
-    return L + markdown_table(rows, prefix="T")
+         "share of the run in flight; pipeline/studies/transport/claims.py states the rules.")

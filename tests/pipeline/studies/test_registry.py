@@ -8,7 +8,7 @@ from pathlib import Path
 import pytest
 
 from pipeline.claims.registry import case_problems, frozen_mismatches, id_problems
-from pipeline.studies.registry import STUDIES, all_claims, frozen, judged_ids
+from pipeline.studies.registry import all_claims, frozen, judged_ids
 
 REPORT = Path(__file__).resolve().parents[3] / "figures" / "REPORT.md"
 CLAIMS = [c for cs in all_claims().values() for c in cs]
@@ -30,13 +30,13 @@ def test_every_claim_turns_each_way_on_its_synthetic_cases_and_a_perturbation_fl
     assert case_problems(claim) == []
 
 
-@pytest.mark.parametrize("study", STUDIES)
+@pytest.mark.parametrize("study", list(all_claims()))
 def test_every_frozen_claim_keeps_the_rule_and_scope_it_was_judged_under(study):
     assert frozen_mismatches(all_claims()[study], frozen(study)) == []
 
 
 def test_every_claim_judged_in_the_committed_report_is_frozen():
-    frozen_ids = {i for s in STUDIES for i in frozen(s)}
+    frozen_ids = {i for s in all_claims() for i in frozen(s)}
     assert judged_ids(REPORT.read_text(encoding="utf-8")) - frozen_ids == set()
 
 
@@ -45,3 +45,23 @@ def test_a_superseded_claim_is_judged_in_the_report_beside_the_one_that_replaces
     pairs = {(c.supersedes, c.id) for c in CLAIMS if c.supersedes}
     assert ("T3", "T3b") in pairs
     assert [p for p in pairs if not set(p) <= judged] == []
+
+
+def test_every_scene_of_a_study_folder_is_run_by_that_study_and_every_run_scene_is_shipped():
+    from pipeline.studies.registry import studies
+    from pipeline.workflow.scenes import scene_names, scene_study
+
+    declared = {n: s.name for s in studies() for n in s.scenes}
+    in_folders = {n: scene_study(n) for n in scene_names() if scene_study(n) != "workflows"}
+    assert {n: declared.get(n) for n in in_folders} == in_folders
+    assert set(declared) <= set(scene_names())
+
+
+def test_a_study_is_its_packages_record_under_its_own_name():
+    import pytest as _pytest
+
+    from pipeline.studies.registry import STUDIES, study
+
+    assert [study(n).name for n in STUDIES] == list(STUDIES)
+    with _pytest.raises(KeyError, match="registered: klages2004"):
+        study("impact_phase")

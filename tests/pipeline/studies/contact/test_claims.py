@@ -9,14 +9,19 @@ import math
 import numpy as np
 import pandas as pd
 
+from pipeline.studies.contact import STUDY
 from pipeline.studies.contact.claims import (
     CLAIMS,
     LINES,
     MODELS,
     model_differences,
     model_rows,
-    report_lines,
 )
+
+
+def report_lines(tables):
+    """The study's REPORT.md section from its maps' tables."""
+    return STUDY.report(tables)
 
 F = np.array([46.0, 47.0] + [48.0 + 0.5 * i for i in range(21)] + [59.0, 60.0, 61.0, 62.0])
 HALF = 0.15  # relative 95 % CI half-width, as the scenes' target_ci

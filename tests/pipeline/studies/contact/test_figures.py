@@ -5,9 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pipeline.studies.contact import draw
 from pipeline.studies.contact.claims import MODELS
-from pipeline.studies.contact.figures import figure_contact, figure_contact_high
+from pipeline.studies.contact.figures import draw, figure_contact, figure_contact_high
 
 from ...text_overlap import overlaps
 from .test_claims import F, _paper_like, _table

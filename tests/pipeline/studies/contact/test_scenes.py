@@ -7,12 +7,13 @@ import json
 
 import pytest
 
-from pipeline.make_figures import SCENES as PAPER_SCENES
-from pipeline.studies.contact import SCENES
-from pipeline.studies.contact.claims import LINES
+from pipeline.studies.contact.claims import LINES, SCENES
+from pipeline.studies.registry import study
 from pipeline.workflow.scenes import load_scene, scene_label, shipped_draft
 
 from ...helpers import run_outside
+
+PAPER_SCENES = study("klages2004").scenes
 
 
 @pytest.mark.parametrize("name", SCENES)
@@ -46,7 +47,7 @@ def test_scenes_without_a_shipped_draft_keep_the_generic_draft():
 
 def test_the_wheel_ships_the_contact_scenes_and_their_drafts(installed, tmp_path):
     code = ("import json; from pipeline.workflow.scenes import load_scene\n"
-            "from pipeline.studies.contact import SCENES\n"
+            "from pipeline.studies.contact.claims import SCENES\n"
             "print(json.dumps([load_scene(n, fast=True).source for n in SCENES]))")
     got = json.loads(run_outside(installed, code, tmp_path).strip().splitlines()[-1])
     assert got == [f"pipeline/studies/contact/scenes/draft/{n}.toml" for n in SCENES]

@@ -10,11 +10,13 @@ from pathlib import Path
 
 import pytest
 
-from pipeline.make_figures import SCENES
+from pipeline.studies.registry import study
 from pipeline.workflow.scenes import draft_text, load_scene, scene_label, scene_names, scene_path
 from pipeline.workflow.scenes import toml_dump as _toml_dump
 
 from ...helpers import run_outside
+
+SCENES = study("klages2004").scenes  # the paper's scenes
 
 
 @pytest.mark.parametrize("name", SCENES)
@@ -87,7 +89,7 @@ ROOT = Path(__file__).resolve().parents[4]
 
 
 def test_a_wheel_ships_every_scene_and_module(installed, tmp_path):
-    code = ("import pipeline, bbb, json; from pipeline.make_figures import SCENES; "
+    code = ("import pipeline, bbb, json; from pipeline.make_figures import scenes; SCENES = scenes(); "
             "from pipeline.workflow.scenes import load_scene, scene_names\n"
             "[load_scene(n, fast=f) for n in SCENES for f in (False, True)]\n"
             "print(json.dumps({'file': pipeline.__file__, 'scenes': scene_names(), "

@@ -8,9 +8,25 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.studies.klages2004.report import CLAIMS, evaluate, onset, write_report
+from pipeline.claims.measures import onset
+from pipeline.claims.record import evaluate as judge_claims
+from pipeline.studies.klages2004 import STUDY
+from pipeline.studies.klages2004.claims import CLAIMS, context
+from pipeline.studies.report import write_report as write_whole_report
 
 from ...figure_store import tiny_store
+
+
+def evaluate(tables, claims=CLAIMS):
+    """(rows, extrema) of the paper's claims judged on ``tables`` (no store, no parameters)."""
+    ctx = context(tables)
+    return judge_claims(claims, ctx), ctx["extrema"]
+
+
+def write_report(out, *, stores, tables, run_log=None, study=STUDY):
+    """REPORT.md of the paper's study alone, from ``tables``."""
+    return write_whole_report(out, stores=stores, tables={study.name: tables}, run_log=run_log,
+                              studies=[study])
 
 F = np.round(np.arange(50.0, 99.2001, 0.4), 3)
 
@@ -175,13 +191,11 @@ def test_adding_a_claim_is_one_record_and_it_appears_in_the_report(tmp_path):
                   options={"kind": "max"})
     rows, _ = evaluate({"figure2": _paper_like()}, claims=[*PAPER, extra])
     assert rows[-1].claim == extra.text and rows[-1].verdict in ("agrees", "agrees within the CI")
-    import pipeline.studies.klages2004.claims as k
+    from dataclasses import replace
 
-    k.CLAIMS.append(extra)
-    try:
-        text = write_report(tmp_path, stores={}, tables={"figure2": _paper_like()}).read_text()
-    finally:
-        k.CLAIMS.remove(extra)
+    study = replace(STUDY, claims=(*PAPER, extra))  # what appending to CLAIMS makes
+    text = write_report(tmp_path, stores={}, tables={"figure2": _paper_like()},
+                        study=study).read_text()
     line = next(ln for ln in text.splitlines() if extra.text in ln)
     assert line.startswith(f"| {len(PAPER) + 1} |") and "80 ± 1 Hz: added for the test" in line
 

@@ -124,8 +124,7 @@ def test_a_degenerate_lambda_ci_at_the_vho_is_not_measured():
 
 
 def test_the_figure_has_a_caption_and_draws_the_contrasts(tmp_path):
-    from pipeline.studies.mechanisms import CAPTIONS
-    from pipeline.studies.mechanisms.figures import figure_mechanisms
+    from pipeline.studies.mechanisms.figures import CAPTIONS, figure_mechanisms
 
     assert len(CAPTIONS["fig_mechanisms"]) > 200
     t = table(MEMORY)

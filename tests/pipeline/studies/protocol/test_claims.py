@@ -9,7 +9,8 @@ import math
 import pandas as pd
 
 from bbb.params import Params
-from pipeline.studies.klages2004.claims import CLAIMS, evaluate
+from pipeline.claims.record import evaluate
+from pipeline.studies.klages2004.claims import CLAIMS, context
 from pipeline.studies.protocol.claims import reproducing, verdicts_table
 from pipeline.studies.protocol.tables import protocol_name
 
@@ -47,9 +48,8 @@ def test_claim_16_is_judged_on_the_families():
 
 def _claim2(tables):
     p = Params.preset("klages2004", f=60.0)
-    rows, _ = evaluate(tables, {}, math.sqrt(p.g / p.A) / (2 * math.pi), p.as_dict(),
-                       claims=[c for c in CLAIMS if c.text.startswith("Local maximum of D(f) "
-                                                                      "around f = 54")])
+    rows = evaluate([c for c in CLAIMS if c.id == "2"],
+                    context(tables, {}, math.sqrt(p.g / p.A) / (2 * math.pi), p.as_dict()))
     return rows[0]
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from pipeline.studies.protocol import SCENES
+from pipeline.studies.protocol.claims import SCENES
 from pipeline.studies.protocol.figures import (
     figure_decomposition,
     figure_protocol_map,

@@ -3,11 +3,17 @@ the tables."""
 
 from __future__ import annotations
 
+from pipeline.studies.protocol import STUDY
 from pipeline.studies.protocol.claims import verdicts_table
-from pipeline.studies.protocol.report import paragraph, report_lines
+from pipeline.studies.protocol.report import paragraph
 from pipeline.studies.protocol.tables import protocol_name
 
 from .synthetic import curves
+
+
+def report_lines(tables):
+    """The study's REPORT.md section from its tables."""
+    return STUDY.report(tables)
 
 
 def test_the_paragraph_names_the_reproducing_protocol():

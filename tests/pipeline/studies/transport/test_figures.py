@@ -3,8 +3,8 @@
 import numpy as np
 import pandas as pd
 
-from pipeline.studies.transport import draw
 from pipeline.studies.transport.claims import COMBINED, HOPPING, LINES
+from pipeline.studies.transport.figures import draw
 
 
 def test_draw_writes_the_figure_files_from_a_map_missing_a_line_and_the_sliding_map(tmp_path):

@@ -1,18 +1,18 @@
 """The README's table of measured wall times, generated from ``figures/run_log.json``.
 
-One row per scene of this study, one per further study (its scenes summed), the shared Dask
+One row per scene of the first registered study (the paper's, whose scenes are the README's
+figures), one per further study (its scenes summed), the shared Dask
 cluster's start-up and shut-down, and the sum, all read off the log that ``make_figures``
 writes beside the figures (per scene: wall time of the run that computed its chunks, the chunks
 it computed, the workers, the reduce time).  A scene whose store an earlier ``make_figures``
 computed carries that invocation's times, marked.  The README holds the table between
 :data:`BEGIN` and :data:`END`; ``make_figures`` rewrites it there when it writes the repository's
-``figures/`` (:func:`update_readme`), and tests/pipeline/studies/klages2004/test_run_times.py
+``figures/`` (:func:`update_readme`), and tests/pipeline/studies/test_run_times.py
 checks that the committed README matches the committed log.
 """
 
 from __future__ import annotations
 
-import importlib
 import os
 from collections.abc import Mapping
 from pathlib import Path
@@ -50,18 +50,18 @@ def _row(label: str, entries: list[Mapping]) -> str:
 
 def table(log: Mapping) -> list[str]:
     """The markdown table of the run times in ``log`` (run_log.json as a dict)."""
-    from .scene_list import EXTRA_STUDIES, SCENES
+    from .registry import studies
 
+    first, *further = studies()
     scenes = log.get("scenes", {})
     lines = ["| scenes | wall time of the runs | chunks computed (of the scene's most) | workers "
              "| reduce |",
              "| --- | --- | --- | --- | --- |"]
-    lines += [_row(f"`{name}`", [scenes[name]]) for name in SCENES if name in scenes]
-    for study in EXTRA_STUDIES:
-        names = [n for n in importlib.import_module(f"pipeline.studies.{study}").SCENES
-                 if n in scenes]
+    lines += [_row(f"`{name}`", [scenes[name]]) for name in first.scenes if name in scenes]
+    for study in further:
+        names = [n for n in study.scenes if n in scenes]
         if names:
-            lines.append(_row(f"{study} ({len(names)} scene{'s' if len(names) > 1 else ''})",
+            lines.append(_row(f"{study.name} ({len(names)} scene{'s' if len(names) > 1 else ''})",
                               [scenes[n] for n in names]))
     if "cluster_s" in log:
         lines.append(f"| the shared Dask cluster's start-up and shut-down | {log['cluster_s']:.0f} s "

@@ -5,9 +5,9 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from pipeline.studies.klages2004.run_times import BEGIN, END, table, update_readme
+from pipeline.studies.run_times import BEGIN, END, table, update_readme
 
-ROOT = Path(__file__).resolve().parents[4]
+ROOT = Path(__file__).resolve().parents[3]
 
 
 def test_the_readmes_run_times_are_the_committed_run_log():

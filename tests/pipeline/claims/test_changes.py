@@ -5,9 +5,9 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
-from pipeline.studies.klages2004.changes import HEADING, changes_section, verdicts
+from pipeline.claims.changes import HEADING, changes_section, verdicts
 
-REPORT = Path(__file__).resolve().parents[4] / "figures" / "REPORT.md"
+REPORT = Path(__file__).resolve().parents[3] / "figures" / "REPORT.md"
 
 
 def _claim_rows(text: str) -> list[str]:
@@ -71,7 +71,7 @@ def test_a_new_claim_is_listed_with_its_registration_and_the_id_it_supersedes():
 
 
 def test_a_draft_or_a_report_without_a_claims_section_is_not_complete():
-    from pipeline.studies.klages2004.changes import is_complete
+    from pipeline.claims.changes import is_complete
 
     text = REPORT.read_text(encoding="utf-8")
     headings = ["## Claims", "## Transport on a vibro-conveyor (scenes …)"]
@@ -89,7 +89,7 @@ def test_the_previous_report_is_the_last_complete_committed_one(tmp_path):
     the report compared with."""
     import subprocess
 
-    from pipeline.studies.klages2004.changes import previous_report
+    from pipeline.claims.changes import previous_report
 
     def git(*a):
         subprocess.run(["git", "-C", str(tmp_path), *a], check=True, capture_output=True)

@@ -1,9 +1,9 @@
-"""The committed REPORT.md against the committed tables beside it: every claim verdict (and its
-measured text) regenerates from figures/*.csv, and every figure has a caption."""
+"""The committed REPORT.md against the committed tables beside it: every study's section (its
+claim verdicts, their measured text, its own words) regenerates from figures/*.csv, and every
+figure has a caption."""
 
 from __future__ import annotations
 
-import importlib
 import re
 import shutil
 from pathlib import Path
@@ -11,17 +11,18 @@ from pathlib import Path
 import pandas as pd
 import pytest
 
-from pipeline.studies.klages2004 import committed
-from pipeline.studies.klages2004.claims import CLAIMS
-from pipeline.studies.klages2004.make_figures import EXTRA_STUDIES
-from pipeline.studies.klages2004.report import CAPTIONS
+from pipeline.studies.registry import STUDIES, studies, study
+from pipeline.studies.report import claim_sections
+from pipeline.tables.files import study_file, write_csv
 
-FIGURES = Path(__file__).resolve().parents[4] / "figures"
+FIGURES = Path(__file__).resolve().parents[3] / "figures"
 REPORT = FIGURES / "REPORT.md"
+PAPER = study("klages2004")
+CLAIMS_HEADING = f"## {PAPER.section.heading}"
 
 #: claims whose verdict needs more than the committed tables, by measure, and why: their rows
 #: are not compared (test_the_claims_not_regenerable_from_the_tables_are_exactly_these)
-NOT_REGENERABLE = committed.NEEDS_STORES
+NOT_REGENERABLE = PAPER.needs_stores
 
 
 def sections(text: str) -> dict[str, list[str]]:
@@ -43,22 +44,27 @@ def _cells(row: str) -> list[str]:
 
 def _skipped_rows() -> set[str]:
     """The first cells ('15', ...) of this study's rows that are not regenerable."""
-    return {c.id for c in CLAIMS if c.quantity in NOT_REGENERABLE}
+    return {c.id for c in PAPER.claims if c.quantity in NOT_REGENERABLE}
+
+
+def _claim_rows(lines: list[str]) -> list[str]:
+    """The rows of a claims table (not its header and rule)."""
+    return [r for r in lines if r.startswith("| ") and _cells(r)[0] not in ("#", "---")]
 
 
 def mismatches(report: str, regenerated: dict[str, list[str]]) -> list[str]:
     """What differs between the committed report and the regenerated claim sections: this
-    study's claims table row by row (by its '#'), each further study's section line by line."""
+    study's claims table row by row (by its '#'), every other section line by line."""
     have = sections(report)
     out = []
     for heading, lines in regenerated.items():
         if heading not in have:
             out.append(f"{heading}: not in REPORT.md")
             continue
-        if heading == committed.CLAIMS_HEADING:
-            rows = {_cells(r)[0]: r for r in have[heading] if r.startswith("| ")}
+        if heading == CLAIMS_HEADING:
+            rows = {_cells(r)[0]: r for r in _claim_rows(have[heading])}
             skip = _skipped_rows()
-            for r in lines[2:]:
+            for r in _claim_rows(lines):
                 key = _cells(r)[0]
                 if key in skip:
                     continue
@@ -75,10 +81,10 @@ def mismatches(report: str, regenerated: dict[str, list[str]]) -> list[str]:
 
 
 def test_every_claim_section_of_the_report_regenerates_from_the_committed_tables():
-    """The klages2004 claims table (but the rows of NOT_REGENERABLE) and the whole section of
-    every further study (mechanisms M rows, transport T rows, the contact table and its text),
-    regenerated from figures/*.csv, equal what REPORT.md says."""
-    diff = mismatches(REPORT.read_text(encoding="utf-8"), committed.claim_sections(FIGURES))
+    """The paper's claims table (but the rows of NOT_REGENERABLE), its further sections and the
+    whole section of every other study (mechanisms M rows, transport T rows, the contact table
+    and its text, ...), regenerated from figures/*.csv, equal what REPORT.md says."""
+    diff = mismatches(REPORT.read_text(encoding="utf-8"), claim_sections(FIGURES))
     assert not diff, "\n".join(diff)
 
 
@@ -86,10 +92,10 @@ def test_the_claims_not_regenerable_from_the_tables_are_exactly_these():
     """Regenerated without stores, exactly the claims of NOT_REGENERABLE come out 'not
     measured' where REPORT.md has a verdict: a claim that becomes regenerable must leave the
     list (and be compared), a claim that needs a store must say so here."""
-    regenerated = committed.claim_sections(FIGURES, studies=())[committed.CLAIMS_HEADING]
-    have = {_cells(r)[0]: _cells(r) for r in sections(REPORT.read_text(encoding="utf-8"))[
-        committed.CLAIMS_HEADING] if r.startswith("| ")}
-    lost = {_cells(r)[0] for r in regenerated[2:]
+    regenerated = claim_sections(FIGURES, studies=[PAPER])[CLAIMS_HEADING]
+    have = {_cells(r)[0]: _cells(r) for r in _claim_rows(
+        sections(REPORT.read_text(encoding="utf-8"))[CLAIMS_HEADING])}
+    lost = {_cells(r)[0] for r in _claim_rows(regenerated)
             if _cells(r)[3] == "**not measured**"
             and have.get(_cells(r)[0], [""] * 4)[3] != "**not measured**"}
     assert lost == _skipped_rows(), NOT_REGENERABLE
@@ -112,37 +118,42 @@ def test_a_perturbed_number_that_a_claim_reads_changes_its_regenerated_verdict(t
     assert at.sum() == 1
     lock.loc[at, ["k_max", "k_max_lo", "k_max_hi"]] = 2.0
     lock.to_csv(out / "locking.csv", index=False)
-    regenerated = committed.claim_sections(out, studies=())
-    row = next(r for r in regenerated[committed.CLAIMS_HEADING] if r.startswith("| 11 |"))
+    regenerated = claim_sections(out, studies=[PAPER])
+    row = next(r for r in regenerated[CLAIMS_HEADING] if r.startswith("| 11 |"))
     assert _cells(row)[3] == "**disagrees**"
     assert any(d.startswith("claim 11:") for d in mismatches(REPORT.read_text(encoding="utf-8"),
                                                            regenerated))
 
 
-@pytest.mark.parametrize("study", EXTRA_STUDIES)
-def test_a_further_studys_section_changes_when_its_tables_do(study, tmp_path):
+def _files(s, out: Path) -> list[Path]:
+    """The committed CSVs of study ``s`` in ``out``."""
+    if s.files is not None:
+        return [out / fn for fn in s.files.values() if (out / fn).is_file()]
+    return [out / study_file(k, s.scenes) for k in s.read_tables(out)]
+
+
+@pytest.mark.parametrize("name", STUDIES)
+def test_a_studys_section_changes_when_its_tables_do(name, tmp_path):
     """Every number (but f and a map's grid coordinates) of every committed table of the
-    study's scenes times 1.5: its regenerated section no longer matches REPORT.md (its claims
-    read the committed tables)."""
+    study times 1.5: its regenerated section no longer matches REPORT.md (its claims read the
+    committed tables)."""
     from pipeline.workflow.scenes import load_scene
 
     out = _copy(tmp_path)
-    scenes = importlib.import_module(f"pipeline.studies.{study}").SCENES
-    coords = {"f"} | {a for s in scenes for a, _ in load_scene(s).grid}
-    files = [out / committed.study_file(k, scenes)
-             for k in committed.read_study_tables(out, scenes)]
+    s = study(name)
+    coords = {"f"} | {a for sc in s.scenes for a, _ in load_scene(sc).grid}
+    files = _files(s, out)
     assert files
     for p in files:
         t = pd.read_csv(p)
         num = [c for c in t.select_dtypes("number").columns if c not in coords]
         t[num] = t[num] * 1.5
         t.to_csv(p, index=False)
-    regenerated = committed.claim_sections(out, studies=(study,))
-    del regenerated[committed.CLAIMS_HEADING]
+    regenerated = claim_sections(out, studies=[s])
     assert mismatches(REPORT.read_text(encoding="utf-8"), regenerated)
 
 
-def test_a_further_studys_tables_read_back_under_the_keys_make_figures_gives_them(tmp_path):
+def test_a_studys_tables_read_back_under_the_keys_make_figures_gives_them(tmp_path):
     """Tables named after their scene ('mechanisms', and 'mechanisms_fine' of a scene whose
     name the first prefixes), a scene's table and a table a draw hook added: written, read
     back under the same keys; a CSV of a scene's table that is no longer made is deleted, a
@@ -152,11 +163,13 @@ def test_a_further_studys_tables_read_back_under_the_keys_make_figures_gives_the
               "mechanisms_fine": pd.DataFrame({"f": [60.25]}),
               "contact_stick_diffusion": pd.DataFrame({"f": [54.5], "D": [0.5]}),
               "contact_proj_stick_locking": pd.DataFrame({"f": [54.5], "k_peak": [1.5]})}
-    committed.write_csv(pd.DataFrame({"f": [1.5]}), tmp_path / "mechanisms_old.csv")
-    committed.write_csv(pd.DataFrame({"f": [1.5]}), tmp_path / "locking.csv")  # not a scene's
-    committed.write_study_tables(tmp_path, tables, scenes)
+    from pipeline.tables.files import read_study_tables, write_study_tables
+
+    write_csv(pd.DataFrame({"f": [1.5]}), tmp_path / "mechanisms_old.csv")
+    write_csv(pd.DataFrame({"f": [1.5]}), tmp_path / "locking.csv")  # not a scene's
+    write_study_tables(tmp_path, tables, scenes)
     assert not (tmp_path / "mechanisms_old.csv").exists() and (tmp_path / "locking.csv").exists()
-    back = committed.read_study_tables(tmp_path, scenes)
+    back = read_study_tables(tmp_path, scenes)
     assert set(back) == set(tables)
     for key, df in tables.items():
         pd.testing.assert_frame_equal(back[key], df)
@@ -177,12 +190,9 @@ def test_every_figure_listed_in_the_report_has_a_caption():
 
 
 def test_every_figure_listed_in_the_report_has_a_caption_declared_in_code():
-    """Each figure of REPORT.md has a non-empty caption in report.CAPTIONS or in its study's
-    CAPTIONS (what make_figures writes beside it)."""
-    declared = dict(CAPTIONS)
-    for study in EXTRA_STUDIES:
-        declared.update(getattr(importlib.import_module(f"pipeline.studies.{study}"),
-                                "CAPTIONS", {}))
+    """Each figure of REPORT.md has a non-empty caption among its study's captions (what
+    make_figures writes beside it)."""
+    declared = {k: v for s in studies() for k, v in s.captions.items()}
     assert not [stem for stem in _figure_captions() if not declared.get(stem, "").strip()]
 
 
