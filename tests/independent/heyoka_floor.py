@@ -1,0 +1,143 @@
+"""An independent event detector: the next contact of a free flight with the moving floor,
+found by heyoka's Taylor integrator and its event detection (nothing from bbb).
+
+The flight is integrated in the floor's frame (x along the mean plane, y normal to it;
+``floors`` module doc): x'' = −gₓ, y'' = −g_y, with the floor phase θ = θ₀ + ωτ in the event
+functions (τ the time since the flight's start, θ₀ a runtime parameter, so one compiled
+integrator serves every flight).  Relative to the moving floor the particle sits at
+U = x + Aₓ sin θ, V = y + A_y sin θ; each piece of the floor is an event function of (U, V)
+that turns negative when the particle passes below it (the shape's ``pieces``): per reachable
+cell a whole circle for an arc — its upper envelope is the floor, so the first entry into any
+circle is the first contact, and no square root can turn NaN — the plane V = 0 for a flat
+floor, V − h(U) for a sine, and the two face lines of every reachable tooth of a sawtooth.
+Events are terminal and fire only when their function goes from positive to negative; an
+event off its piece (a face line beyond the face) is passed over and the flight continues.
+
+heyoka's documented accuracy: with the default tolerance (machine ε, 2.2e-16) the Taylor
+polynomial of each step reproduces the state to about ε relative, and an event's time is the
+root of the event function's Taylor polynomial over the step, polished to that precision
+(heyoka's docs, "Event detection"); the events between two steps are not missed because the
+root isolation runs on the whole polynomial of the step (not on samples).
+
+The cells a flight can reach: the flight must meet the floor before it falls below the
+floor's lowest point, y < bottom − |A_y| (a bound on its duration, τ_max), and until then U
+lies within the range of the parabola x(τ) widened by |Aₓ|.  The flight is cut into time
+windows of at most ``SLOTS`` cells each.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import heyoka as hy
+import numpy as np
+
+from tests.independent.floors import Drive
+
+#: cells (arcs, teeth) per compiled integrator: a flight that can reach more is cut into windows
+SLOTS = 16
+
+
+@dataclass(frozen=True)
+class Contact:
+    """The next contact: τ (s after the flight's start), the point (x, y) in the floor's frame
+    (mm, lab x along the plane), the incoming velocity (mm/s), the floor's phase θ (rad, not
+    reduced), the piece hit (cell index k and which of the cell's pieces)."""
+
+    tau: float
+    x: float
+    y: float
+    vx: float
+    vy: float
+    theta: float
+    cell: float
+    piece: int
+
+
+def flight_duration_bound(shape, drive: Drive, y0: float, vy: float) -> float:
+    """τ_max (s): the time at which the flight is below the floor's lowest point."""
+    _, gy = drive.gravity
+    _, ay = drive.amplitude
+    drop = y0 - (shape.bottom - abs(ay))
+    if drop < 0.0:
+        raise ValueError(f"the flight starts below the floor's lowest point ({drop:.3e} mm)")
+    return (vy + math.sqrt(vy * vy + 2.0 * gy * drop)) / gy * (1.0 + 1e-12) + 1e-15
+
+
+@functools.lru_cache(maxsize=32)
+def integrator(shape, drive: Drive, slots: int):
+    """The compiled integrator for (shape, drive) with ``slots`` cells of events, and the
+    number of pieces per cell.  pars[0] = θ₀, pars[1 + j] = the cell index k of slot j (for
+    shapes with cells; heyoka sizes ``pars`` to the parameters the expressions use)."""
+    gx, gy = drive.gravity
+    ax, ay = drive.amplitude
+    x, y, vx, vy = hy.make_vars("x", "y", "vx", "vy")
+    sin_th = hy.sin(drive.omega * hy.time + hy.par[0])
+    U = x + ax * sin_th if ax != 0.0 else x
+    V = y + ay * sin_th if ay != 0.0 else y
+    events = []
+    per_cell = len(shape.pieces(U, V, hy.par[1]))
+    for j in range(slots):
+        for ex in shape.pieces(U, V, hy.par[1 + j]):
+            events.append(hy.t_event(ex, direction=hy.event_direction.negative))
+    zero = 0.0 * x  # a constant right-hand side as an expression
+    ta = hy.taylor_adaptive([(x, vx), (y, vy), (vx, zero - gx), (vy, zero - gy)], [0.0] * 4,
+                            t_events=events, compact_mode=True)
+    return ta, per_cell
+
+
+def _x_range(x0: float, vx: float, gx: float, a: float, b: float) -> tuple[float, float]:
+    """Exact range of x0 + vx τ − gx τ²/2 over [a, b]."""
+    ts = [a, b]
+    if gx != 0.0 and a < vx / gx < b:
+        ts.append(vx / gx)
+    xs = [x0 + vx * t - 0.5 * gx * t * t for t in ts]
+    return min(xs), max(xs)
+
+
+def _windows(shape, drive: Drive, x0: float, vx: float, a: float, b: float, slots: int) -> list:
+    """[(a, b, cells)] covering [a, b], each with at most ``slots`` reachable cells."""
+    gx, _ = drive.gravity
+    ax, _ = drive.amplitude
+    lo, hi = _x_range(x0, vx, gx, a, b)
+    margin = abs(ax) + 1e-9 * (abs(lo) + abs(hi) + 1.0)
+    cells = shape.cells(lo - margin, hi + margin)
+    if len(cells) <= slots:
+        return [(a, b, cells)]
+    mid = 0.5 * (a + b)
+    return _windows(shape, drive, x0, vx, a, mid, slots) + _windows(shape, drive, x0, vx, mid, b, slots)
+
+
+def next_contact(shape, drive: Drive, x0: float, y0: float, vx0: float, vy0: float,
+                 theta0: float, slots: int = SLOTS) -> Contact:
+    """The first contact of the flight from (x0, y0) with velocity (vx0, vy0) (floor's frame,
+    mm, mm/s) at floor phase θ₀ (rad) — a state on or above the floor, e.g. just after a
+    collision — with the moving floor ``shape`` driven by ``drive``."""
+    ta, per_cell = integrator(shape, drive, slots)
+    ax, ay = drive.amplitude
+    tau_max = flight_duration_bound(shape, drive, y0, vy0)
+    ta.time = 0.0
+    ta.state[:] = [x0, y0, vx0, vy0]
+    ta.pars[0] = theta0
+    ta.reset_cooldowns()
+    for a, b, cells in _windows(shape, drive, x0, vx0, 0.0, tau_max, slots):
+        ks = np.full(slots, float(cells[0]))
+        ks[: len(cells)] = cells
+        if len(ta.pars) > 1:  # the shape has cells (a flat or sine floor has one piece)
+            ta.pars[1:] = ks
+        while True:
+            outcome = ta.propagate_until(b)[0]
+            if outcome == hy.taylor_outcome.time_limit:  # no event: on to the next window
+                break
+            code = int(outcome.value)  # a terminal event i ends the step with code −1 − i
+            if not -len(ta.t_events) <= code < 0:
+                raise AssertionError(f"heyoka stopped with {outcome!r} at τ = {ta.time} s")
+            slot, piece = divmod(-1 - code, per_cell)
+            x, y, vx, vy = ta.state
+            theta = theta0 + drive.omega * ta.time
+            u, v = x + ax * math.sin(theta), y + ay * math.sin(theta)
+            if shape.on_piece(piece, ks[slot], u, v):
+                return Contact(ta.time, x, y, vx, vy, theta, ks[slot], piece)
+    raise AssertionError(f"no contact before τ_max = {tau_max} s: the duration bound is wrong")
