@@ -9,7 +9,8 @@ U = x + Aₓ sin θ, V = y + A_y sin θ; each piece of the floor is an event fun
 that turns negative when the particle passes below it (the shape's ``pieces``): per reachable
 cell a whole circle for an arc — its upper envelope is the floor, so the first entry into any
 circle is the first contact, and no square root can turn NaN — the plane V = 0 for a flat
-floor, V − h(U) for a sine, and the two face lines of every reachable tooth of a sawtooth.
+floor, V − h(U) for a sine, and the two face lines of every reachable tooth of a sawtooth;
+and for every shape the floor's lowest level V = bottom.
 Events are terminal and fire only when their function goes from positive to negative; an
 event off its piece (a face line beyond the face) is passed over and the flight continues.
 
@@ -44,7 +45,8 @@ SLOTS = 16
 class Contact:
     """The next contact: τ (s after the flight's start), the point (x, y) in the floor's frame
     (mm, lab x along the plane), the incoming velocity (mm/s), the floor's phase θ (rad, not
-    reduced), the piece hit (cell index k and which of the cell's pieces)."""
+    reduced), the piece hit (cell index k and which of the cell's pieces; k = nan and piece
+    −1: the floor's lowest level, at a cusp)."""
 
     tau: float
     x: float
@@ -82,6 +84,10 @@ def integrator(shape, drive: Drive, slots: int):
     for j in range(slots):
         for ex in shape.pieces(U, V, hy.par[1 + j]):
             events.append(hy.t_event(ex, direction=hy.event_direction.negative))
+    # the floor's lowest level: a particle can reach it only where the floor is there (at a
+    # cusp), so crossing it is a contact; it catches the drop straight into a vertical cusp
+    # (R = S/2), where the two circles touch and neither changes sign
+    events.append(hy.t_event(V - shape.bottom, direction=hy.event_direction.negative))
     zero = 0.0 * x  # a constant right-hand side as an expression
     ta = hy.taylor_adaptive([(x, vx), (y, vy), (vx, zero - gx), (vy, zero - gy)], [0.0] * 4,
                             t_events=events, compact_mode=True)
@@ -120,7 +126,8 @@ def next_contact(shape, drive: Drive, x0: float, y0: float, vx0: float, vy0: flo
     tau_max = flight_duration_bound(shape, drive, y0, vy0)
     ta.time = 0.0
     ta.state[:] = [x0, y0, vx0, vy0]
-    ta.pars[0] = theta0
+    if len(ta.pars):  # a still floor (A = 0) has no phase
+        ta.pars[0] = theta0
     ta.reset_cooldowns()
     for a, b, cells in _windows(shape, drive, x0, vx0, 0.0, tau_max, slots):
         ks = np.full(slots, float(cells[0]))
@@ -134,9 +141,11 @@ def next_contact(shape, drive: Drive, x0: float, y0: float, vx0: float, vy0: flo
             code = int(outcome.value)  # a terminal event i ends the step with code −1 − i
             if not -len(ta.t_events) <= code < 0:
                 raise AssertionError(f"heyoka stopped with {outcome!r} at τ = {ta.time} s")
-            slot, piece = divmod(-1 - code, per_cell)
             x, y, vx, vy = ta.state
             theta = theta0 + drive.omega * ta.time
+            if code == -len(ta.t_events):  # the lowest level
+                return Contact(ta.time, x, y, vx, vy, theta, math.nan, -1)
+            slot, piece = divmod(-1 - code, per_cell)
             u, v = x + ax * math.sin(theta), y + ay * math.sin(theta)
             if shape.on_piece(piece, ks[slot], u, v):
                 return Contact(ta.time, x, y, vx, vy, theta, ks[slot], piece)
