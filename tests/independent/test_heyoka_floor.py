@@ -109,7 +109,8 @@ def drop_time(height: float, y0: float = 1.0, vy: float = 0.0) -> float:
 ], ids=["arc_cusp", "vertical_cusp", "sawtooth_valley", "sawtooth_peak"])
 def test_a_drop_onto_a_cusp_or_kink_lands_at_the_closed_form_time(shape, u):
     c = next_contact(shape, STILL, u, 1.0, 0.0, 0.0, 0.0)
-    assert c.tau == pytest.approx(drop_time(float(shape.height(np.array(u)))), rel=1e-14)
+    tau = drop_time(float(shape.height(np.array(u))))
+    assert abs(c.tau - tau) <= 8.0 * EPS * tau
 
 
 def test_a_flight_skimming_a_sawtooth_peak_passes_over_the_faces_extension():
