@@ -114,10 +114,33 @@ def test_a_drop_onto_a_cusp_or_kink_lands_at_the_closed_form_time(shape, u):
 
 
 def test_a_flight_skimming_a_sawtooth_peak_passes_over_the_faces_extension():
-    # a level flight from 1 µm above the peak (u = 0.6, height 0.5): it crosses the rising face's line beyond the
-    # peak (an event off the face, passed over) and lands on a later tooth
+    # a level flight from 1 µm above the peak (u = 0.6, height 0.5): it crosses the rising
+    # face's line beyond the peak (an event off the face, passed over) and lands further on
     saw = Sawtooth(2.0, 0.3, 0.5)
     flight = (0.595, saw.height_mm + 1e-3, 200.0, 0.0, 0.0)
     c = next_contact(saw, STILL, *flight)
     assert c.x > 0.6
     assert abs(c.tau - first_contact(saw, STILL, *flight)) <= TOL_TAU
+
+
+# ---- flights that start on the floor (after a collision, at a lift-off): the event function
+#      starts at exactly 0
+def test_a_hop_that_starts_on_an_arc_lands_in_the_same_cell():
+    # a post-collision state as a kernel records it (the paper's floor, 60 Hz): its circle's
+    # event function is exactly 0 at the start
+    arc, drive = Arc(15.0, 2.0), DRIVES["level"]
+    flight = (0.794427601939151, -0.11872769094585911, 2.197484215857952, 25.174291255962537,
+              2.0 * math.pi * 0.28438126603948144)
+    c = next_contact(arc, drive, *flight)
+    assert c.cell == 0.0 and c.piece == 0
+    assert abs(c.tau - first_contact(arc, drive, *flight)) <= TOL_TAU
+
+
+def test_a_lift_off_from_a_flat_floor_lands_where_the_brute_force_scan_does():
+    # at rest on the floor where its downward acceleration reaches g: sin θ = −g/(Aω²)
+    drive = Drive(G, 0.1, 80.0)
+    th = math.pi + math.asin(G / (drive.A * drive.omega**2))
+    flight = (0.0, -drive.A * math.sin(th), 0.0, -drive.A * drive.omega * math.cos(th), th)
+    c = next_contact(Flat(), drive, *flight)
+    assert c.tau > 1e-3  # a real flight, not the start
+    assert abs(c.tau - first_contact(Flat(), drive, *flight)) <= TOL_TAU
