@@ -43,11 +43,12 @@ SLOTS = 16
 #: starts with an event function of exactly 0, and heyoka 7.13.2 then misses a root later in
 #: that same step (measured: a hop of 1.5 ms inside one arc's cell found only at the lowest
 #: level, 2.1 ms), or, at a lift-off (gap ∝ τ³), finds one at τ = 0.  So the detector first
-#: flies the particle off the floor — steps of PRE_STEP s, doubled, events passed over — until
-#: its gap exceeds GAP_OFF mm, and searches from there.  No model flight is missed by this: a
-#: hop at the sticking speed 1e-3 mm/s rises (1e-3)²/(2·2e4) ≈ 2.5e-11 mm ≫ GAP_OFF, at
-#: τ ≈ 1e-10 s ≪ its duration 1e-7 s, and a lift-off's gap grows as Aω³τ³/6.
-PRE_STEP = 1e-10
+#: flies the particle off the floor — steps from PRE_STEP s on, doubled, events passed over —
+#: until its gap exceeds GAP_OFF mm (≫ the gap's rounding, ~1e-16 mm), and searches from there.
+#: A flight that ends before it rises that far is not resolved: an error, never a wrong
+#: contact.  The shortest model flights are bounces between the walls of a steep cusp
+#: (R = 1.2 mm, S = 2 mm: 1e-10 s, rising 3e-11 mm) and creeping hops.
+PRE_STEP = 1e-14
 GAP_OFF = 1e-13
 #: a flight still within GAP_OFF of the floor after this long (s) does not leave it
 MAX_OFF = 1e-4
@@ -144,9 +145,10 @@ def next_contact(shape, drive: Drive, x0: float, y0: float, vx0: float, vy0: flo
     windows = _windows(shape, drive, x0, vx0, 0.0, tau_max, slots)
     _set_cells(ta, windows[0][2], slots)
     tau_off = PRE_STEP
-    while _gap(shape, drive, ta, theta0) <= GAP_OFF:
-        if tau_off > MAX_OFF:
-            raise AssertionError(f"the flight stays within {GAP_OFF} mm of the floor for {MAX_OFF} s")
+    while (rise := _gap(shape, drive, ta, theta0)) <= GAP_OFF:
+        if tau_off > MAX_OFF or (rise < -GAP_OFF and ta.time > 0.0):
+            raise AssertionError(f"the flight does not rise {GAP_OFF} mm off the floor (gap "
+                                 f"{rise:.2e} mm at {ta.time:.2e} s): too short to resolve")
         while ta.time < tau_off:  # events on the way are the start's own
             ta.propagate_until(tau_off)
         tau_off *= 2.0
