@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 
 from bbb import Params, simulate
+from bbb.ensemble import InitialState, initial_state
 from tests.independent.floors import Arc, Drive, Flat
 from tests.independent.heyoka_floor import next_contact
 
@@ -36,22 +37,28 @@ BBB_FLOORS = {
 FRAMES = {"level": {}, "conveyor": dict(tilt=5.0, throw=60.0)}
 
 
-def flights(run):
-    """(start row, end row) of every recorded flight: from a collision that did not stick or a
-    lift-off, to a collision (rows of EVENT_FIELDS: t, x, y, vx, vy, phase, event)."""
+def flights(p: Params, start: InitialState, run):
+    """(start row, end row) of every recorded flight: from the launch, a collision that did not
+    stick or a lift-off, to a collision (rows of EVENT_FIELDS: t, x, y, vx, vy, phase, event).
+    The launch is the row at t = 0 of the particle's initial state (x = cell·S + d + X_f, the
+    floor's phase f·s)."""
+    _, _, ax, _ = p.floor_frame()
     for i in range(run.n_particles):
-        ev = run.collisions_dense[i, : run.n_recorded[i]]
+        th = 2.0 * math.pi * p.f * start.s[i]
+        x = start.cell[i] * p.S + start.d[i] - ax * math.sin(th)
+        launch = [0.0, x, start.y[i], start.vx[i], start.vy[i], p.f * start.s[i], 0.0]
+        ev = np.vstack([launch, run.collisions_dense[i, : run.n_recorded[i]]])
         for a, b in zip(ev[:-1], ev[1:], strict=True):
             if b[6] == 0.0 and a[6] in (0.0, 1.0):  # a stuck collision is followed by its lift-off
                 yield a, b
 
 
-def disagreements(p: Params, shape, run) -> tuple[int, list[str]]:
+def disagreements(p: Params, shape, start: InitialState, run) -> tuple[int, list[str]]:
     """The number of flights compared and, for those where bbb and the detector disagree
     beyond the tolerances (module doc), a line each."""
     drive = Drive(p.g, p.A, p.f, p.tilt, p.throw)
     n, bad = 0, []
-    for a, b in flights(run):
+    for a, b in flights(p, start, run):
         c = next_contact(shape, drive, a[1], a[2], a[3], a[4], 2.0 * math.pi * a[5])
         tol_t = TOL_T + 8.0 * (np.spacing(a[0]) + np.spacing(b[0]))
         speed = math.hypot(c.vx, c.vy) + p.A * p.omega
@@ -67,9 +74,10 @@ def disagreements(p: Params, shape, run) -> tuple[int, list[str]]:
 def run_and_compare(floor: str, frame: str, f: float, seed: int, n_particles: int, t_max: float):
     overrides, shape_of = BBB_FLOORS[floor]
     p = Params.preset("klages2004", f=f, **overrides, **FRAMES[frame])
-    run = simulate(p, n_particles, t_max, seed=seed, initial="launched", record_collisions=60,
+    start = initial_state(p, n_particles, np.random.SeedSequence(seed), "launched")
+    run = simulate(p, n_particles, t_max, seed=seed, initial=start, record_collisions=60,
                    record_liftoffs=True)
-    return disagreements(p, shape_of(p), run)
+    return disagreements(p, shape_of(p), start, run)
 
 
 @pytest.mark.parametrize("frame", FRAMES)
