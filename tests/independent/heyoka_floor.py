@@ -14,11 +14,12 @@ and for every shape the floor's lowest level V = bottom.
 Events are terminal and fire only when their function goes from positive to negative; an
 event off its piece (a face line beyond the face) is passed over and the flight continues.
 
-heyoka's documented accuracy: with the default tolerance (machine ε, 2.2e-16) the Taylor
-polynomial of each step reproduces the state to about ε relative, and an event's time is the
-root of the event function's Taylor polynomial over the step, polished to that precision
-(heyoka's docs, "Event detection"); the events between two steps are not missed because the
-root isolation runs on the whole polynomial of the step (not on samples).
+heyoka's integrator runs at its default tolerance (machine ε, relative), and its event
+detection isolates the roots of each event function's Taylor polynomial over the whole step
+(heyoka's documentation, "Event detection"), rather than sampling signs, so a dip below the
+floor inside a step is found however short.  One exception, measured with 7.13.2: a step whose
+event function starts at exactly 0 (below, PRE_STEP).  The detector's agreement with a
+brute-force scan is what tests/independent/test_heyoka_floor.py asserts (TOL_TAU there).
 
 The cells a flight can reach: the flight must meet the floor before it falls below the
 floor's lowest point, y < bottom − |A_y| (a bound on its duration, τ_max), and until then U
@@ -41,8 +42,9 @@ from tests.independent.floors import Drive
 SLOTS = 16
 #: leaving the floor.  A flight that starts on the floor (after a collision, at a lift-off)
 #: starts with an event function of exactly 0, and heyoka 7.13.2 then misses a root later in
-#: that same step (measured: a hop of 1.5 ms inside one arc's cell found only at the lowest
-#: level, 2.1 ms), or, at a lift-off (gap ∝ τ³), finds one at τ = 0.  So the detector first
+#: that same step (a hop within one arc's cell then ends at the lowest level instead:
+#: test_a_hop_that_starts_on_an_arc_lands_in_the_same_cell), or, at a lift-off (gap ∝ τ³),
+#: finds one at τ = 0.  So the detector first
 #: flies the particle off the floor — steps from PRE_STEP s on, doubled, events passed over —
 #: until its gap exceeds GAP_OFF mm (≫ the gap's rounding, ~1e-16 mm), and searches from there.
 #: A flight that ends before it rises that far is not resolved: an error, never a wrong

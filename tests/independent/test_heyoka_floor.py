@@ -53,7 +53,8 @@ def test_a_still_flat_floor_is_hit_at_the_closed_form_time():
 @pytest.mark.parametrize("shape", SHAPES, ids=list(SHAPES))
 def test_the_detector_finds_the_brute_force_contact_on_every_shape(shape, drive):
     sh, dr = SHAPES[shape], DRIVES[drive]
-    for k, flight in enumerate(random_flights(sh, dr, 8, seed=hash((shape, drive)) % 2**32)):
+    seed = 2 * list(SHAPES).index(shape) + list(DRIVES).index(drive)
+    for k, flight in enumerate(random_flights(sh, dr, 8, seed=seed)):
         c = next_contact(sh, dr, *flight)
         assert abs(c.tau - first_contact(sh, dr, *flight, n=100_000)) <= TOL_TAU, (k, flight)
         assert abs(gap(sh, dr, *flight, np.array(c.tau))) <= 1e-12
