@@ -44,6 +44,13 @@ slides on that wall; a wall with N ≤ 0 does not touch the particle, and the fl
 only when both walls do), by its own sampling and bisection; and a held particle's lift-off
 must not come after that slip.
 
+Other floor shapes.  The floor's profile within a cell (depth, slope, curvature, normal and
+their sensitivity to a rounding of the offset) is a small class, ArcProfile or FlatProfile.
+The rest still assumes arcs: cells of width S with cusps (concave kinks of the gap) at their
+edges and nowhere else; a depth that is convex and grows with |d|, so its minimum over an
+offset range and its curvature's extremes sit at the range's ends (the gap bounds); R as the
+length scale of roundings; and sliding stretches integrated as an angle on a circle.
+
 Tolerances are the checker's own, never read from the run under test (its bbb.Numerics): a run
 made with a coarser root tolerance fails the checker.  Event times are asked to TOL_T = 1e-12 s,
 the accuracy the model documents for a collision (docs/physics.md); that is attainable in
@@ -131,6 +138,71 @@ class Report:
         self.contact_need = max(self.contact_need, other.contact_need)
 
 
+class ArcProfile:
+    """The paper's arcs of radius R (mm): offset d from an arc's centre lies c(d) = R − √(R² − d²)
+    below its top.  A floor shape gives the checker its depth, slope, curvature, normal and how
+    far they move with a rounding of d; a new shape is a class like this one plus the parts of
+    the checker that still assume arcs (module doc, "Other floor shapes")."""
+
+    def __init__(self, R: float) -> None:
+        self.R = R
+
+    def q(self, d):
+        # √(R² − d²) as √((R−|d|)(R+|d|)): no cancellation at the cusps of R = S/2
+        ad = np.abs(d)
+        return np.sqrt(np.maximum((self.R - ad) * (self.R + ad), 0.0))
+
+    def depth(self, d):
+        """c(d) = R − √(R² − d²) (mm), written d²/(R + √(R² − d²))."""
+        return d * d / (self.R + self.q(d))
+
+    def slope(self, d):
+        """c'(d) = d/√(R² − d²); ±inf at a vertical cusp."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            return np.where(self.q(d) > 0, d / self.q(d), np.copysign(np.inf, d))
+
+    def curvature(self, d):
+        """c''(d) = R²/(R² − d²)^{3/2}, increasing in |d|."""
+        with np.errstate(divide="ignore"):
+            return self.R**2 / self.q(d) ** 3
+
+    def normal(self, d):
+        """Outward unit normal (nₓ, n_y) of the arc at offset d."""
+        return d / self.R, self.q(d) / self.R
+
+    def height_error(self, d, dx):
+        """Largest change of c when d moves by dx: min(c'·dx, √(2R dx)) (mm)."""
+        far = np.minimum(np.abs(d) + dx, self.R)
+        with np.errstate(invalid="ignore"):
+            lip = np.where(far < self.R, self.slope(far) * dx, np.inf)
+        return np.minimum(lip, np.sqrt(2.0 * self.R * dx))
+
+    def normal_error(self, dx):
+        """δn ≤ δd/R + √(2R δd)/R (the √ at a vertical cusp)."""
+        return dx / self.R + np.sqrt(2.0 * self.R * dx) / self.R
+
+
+class FlatProfile:
+    """A flat floor (R = inf): no depth, the normal straight up."""
+
+    def q(self, d):
+        return np.full_like(np.asarray(d, float), np.inf)
+
+    def depth(self, d):
+        return np.zeros_like(d)
+
+    slope = curvature = depth
+
+    def normal(self, d):
+        return np.zeros_like(d), np.ones_like(d)
+
+    def height_error(self, d, dx):
+        return np.zeros_like(d)
+
+    def normal_error(self, dx):
+        return 0.0 * dx
+
+
 class Floor:
     """The moving corrugated floor of the paper, in its own numpy code."""
 
@@ -140,6 +212,8 @@ class Floor:
         self.mu = getattr(p, "mu", 0.0)
         self.w = 2.0 * math.pi * p.f
         self.flat = math.isinf(p.R)
+        # what depends on the floor's shape (its height profile within a cell) lives there
+        self.profile = FlatProfile() if self.flat else ArcProfile(p.R)
         phi, psi = math.radians(getattr(p, "tilt", 0.0)), math.radians(getattr(p, "throw", 90.0))
         self.conveyor = phi != 0.0 or psi != math.pi / 2
         # gravity's magnitudes along −x and −y, the floor's amplitudes along x and y
@@ -167,44 +241,32 @@ class Floor:
         return r - self.cell(r) * self.S
 
     def q(self, d):
-        # √(R² − d²) as √((R−|d|)(R+|d|)): no cancellation at the cusps of R = S/2
-        ad = np.abs(d)
-        return np.sqrt(np.maximum((self.R - ad) * (self.R + ad), 0.0))
+        """√(R² − d²) (mm; arcs only)."""
+        return self.profile.q(d)
 
     def depth(self, d):
-        """c(d) = R − √(R² − d²) (mm), written d²/(R + √(R² − d²))."""
-        if self.flat:
-            return np.zeros_like(d)
-        return d * d / (self.R + self.q(d))
+        """How far below the floor's top the floor lies at offset d from a cell's centre (mm)."""
+        return self.profile.depth(d)
 
     def slope(self, d):
-        """c'(d) = d/√(R² − d²); ±inf at a vertical cusp."""
-        if self.flat:
-            return np.zeros_like(d)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(self.q(d) > 0, d / self.q(d), np.copysign(np.inf, d))
+        """depth'(d); ±inf at a vertical cusp."""
+        return self.profile.slope(d)
 
     def curvature(self, d):
-        """c''(d) = R²/(R² − d²)^{3/2}, increasing in |d|."""
-        if self.flat:
-            return np.zeros_like(d)
-        with np.errstate(divide="ignore"):
-            return self.R**2 / self.q(d) ** 3
+        """depth''(d)."""
+        return self.profile.curvature(d)
 
     def normal(self, d):
-        """Outward unit normal (nₓ, n_y) of the arc at offset d."""
-        if self.flat:
-            return np.zeros_like(d), np.ones_like(d)
-        return d / self.R, self.q(d) / self.R
+        """Outward unit normal (nₓ, n_y) of the floor at offset d."""
+        return self.profile.normal(d)
 
     def height_error(self, d, dx):
-        """Largest change of c when d moves by dx: min(c'·dx, √(2R dx)) (mm)."""
-        if self.flat:
-            return np.zeros_like(d)
-        far = np.minimum(np.abs(d) + dx, self.R)
-        with np.errstate(invalid="ignore"):
-            lip = np.where(far < self.R, self.slope(far) * dx, np.inf)
-        return np.minimum(lip, np.sqrt(2.0 * self.R * dx))
+        """Largest change of the depth when d moves by dx (mm)."""
+        return self.profile.height_error(d, dx)
+
+    def normal_error(self, dx):
+        """Largest change of the normal (either component) when d moves by dx."""
+        return self.profile.normal_error(dx)
 
     def y(self, th):
         return -self.Ay * np.sin(th)
@@ -299,7 +361,7 @@ def check_particle(p, events: np.ndarray, samples: int = 64, per_period: int = 5
         if fl.conveyor and not fl.flat:
             # the normal is known to δn ≤ δd/R + √(2R δd)/R from d's rounding (as in
             # _check_velocity); on the paper's floor it cancels (Aₙ/gₙ = A/g), here it does not
-            g2_tol = g2_tol + (fl.g + fl.A * fl.w**2) * (dx_c / fl.R + np.sqrt(2.0 * fl.R * dx_c) / fl.R)
+            g2_tol = g2_tol + (fl.g + fl.A * fl.w**2) * fl.normal_error(dx_c)
         late = np.zeros_like(lift)
         window = (aw2 > g_n) & (g_n > 0)
         if np.any(window):
@@ -430,7 +492,7 @@ def _check_velocity(fl: Floor, v_stick, rep: Report, index, vx_in, vy_in, xb, dx
     speed = np.hypot(ux, uy)
     d = fl.offset(xb, thb)
     # the normal from d is known to δn ≤ δd/R + √(2R δd)/R (the √ at a vertical cusp)
-    dn = 0.0 if fl.flat else dxb / fl.R + np.sqrt(2.0 * fl.R * dxb) / fl.R
+    dn = fl.normal_error(dxb)
     tol = 32.0 * EPS * (speed + np.abs(vf) + np.hypot(ox, oy)) + 2.0 * speed * dn \
         + (fl.g + fl.A * fl.w**2) * dtau
     vs = v_stick
@@ -804,7 +866,7 @@ def _check_contact(fl: Floor, v_stick, rep: Report, idx, slid, tau, a, b) -> Non
     scale_v = math.sqrt(fl.g * (1.0 if fl.flat else fl.R)) + np.abs(v)
     # rounding, and the normal's uncertainty from the rounding δd of d (√ at a vertical cusp)
     dd = 4.0 * np.spacing(np.abs(x_a) + fl.S) + 16.0 * EPS * abs(fl.Ax)
-    dn = 0.0 if fl.flat else dd / fl.R + np.sqrt(2.0 * fl.R * dd) / fl.R
+    dn = fl.normal_error(dd)
     # the floor velocity from the recorded phase: rounding of the phase moves it by up to
     # Aω·(a few eps), largest where v_f itself is near 0 (cos ωt ≈ 0), so scale with Aω
     start_tol = 64.0 * EPS * (np.hypot(ux, uy) + fl.A * fl.w) + 2.0 * np.hypot(ux, uy) * dn
@@ -921,7 +983,7 @@ def _check_contact(fl: Floor, v_stick, rep: Report, idx, slid, tau, a, b) -> Non
     n_end_tol = gmax * grow + (fl.A * fl.w**3 + 4 * gmax * scale_v / (1.0 if fl.flat else fl.R)) * dt
     ev_bad = np.zeros(k.size, bool)
     lift = kind_b == CONTACT_LIFT
-    dn_b = 0.0 if fl.flat else dd_x / fl.R + np.sqrt(2.0 * fl.R * dd_x) / fl.R
+    dn_b = fl.normal_error(dd_x)
     un_tol = 64 * EPS * (scale_v + fl.A * fl.w) + 2.0 * np.hypot(ub_x, ub_y) * dn_b
     ev_bad |= lift & ((n_end > n_end_tol) | (np.abs(un_b - v_stick) > un_tol))
     ev_bad |= (kind_b == CUSP) & (np.abs(np.abs(q) - q_c) > q_tol)
