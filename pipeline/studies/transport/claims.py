@@ -49,7 +49,7 @@ no current      at φ = 0, ψ = 90° (mirror symmetric): no frequency with a sig
                 by chance on a measured fraction of current-free curves (its design
                 false-alarm rate, benchmarks/transport_mirror.py -> mirror.json).
 sliding         on the sliding scenes' floor (φ = 0°, ψ = 30°), below its lift-off frequency
-                (bbb.analysis.liftoff: no particle at rest anywhere on the floor can lift off there),
+                (bbb.analysis.liftoff_onset: no particle at rest anywhere on the floor can lift off there),
                 the frequencies with a significant v: 0 under stick (a stuck particle rides
                 with the floor, v = 0 up to rounding) and ≥ 1 under Coulomb friction.
 
@@ -90,7 +90,7 @@ import pandas as pd
 
 from bbb import Params
 from bbb.analysis.extrema import find_extrema
-from bbb.analysis.liftoff import liftoff_frequency
+from bbb.analysis.liftoff_onset import liftoff_frequency
 from bbb.analysis.transport import SYMMETRY
 
 from ...claims.markdown import markdown_table
@@ -321,7 +321,7 @@ def d_extrema(claim: Claim, ctx) -> Measured:
 
 
 def sliding_liftoff() -> float:
-    """The sliding scenes' lift-off frequency (Hz, bbb.analysis.liftoff): below it no particle at rest
+    """The sliding scenes' lift-off frequency (Hz, bbb.analysis.liftoff_onset): below it no particle at rest
     anywhere on their floor can lift off."""
     return liftoff_frequency(Params.preset("klages2004", f=1.0, **SLIDING_GEOMETRY))
 

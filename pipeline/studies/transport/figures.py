@@ -23,7 +23,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
 
 from ...plot.heatmap import cell_edges
-from ..figure_style import STYLE, figure_files, new_figure, save_figure
+from ...plot.style import STYLE, figure_files, new_figure, save_figure
 from .claims import (
     COMBINED,
     HOPPING,

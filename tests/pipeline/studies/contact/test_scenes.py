@@ -7,9 +7,9 @@ import json
 
 import pytest
 
-from pipeline.make_figures import SCENES as PAPER_SCENES
 from pipeline.studies.contact import SCENES
 from pipeline.studies.contact.claims import LINES
+from pipeline.studies.klages2004.make_figures import SCENES as PAPER_SCENES
 from pipeline.workflow.scenes import load_scene, scene_label, shipped_draft
 
 from ...helpers import run_outside
