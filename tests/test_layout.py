@@ -439,3 +439,33 @@ def test_a_package_folder_missing_from_the_wheel_is_caught(tmp_path):
     root = _tree(tmp_path, {"pkg/__init__.py": "", "pkg/a.py": "", "pkg/sub/__init__.py": "",
                             "pkg/sub/scenes/x.toml": ""})
     assert package_folders("pkg", root=root) == {"pkg", "pkg.sub"}
+
+
+def test_a_shim_is_caught(tmp_path):
+    root = _tree(tmp_path, {
+        "pkg/__init__.py": '"""A package gathering its names."""\nfrom .real import f\n',  # allowed
+        "pkg/real.py": '"""Real."""\n\ndef f():\n    return 1\n',
+        "pkg/old.py": '"""Moved to pkg.real."""\nfrom __future__ import annotations\n\n'
+                      'from .real import f\n\n__all__ = ["f"]\n',
+        "pkg/star.py": '"""Real, and a star import."""\nfrom .real import *\n\nX = 1\n',
+        "pkg/starred/__init__.py": "from ..real import *\n",
+        "pkg/main.py": '"""An entry point."""\n\nif __name__ == "__main__":\n'
+                       '    from pkg.real import f\n    f()\n',  # runs, re-exports nothing
+        "pkg/uses.py": "from .real import f\n\nY = f()\n",  # imports and does something
+    })
+    assert [rel(p, root) for p in modules("pkg", root=root) if is_shim(p)] == [
+        "pkg/old.py", "pkg/star.py", "pkg/starred/__init__.py"]
+
+
+def test_a_module_name_used_twice_is_caught(tmp_path):
+    root = _tree(tmp_path, {
+        "bbb/__init__.py": "", "bbb/a/__init__.py": "", "bbb/b/__init__.py": "",
+        "bbb/a/liftoff.py": "", "bbb/b/liftoff.py": "", "bbb/a/__main__.py": "",
+        "bbb/b/__main__.py": "", "pipeline/__init__.py": "", "pipeline/x/__init__.py": "",
+        "pipeline/x/run.py": "", "pipeline/studies/s/run.py": "",  # a study: its own template
+        "pipeline/studies/s/claims.py": "", "pipeline/studies/t/claims.py": "",
+        "pipeline/record.py": "", "bbb/record.py": "",
+    })
+    assert engine_duplicates(root) == {"liftoff.py": ["bbb/a/liftoff.py", "bbb/b/liftoff.py"],
+                                       "record.py": ["bbb/record.py", "pipeline/record.py"]}
+    assert list(engine_duplicates(root, allowed={"record.py": "why"})) == ["liftoff.py"]
