@@ -452,9 +452,10 @@ def test_a_shim_is_caught(tmp_path):
         "pkg/main.py": '"""An entry point."""\n\nif __name__ == "__main__":\n'
                        '    from pkg.real import f\n    f()\n',  # runs, re-exports nothing
         "pkg/uses.py": "from .real import f\n\nY = f()\n",  # imports and does something
+        "pkg/oldmain.py": 'from .real import f\n\nif __name__ == "__main__":\n    f()\n',  # and runs
     })
     assert [rel(p, root) for p in modules("pkg", root=root) if is_shim(p)] == [
-        "pkg/old.py", "pkg/star.py", "pkg/starred/__init__.py"]
+        "pkg/old.py", "pkg/oldmain.py", "pkg/star.py", "pkg/starred/__init__.py"]
 
 
 def test_a_module_name_used_twice_is_caught(tmp_path):
