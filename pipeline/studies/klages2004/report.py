@@ -29,11 +29,10 @@ from ...claims.markdown import markdown_table, md_cell
 from ...claims.measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
 from ...claims.record import Row
 from ...tables.collisions import as_store
-from .claims import CLAIMS, evaluate  # evaluate: importable from here as before
 from .committed import CLAIMS_HEADING, CLAIMS_INTRO, claim_rows, summary_line
 from .measures import DEPTH_FRACTION, curve_extrema, curves, spiral_closeness
 
-__all__ = ["Row", "CLAIMS", "curve_extrema", "onset", "evaluate", "write_report",
+__all__ = ["Row", "curve_extrema", "onset", "write_report",
            "spiral_closeness", "summary_line"]
 
 _fmt_d = fmt_d

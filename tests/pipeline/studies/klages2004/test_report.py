@@ -8,7 +8,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.studies.klages2004.report import CLAIMS, evaluate, onset, write_report
+from pipeline.studies.klages2004.claims import CLAIMS, evaluate
+from pipeline.studies.klages2004.report import onset, write_report
 
 from ...figure_store import tiny_store
 
