@@ -17,7 +17,7 @@ import json
 import sys
 from pathlib import Path
 
-from ..claims.record import Claim
+from ..claims.claim import Claim
 from ..claims.registry import frozen_mismatches, read_frozen, rule_hash
 
 __all__ = ["STUDIES", "claims", "all_claims", "frozen_path", "frozen", "judged_ids", "main"]

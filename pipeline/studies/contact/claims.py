@@ -32,7 +32,7 @@ import pandas as pd
 
 from bbb.params import Params
 
-from ...claims.record import Row
+from ...claims.claim import Row
 from ..klages2004.claims import CLAIMS as PAPER_CLAIMS
 from ..klages2004.claims import evaluate
 from ..map_lines import split_lines

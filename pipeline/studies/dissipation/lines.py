@@ -18,8 +18,8 @@ import pandas as pd
 from bbb import Params
 from bbb.analysis.period1 import frequency_at, gamma_1, gamma_prime
 
+from ...claims.claim import Quantity
 from ...claims.measures import grid_step, onset_ci
-from ...claims.record import Quantity
 from ..klages2004.measures import curve_extrema
 
 __all__ = ["COLS", "THRESHOLDS", "threshold_frequency", "listed_alphas", "judged_lines", "onset",

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import pandas as pd
 
+from ...claims.claim import evaluate
 from ...claims.markdown import markdown_table
-from ...claims.record import evaluate
 from ...tables.collisions import as_store, locking_table
 from ..klages2004.committed import TABLE_FILES
 from .claims import CLAIMS, CUTS, LOCKING, MAP, R25, cut_line

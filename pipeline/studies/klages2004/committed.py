@@ -194,7 +194,7 @@ def _cells(row: str) -> list[str]:
 def _kept_rows(report: str, rows) -> list:
     """``rows`` with what was measured for the claims in :data:`NEEDS_STORES` (measured,
     verdict, notes) taken from ``report``, the report the stores wrote."""
-    from ...claims.record import Row
+    from ...claims.claim import Row
     from .claims import CLAIMS
 
     keep = {c.id for c in CLAIMS if c.quantity in NEEDS_STORES}

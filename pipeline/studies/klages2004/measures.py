@@ -17,8 +17,8 @@ from bbb.analysis.approx import spiral
 from bbb.analysis.extrema import Extremum, find_extrema
 from bbb.analysis.locking import creep_speed, flight_time_max, flight_times
 
+from ...claims.claim import Band, Claim, Measured, Part, Quantity, combine, judge, measure
 from ...claims.measures import row_at
-from ...claims.record import Band, Claim, Measured, Part, Quantity, combine, judge, measure
 from ...tables.collisions import as_store, states
 
 __all__ = ["MAIN", "K_TOL", "DEPTH_FRACTION", "families", "spiral_closeness", "curve_columns",

@@ -3,7 +3,7 @@
 Every number in the report is computed from the reduce tables (D(f) with bootstrap CIs,
 stationarity and ergodicity columns), the locking tables (:mod:`pipeline.tables.collisions`, with
 bootstrap CIs of k) and the stores' attributes; nothing measured is typed in.  The claims are
-data (:data:`pipeline.studies.klages2004.claims.CLAIMS`), judged by :mod:`pipeline.claims.record` with the
+data (:data:`pipeline.studies.klages2004.claims.CLAIMS`), judged by :mod:`pipeline.claims.claim` with the
 CI of each measured number against the tolerance the claim declares (rule in that module,
 restated in the report).  Significant extrema: :func:`bbb.analysis.extrema.find_extrema`
 (Bonferroni-corrected, differences below 1 % of the curve's largest D ignored).
@@ -25,9 +25,9 @@ from bbb.analysis.locking import CREEP_MARGIN, FLIGHT_TOL, MAX_QUANTILE, TMAX_QU
 from bbb.analysis.stationarity import TOLERANCE as STATIONARITY_TOL
 from bbb.analysis.stats.ergodicity import cv2_ci_coverage
 
+from ...claims.claim import Row
 from ...claims.markdown import markdown_table, md_cell
 from ...claims.measures import ONSET_FRACTION, fmt_d, onset, row_at, stationarity_mark
-from ...claims.record import Row
 from ...tables.collisions import as_store
 from .committed import CLAIMS_HEADING, CLAIMS_INTRO, claim_rows, summary_line
 from .measures import DEPTH_FRACTION, curve_extrema, curves, spiral_closeness

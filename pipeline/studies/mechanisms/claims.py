@@ -37,9 +37,9 @@ import pandas as pd
 
 from bbb.analysis.gk_contrast import Contrast, calibrated_rule, carrier, combine_sides
 
+from ...claims.claim import Band, Claim, Measured, Part, Quantity, evaluate, measure
 from ...claims.markdown import markdown_table
 from ...claims.measures import row_at
-from ...claims.record import Band, Claim, Measured, Part, Quantity, evaluate, measure
 from .cases import (
     carrier_cases,
     lyapunov_cases,

@@ -1,4 +1,4 @@
-"""The transport claims as data (judged by :mod:`pipeline.claims.record` from the diffusion table
+"""The transport claims as data (judged by :mod:`pipeline.claims.claim` from the diffusion table
 of each line of the map scenes, with its v, D_drift columns; :mod:`bbb.analysis.transport`).
 Claims T1, T2, T4 are judged on five floors of the map ``transport`` (the level floor
 vibrated vertically, two tilts, two throws: :data:`HOPPING`); T3 also on its four floors both
@@ -93,8 +93,7 @@ from bbb.analysis.extrema import find_extrema
 from bbb.analysis.liftoff_onset import liftoff_frequency
 from bbb.analysis.transport import SYMMETRY
 
-from ...claims.markdown import markdown_table
-from ...claims.record import (
+from ...claims.claim import (
     BY_CONSTRUCTION,
     Band,
     Claim,
@@ -104,6 +103,7 @@ from ...claims.record import (
     evaluate,
     measure,
 )
+from ...claims.markdown import markdown_table
 from ..map_lines import split_lines
 from .cases import (
     d_extrema_cases,

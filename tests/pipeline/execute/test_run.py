@@ -130,7 +130,7 @@ def test_a_worker_running_another_kernel_fails_its_task_before_writing(
     # edit goes to a hashed source that holds no jitted function, so no worker compiles
     shutil.copytree(Path(bbb.__file__).parent, code / "bbb")
     edited = code / "bbb" / "numerics.py"
-    edited.write_text(edited.read_text() + "\n# an edit: another kernel\n")
+    edited.write_text(edited.read_text() + "\n_EDITED = 1  # a code edit: another kernel\n")
     monkeypatch.setenv("PYTHONPATH", str(code))  # the workers' environment, not this process's
     (tmp_path / "cluster").mkdir()
     store = tmp_path / "s.zarr"
