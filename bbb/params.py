@@ -169,7 +169,7 @@ class Params:
         if self.transport and self.R < VERTICAL_CUSP_R * self.S / 2:
             # a particle bouncing down between (near-)vertical walls on a tilted or thrown floor:
             # the 1e9 soak found flights below the surface there (1e-5 mm) that no fix has
-            # removed yet (issue 14); refused rather than computed wrong
+            # removed yet; refused rather than computed wrong
             raise ValueError(f"Params.tilt = {self.tilt!r}, throw = {self.throw!r} with R = {self.R!r}, "
                              f"S = {self.S:g}: R near S/2 makes (near-)vertical cusp walls, which the "
                              "conveyor kernel does not handle yet; allowed: R ≥ S/2 · "

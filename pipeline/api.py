@@ -32,15 +32,8 @@ if TYPE_CHECKING:
     from .execute.run import RunReport
     from .workflow.study import Study
 
-from .tables.units import UNITS
-
 __all__ = ["open_study", "reduced", "reduced_dataset", "run_study", "load_study",
-           "attach_tables", "plot_store", "TABLE_UNITS"]
-
-#: the units of the tables' columns by exact name: now the one map of every table,
-#: :data:`pipeline.tables.units.UNITS` (families of columns and CI bounds:
-#: :func:`pipeline.tables.units.unit`); this name kept for one release
-TABLE_UNITS = UNITS
+           "attach_tables", "plot_store"]
 
 
 def load_study(workflow: str | os.PathLike | Study) -> Study:

@@ -12,7 +12,7 @@ traceback; so does any other exception (naming its type; ``BBB_DEBUG=1`` shows t
 traceback).  Output into a pipe whose reader has gone (``bbb status X | head -1``) ends
 quietly with status 141, as a process ended by SIGPIPE.  A failed task exits
 with status 1 and names the frequency, family and chunk.  ``bbb run`` stopped by Ctrl-C exits
-with status 130, by SIGTERM with 143 (pipeline/commands/run.py).
+with status 130, by SIGTERM with 143 (pipeline/commands/run_accuracy.py).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ import argparse
 import os
 import sys
 
-from .commands import plan, run, store
+from .commands import plan_scenes, run_accuracy, store
 from .commands.common import (
     DEBUG_ENV,
     EXIT_PIPE,
@@ -33,9 +33,8 @@ from .commands.common import (
     version,
 )
 from .execute.interrupt import Terminated
-from .store.layout import default_store_path  # importable from here as before
 
-__all__ = ["main", "default_store_path", "UsageError"]
+__all__ = ["main", "UsageError"]
 
 
 def _build_parser() -> argparse.ArgumentParser:
@@ -43,9 +42,9 @@ def _build_parser() -> argparse.ArgumentParser:
     p.add_argument("--version", action="version", version=f"bbb {version()}")
     sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
     sub.required = True
-    run.add_parsers(sub)
+    run_accuracy.add_parsers(sub)
     store.add_parsers(sub)
-    plan.add_parsers(sub)
+    plan_scenes.add_parsers(sub)
     return p
 
 

@@ -1,59 +1,60 @@
-"""The house rules of the layout (docs/design.md, issues 11 and 24), read off the source files:
-modules stay under 400 lines unless they say why, ``bbb/`` never imports ``pipeline/``, the
-kernel (the modules ``bbb.provenance`` hashes) never imports the analyses (``bbb/analysis/``),
-the engine (``pipeline/`` outside ``studies/``) never imports a study, no study imports another
-(each study folder is listed in the registry), the engine's layers import
-one way (workflow <- store <- execute <- tables <- plot <- claims <- the entry points and studies: a
-layer imports only layers below it), no module imports a path kept only as a re-export of a
-moved module, no import cycle of any length among the modules of ``bbb/`` and ``pipeline/``
-(lazy imports count), no ``_private`` name imported from another module, ``pipeline.api``
-never imports ``pipeline.cli`` or ``pipeline.commands``, and every package folder is in the
-wheel.  Each rule's checker is also run on a synthetic tree that breaks it (the ``*_is_caught``
-tests)."""
+"""The house rules of the layout (docs/design.md, issues 11 and 24), read off the source files: modules
+stay under 400 lines unless they say why, ``bbb/`` never imports ``pipeline/``, the kernel (the
+modules ``bbb.provenance`` hashes) never imports the analyses (``bbb/analysis/``), the engine
+(``pipeline/`` outside ``studies/``) never imports a study, no study imports another (each
+study folder is listed in the registry), the engine's layers import one way
+(workflow <- store <- execute <- tables <- plot <- claims <- the entry points and studies: a layer
+imports only layers below it), no re-export module ("shim") and none of the old paths that shims
+once kept, module names unique, no import cycle of any length among the modules of ``bbb/`` and
+``pipeline/`` (lazy imports count), no ``_private`` name imported from another module,
+``pipeline.api`` never imports ``pipeline.cli`` or ``pipeline.commands``, and every package folder
+is in the wheel. Each rule's checker is also run on a synthetic tree that breaks it (the
+``*_is_caught`` tests)."""
 
 from __future__ import annotations
 
 import ast
+import importlib
+import importlib.util
 import tomllib
 from pathlib import Path
+
+import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 MAX_LINES = 400
 #: the engine's layers, bottom first (docs/design.md): pipeline/<layer>/ may import only
 #: pipeline/<a layer at or below it>/; every other pipeline module (api, cli, make_figures,
-#: the re-exports below, studies/) is above them all
+#: studies/) is above them all
 LAYERS = ("workflow", "store", "execute", "tables", "plot", "claims")
-#: old module paths kept for one release as re-exports of the moved module (docs/design.md);
-#: no module imports names through them (a package re-export may still be the parent of
-#: the submodule imported: ``from pipeline.store import layout``)
-REEXPORTS = {
-    "pipeline.workflow": "pipeline.workflow.load", "pipeline.store": "pipeline.store.study_store",
-    "pipeline.claims": "pipeline.claims.record", "pipeline.reduce": "pipeline.tables.reduce",
-    "pipeline.run": "pipeline.execute.run", "pipeline.cluster": "pipeline.execute.cluster",
-    "pipeline.identity": "pipeline.workflow.identity",
-}
-#: bbb's old module paths kept for one release (the kernel's, now bbb/dynamics/; the
-#: analyses', now bbb/analysis/), each with one module it re-exports
-BBB_REEXPORTS = {
+#: the old paths that re-export modules ("shims") kept after their moves, all removed (no
+#: release ever carried them): old module -> where its code lives.  None imports any more
+#: (test_no_old_module_path_imports_any_more); a new shim is caught by test_no_module_is_a_shim
+MOVED = {
+    **{f"bbb.{m}": f"bbb.analysis.{m}" for m in (
+        "approx", "extrema", "gk_contrast", "greenkubo", "locking", "lyapunov", "stationarity",
+        "transport", "stats", "stats.bootstrap", "stats.ergodicity", "stats.interval")},
+    "bbb.liftoff": "bbb.analysis.liftoff_onset",
     "bbb.kernel": "bbb.dynamics.evolve", "bbb.conveyor": "bbb.dynamics.evolve",
     "bbb.search": "bbb.dynamics.search", "bbb.conveyor_search": "bbb.dynamics.search",
     "bbb.contact": "bbb.dynamics.slide", "bbb.conveyor_contact": "bbb.dynamics.contact_conveyor",
-    "bbb.stats": "bbb.analysis.stats", "bbb.stats.bootstrap": "bbb.analysis.stats.bootstrap",
-    "bbb.stats.ergodicity": "bbb.analysis.stats.ergodicity",
-    "bbb.stats.interval": "bbb.analysis.stats.interval",
-    **{f"bbb.{m}": f"bbb.analysis.{m}" for m in (
-        "stationarity", "transport", "greenkubo", "gk_contrast", "locking", "extrema", "approx",
-        "liftoff", "lyapunov")},
+    "pipeline.cluster": "pipeline.execute.cluster", "pipeline.reduce": "pipeline.tables.reduce",
+    "pipeline.run": "pipeline.execute.run", "pipeline.identity": "pipeline.workflow.identity",
+    "pipeline.studies.figure_style": "pipeline.plot.style",
+    "pipeline.claims.record": "pipeline.claims.claim",  # renamed: bbb.record is what a run records
 }
-#: the files that import the re-exports on purpose: they check they still work
-REEXPORT_TEST = "tests/pipeline/test_reexports.py"
-BBB_REEXPORT_TESTS = ("tests/bbb/test_old_kernel_paths.py", "tests/bbb/analysis/test_old_paths.py")
+#: moved modules whose old path is now a package: its __init__ re-exported the module's
+#: names, and now imports nothing
+MOVED_TO_PACKAGE = {"pipeline.workflow": "pipeline.workflow.load",
+                    "pipeline.store": "pipeline.store.study_store",
+                    "pipeline.claims": "pipeline.claims.claim"}
 #: engine modules allowed to import pipeline.studies: the entry points over engine and
 #: studies (docs/design.md), each with why
 ENTRY_POINTS = {
     "pipeline/make_figures.py": "`python -m pipeline.make_figures` runs every study the "
                                 "registry (pipeline.studies.registry) lists",
-    "pipeline/commands/run.py": "`bbb accuracy` runs the accuracy study (a lazy import in its command)",
+    "pipeline/commands/run_accuracy.py": "`bbb accuracy` runs the accuracy study (a lazy import in "
+                                         "its command)",
 }
 #: over 400 lines without a 'Size:' line yet, being changed on other branches (the lead splits
 #: them or states their reason when merging, then removes them here:
@@ -272,34 +273,6 @@ def upward_imports(root: Path = ROOT) -> list[tuple[str, str]]:
                   if layer_of(x) > layer_of(m))
 
 
-def reexport_imports(*packages: str, root: Path = ROOT, reexports=None,
-                     allowed: tuple[str, ...] = ()) -> list[tuple[str, str]]:
-    """(importing module, name) of every name imported through a re-export path: ``from
-    <re-export> import name`` where name is not a submodule, ``import <re-export>``, and
-    ``from <its package> import <re-export's leaf>``.  The re-exports themselves and
-    ``allowed`` files are not checked."""
-    reexports = REEXPORTS if reexports is None else reexports
-    out = set()
-    for p in modules(*packages, root=root):
-        me = module_name(p, root)
-        if me in reexports or rel(p, root) in allowed:
-            continue
-        package = list(p.relative_to(root).with_suffix("").parts)[:-1]
-        for node in ast.walk(ast.parse(p.read_text(encoding="utf-8"))):
-            if isinstance(node, ast.Import):
-                out.update((me, a.name) for a in node.names if a.name in reexports)
-            elif isinstance(node, ast.ImportFrom):
-                mod = from_module(node, package)
-                folder = root.joinpath(*mod.split("."))
-                for a in node.names:
-                    if f"{mod}.{a.name}" in reexports:
-                        out.add((me, f"{mod}.{a.name}"))
-                    elif mod in reexports and not ((folder / f"{a.name}.py").is_file()
-                                                   or (folder / a.name / "__init__.py").is_file()):
-                        out.add((me, f"{mod}.{a.name}"))
-    return sorted(out)
-
-
 def package_folders(*packages: str, root: Path = ROOT) -> set[str]:
     """Dotted names of every folder of ``packages`` holding an ``__init__.py``."""
     return {module_name(p, root) for p in modules(*packages, root=root) if p.name == "__init__.py"}
@@ -310,32 +283,77 @@ def test_the_engine_layers_import_only_layers_below_them():
 
 
 def test_every_layer_folder_exists_and_nothing_of_the_engine_is_left_flat():
-    """The layers are folders; only the entry points, the package files and the re-exports
-    stay at the top of pipeline/."""
+    """The layers are folders; only the entry points and the package files stay at the top of
+    pipeline/."""
     assert all((ROOT / "pipeline" / layer / "__init__.py").is_file() for layer in LAYERS)
     top = {p.name for p in (ROOT / "pipeline").glob("*.py")}
-    allowed = {"__init__.py", "__main__.py", "api.py", "cli.py", "make_figures.py",
-               *(f"{m.split('.')[1]}.py" for m in REEXPORTS)}
+    allowed = {"__init__.py", "__main__.py", "api.py", "cli.py", "make_figures.py"}
     assert top <= allowed, f"flat engine modules, put them in a layer: {sorted(top - allowed)}"
 
 
-def test_no_module_imports_a_name_through_a_re_export():
-    found = reexport_imports("pipeline", "tests", "benchmarks", "examples",
-                             allowed=(REEXPORT_TEST,))
-    assert found == [], f"import the moved module's new path (REEXPORTS): {found}"
+def is_shim(path: Path) -> bool:
+    """A module that only re-exports: besides its docstring, ``__all__``, ``from __future__``
+    and an ``if __name__ == "__main__":`` block, it holds nothing but imports (at least one),
+    or it star-imports (``from m import *``) anything.  Package files (``__init__.py``) may
+    gather their package's names, so only their star imports count."""
+    body = ast.parse(path.read_text(encoding="utf-8")).body
+    if any(isinstance(n, ast.ImportFrom) and any(a.name == "*" for a in n.names) for n in body):
+        return True
+    if path.name == "__init__.py":
+        return False
+    rest = [n for n in body
+            if not (isinstance(n, ast.Expr) and isinstance(n.value, ast.Constant))  # docstring
+            and not (isinstance(n, ast.ImportFrom) and n.module == "__future__")
+            and not (isinstance(n, ast.Assign | ast.AnnAssign)
+                     and [getattr(x, "id", None) for x in getattr(n, "targets", [getattr(n, "target", None)])]
+                     == ["__all__"])
+            and not (isinstance(n, ast.If) and "__name__" in ast.dump(n.test))]
+    return bool(rest) and all(isinstance(n, ast.Import | ast.ImportFrom) for n in rest)
 
 
-def test_no_module_imports_a_name_through_an_old_bbb_path():
-    found = reexport_imports("bbb", "pipeline", "tests", "benchmarks", "examples",
-                             reexports=BBB_REEXPORTS, allowed=BBB_REEXPORT_TESTS)
-    assert found == [], f"import bbb.dynamics / bbb.analysis (BBB_REEXPORTS): {found}"
+def duplicate_basenames(*packages: str, root: Path = ROOT) -> dict[str, list[str]]:
+    """{file name: its paths} for every module file name (package files and ``__main__.py``
+    aside) that occurs more than once under ``packages``."""
+    seen: dict[str, list[str]] = {}
+    for p in modules(*packages, root=root):
+        if p.name not in ("__init__.py", "__main__.py"):
+            seen.setdefault(p.name, []).append(rel(p, root))
+    return {k: v for k, v in seen.items() if len(v) > 1}
 
 
-def test_each_re_export_re_exports_its_module():
-    for old, new in {**REEXPORTS, **BBB_REEXPORTS}.items():
-        path = ROOT.joinpath(*old.split("."))
-        path = path / "__init__.py" if path.is_dir() else path.with_suffix(".py")
-        assert new in imported_modules(path), f"{old} does not re-export {new}"
+def engine_duplicates(root: Path = ROOT) -> dict[str, list[str]]:
+    """:func:`duplicate_basenames` of bbb/ and pipeline/ with pipeline/studies/ left out."""
+    found = {k: [f for f in v if not f.startswith("pipeline/studies/")]
+             for k, v in duplicate_basenames("bbb", "pipeline", root=root).items()}
+    return {k: v for k, v in found.items() if len(v) > 1}
+
+
+def test_no_module_is_a_shim():
+    shims = [rel(p) for p in modules("bbb", "pipeline") if is_shim(p)]
+    assert shims == [], f"re-export modules: import from the real module instead: {shims}"
+
+
+@pytest.mark.parametrize("old", sorted(MOVED))
+def test_no_old_module_path_imports_any_more(old):
+    assert importlib.util.find_spec(MOVED[old]) is not None, f"{MOVED[old]} is missing"
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module(old)
+
+
+@pytest.mark.parametrize("old", sorted(MOVED_TO_PACKAGE))
+def test_an_old_module_path_now_a_package_re_exports_nothing(old):
+    init = ROOT.joinpath(*old.split(".")) / "__init__.py"
+    imports = [n for n in ast.parse(init.read_text(encoding="utf-8")).body
+               if isinstance(n, ast.Import | ast.ImportFrom)]
+    assert imports == [], f"{rel(init)} imports: import {MOVED_TO_PACKAGE[old]} instead"
+    assert not hasattr(importlib.import_module(old), "__all__")
+
+
+def test_module_file_names_are_unique_in_bbb_and_the_engine():
+    """The library and the engine name each module once; the studies (pipeline/studies/) share
+    one template (claims.py, figures.py, cases.py, report.py in each study's folder) and are
+    left out."""
+    assert engine_duplicates() == {}
 
 
 def test_every_package_folder_ships_in_the_wheel():
@@ -343,6 +361,9 @@ def test_every_package_folder_ships_in_the_wheel():
     listed = set(config["tool"]["setuptools"]["packages"])
     missing = package_folders("bbb", "pipeline") - listed
     assert missing == set(), f"add to [tool.setuptools] packages in pyproject.toml: {sorted(missing)}"
+    where = config["tool"]["setuptools"].get("package-dir", {})
+    gone = sorted(m for m in listed if not ROOT.joinpath(*where.get(m, m).split(".")).is_dir())
+    assert gone == [], f"listed in pyproject.toml's packages, but no such folder: {gone}"
 
 
 def test_no_import_cycle_of_any_length_among_bbb_and_pipeline_modules():
@@ -452,29 +473,37 @@ def test_a_layer_importing_a_layer_above_it_is_caught(tmp_path):
     assert upward_imports(root) == []
 
 
-def test_an_import_through_a_re_export_is_caught(tmp_path):
-    root = _tree(tmp_path, {
-        "pipeline/__init__.py": "",
-        "pipeline/run.py": "from .execute.run import *\n",  # the re-export itself: not checked
-        "pipeline/execute/__init__.py": "", "pipeline/execute/run.py": "def run_study(): pass\n",
-        "pipeline/store/__init__.py": "from .study_store import *\n",
-        "pipeline/store/study_store.py": "", "pipeline/store/layout.py": "",
-        "pipeline/api.py": "from .run import run_study\n"
-                           "from .store import layout\n"  # a submodule: allowed
-                           "def f():\n    from pipeline.store import StudyStore\n",
-        "pipeline/cli.py": "from . import run\nimport pipeline.store\n",
-        "tests/test_x.py": "from pipeline.run import run_study\n",
-    })
-    reexports = {"pipeline.run": "pipeline.execute.run", "pipeline.store": "pipeline.store.study_store"}
-    assert reexport_imports("pipeline", "tests", root=root, reexports=reexports) == [
-        ("pipeline.api", "pipeline.run.run_study"), ("pipeline.api", "pipeline.store.StudyStore"),
-        ("pipeline.cli", "pipeline.run"), ("pipeline.cli", "pipeline.store"),
-        ("tests.test_x", "pipeline.run.run_study")]
-    assert reexport_imports("pipeline", "tests", root=root, reexports=reexports,
-                            allowed=("tests/test_x.py",))[-1][0] == "pipeline.cli"
-
-
 def test_a_package_folder_missing_from_the_wheel_is_caught(tmp_path):
     root = _tree(tmp_path, {"pkg/__init__.py": "", "pkg/a.py": "", "pkg/sub/__init__.py": "",
                             "pkg/sub/scenes/x.toml": ""})
     assert package_folders("pkg", root=root) == {"pkg", "pkg.sub"}
+
+
+def test_a_shim_is_caught(tmp_path):
+    root = _tree(tmp_path, {
+        "pkg/__init__.py": '"""A package gathering its names."""\nfrom .real import f\n',  # allowed
+        "pkg/real.py": '"""Real."""\n\ndef f():\n    return 1\n',
+        "pkg/old.py": '"""Moved to pkg.real."""\nfrom __future__ import annotations\n\n'
+                      'from .real import f\n\n__all__ = ["f"]\n',
+        "pkg/star.py": '"""Real, and a star import."""\nfrom .real import *\n\nX = 1\n',
+        "pkg/starred/__init__.py": "from ..real import *\n",
+        "pkg/main.py": '"""An entry point."""\n\nif __name__ == "__main__":\n'
+                       '    from pkg.real import f\n    f()\n',  # runs, re-exports nothing
+        "pkg/uses.py": "from .real import f\n\nY = f()\n",  # imports and does something
+        "pkg/oldmain.py": 'from .real import f\n\nif __name__ == "__main__":\n    f()\n',  # and runs
+    })
+    assert [rel(p, root) for p in modules("pkg", root=root) if is_shim(p)] == [
+        "pkg/old.py", "pkg/oldmain.py", "pkg/star.py", "pkg/starred/__init__.py"]
+
+
+def test_a_module_name_used_twice_is_caught(tmp_path):
+    root = _tree(tmp_path, {
+        "bbb/__init__.py": "", "bbb/a/__init__.py": "", "bbb/b/__init__.py": "",
+        "bbb/a/liftoff.py": "", "bbb/b/liftoff.py": "", "bbb/a/__main__.py": "",
+        "bbb/b/__main__.py": "", "pipeline/__init__.py": "", "pipeline/x/__init__.py": "",
+        "pipeline/x/run.py": "", "pipeline/studies/s/run.py": "",  # a study: its own template
+        "pipeline/studies/s/claims.py": "", "pipeline/studies/t/claims.py": "",
+        "pipeline/record.py": "", "bbb/record.py": "",
+    })
+    assert engine_duplicates(root) == {"liftoff.py": ["bbb/a/liftoff.py", "bbb/b/liftoff.py"],
+                                       "record.py": ["bbb/record.py", "pipeline/record.py"]}

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 
-from .record import Row
+from .claim import Row
 
 __all__ = ["markdown_table", "md_cell"]
 

@@ -1,6 +1,6 @@
-"""Generic measures for claims (:mod:`pipeline.claims.record`) on D(f) curves and locking tables.
+"""Generic measures for claims (:mod:`pipeline.claims.claim`) on D(f) curves and locking tables.
 
-Each takes (claim, ctx) and returns a :class:`~pipeline.claims.record.Measured`.  ctx holds
+Each takes (claim, ctx) and returns a :class:`~pipeline.claims.claim.Measured`.  ctx holds
 ``tables`` (name -> DataFrame), ``curves`` (label -> (table, (D, lo, hi) columns)),
 ``curve_meta`` (label -> (scene, family)) and ``extrema`` (label -> significant extrema).
 Where a CI comes from is stated in each docstring and in the Quantity.
@@ -15,7 +15,7 @@ import pandas as pd
 
 from bbb.analysis.extrema import nearest
 
-from .record import Claim, Measured, Part, Quantity, measure
+from .claim import Claim, Measured, Part, Quantity, measure
 
 __all__ = ["ONSET_FRACTION", "onset", "onset_ci", "row_at", "grid_step", "fmt_d"]
 

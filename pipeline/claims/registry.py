@@ -23,7 +23,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import replace
 from pathlib import Path
 
-from .record import Claim, evaluate_claim
+from .claim import Claim, evaluate_claim
 
 __all__ = ["canonical", "rule_hash", "read_frozen", "frozen_mismatches", "id_problems",
            "case_problems"]

@@ -1,4 +1,4 @@
-"""SIGTERM handled as Ctrl-C while ``bbb run`` runs (pipeline/commands/run.py)."""
+"""SIGTERM handled as Ctrl-C while ``bbb run`` runs (pipeline/commands/run_accuracy.py)."""
 
 from __future__ import annotations
 

@@ -1,10 +1,8 @@
 """The house style of every figure, the engine's and the studies': matplotlib rc settings for
 a journal column (3.4 in wide) or the full page width (7 in), the families' colours, and
 figures made outside pyplot (no backend chosen, so a notebook's inline plotting is left
-alone) that save as ``<name>.<format>`` for each format asked (default PNG and PDF).
-
-(Moved here from ``pipeline.studies.figure_style``, which now imports it: the engine never
-imports a study, and the studies draw in the same style.)
+alone) that save as ``<name>.<format>`` for each format asked (default PNG and PDF).  Here,
+in the engine, because the engine never imports a study and the studies draw in its style.
 """
 
 from __future__ import annotations

@@ -7,7 +7,7 @@ claims read (made from the stores, written beside REPORT.md and read back from t
 figures with their captions, its claims (records of the claims registry) and its REPORT.md
 section (a :class:`~pipeline.claims.section.Section`: its own words, the verdicts laid out
 from the claim records).  Claims are judged by one function,
-:func:`pipeline.claims.record.evaluate` (claims, context); a study supplies the context.
+:func:`pipeline.claims.claim.evaluate` (claims, context); a study supplies the context.
 
 Types: tables are ``{key: DataFrame}``, stores ``{scene: path}``, verdicts ``{line: rows}``
 (one line, ``None``, for a study judged once).
@@ -22,7 +22,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from ..claims.record import Claim, Row, evaluate
+from ..claims.claim import Claim, Row, evaluate
 from ..claims.section import Section, section_lines
 from ..tables.files import read_study_tables, write_csv, write_study_tables
 

@@ -23,7 +23,7 @@ import sys
 from pathlib import Path
 
 from ..claims.changes import verdicts
-from ..claims.record import Claim
+from ..claims.claim import Claim
 from ..claims.registry import frozen_mismatches, read_frozen, rule_hash
 from .interface import Study
 

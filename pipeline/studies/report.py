@@ -27,7 +27,7 @@ import pandas as pd
 
 from ..claims.changes import HEADING, changes_section, previous_report
 from ..claims.markdown import md_cell
-from ..claims.record import Row
+from ..claims.claim import Row
 from ..tables.collisions import as_store
 from .interface import Study
 from .registry import studies as registered

@@ -4,10 +4,4 @@ schema (declared keys, the TOML reader), keys (the workflow's tables and keys), 
 validator: TOML -> Study), accuracy (presets), study (Study: params per f, seeds,
 fingerprint), identity (a point's key and every seed), scenes (where shipped scenes live).
 Imports nothing of the layers above it (tests/test_layout.py).
-
-Moved: the module ``pipeline.workflow`` is now :mod:`pipeline.workflow.load`; its names are
-re-exported here, kept for one release.  Code in pipeline/ imports ``pipeline.workflow.load``.
 """
-
-from .load import *  # noqa: F403
-from .load import Study, WorkflowError, load_workflow, parse_workflow  # noqa: F401

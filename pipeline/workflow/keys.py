@@ -99,7 +99,7 @@ class ParamsTable:
                               default_doc="preset")
     beta: float | None = key(None, "tangential restitution, Eq. (6)", allowed=_allowed("beta"),
                              default_doc="preset")
-    # the conveyor (bbb.conveyor, docs/physics.md "Transport"); omit_default and left out of
+    # the conveyor (bbb.dynamics with a Frame, docs/physics.md "Transport"); omit_default and left out of
     # Params.as_dict at 0 and 90, so every scene without them keeps its fingerprint
     tilt: float | None = key(None, "inclination of the floor's plane (downhill towards -x)",
                              allowed=_allowed("tilt"), omit_default=True,

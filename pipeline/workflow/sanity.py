@@ -7,7 +7,7 @@ Called by ``bbb run`` (:func:`pipeline.execute.run.run_study`, and before any ba
 scene (docs/physics.md, "Checks before a run"):
 
 nothing moves   (refused: :class:`NothingMoves`, exit 2) when at every point of the scene
-                f < the lift-off frequency of its floor (:func:`bbb.analysis.liftoff.liftoff_frequency`:
+                f < the lift-off frequency of its floor (:func:`bbb.analysis.liftoff_onset.liftoff_frequency`:
                 the lowest f at which a particle at rest anywhere on the arcs, tilted or thrown,
                 feels the floor let go; Γ = 1 on a level floor vibrated vertically, whatever
                 the arcs' curvature), contact = "stick" (a particle at rest is carried with the
@@ -36,7 +36,7 @@ import math
 import sys
 from collections.abc import Callable
 
-from bbb.analysis.liftoff import liftoff_frequency
+from bbb.analysis.liftoff_onset import liftoff_frequency
 from bbb.params import Params
 
 from .schema import line_of

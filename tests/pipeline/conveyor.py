@@ -1,6 +1,6 @@
 """A tiny real conveyor (tilt 3°, throw 45°, α = 0.8, contact stick), simulated chunk by chunk
 and reduced by the real ``bbb reduce``: at 50 Hz below lift-off (57.4 Hz,
-bbb.analysis.liftoff) the particles stay where they are up to rounding; at 80 Hz they hop
+bbb.analysis.liftoff_onset) the particles stay where they are up to rounding; at 80 Hz they hop
 and run away downhill, speeding up over the whole run."""
 
 from __future__ import annotations

@@ -32,7 +32,7 @@ import pandas as pd
 
 from bbb.params import Params
 
-from ...claims.record import POSITIVE, Row, evaluate
+from ...claims.claim import POSITIVE, Row, evaluate
 from ..map_lines import split_lines
 from ..registry import claim, study
 

@@ -15,8 +15,8 @@ from matplotlib import rc_context
 
 from bbb.analysis.locking import CREEP_MARGIN, creep_speed
 
+from ...plot.style import PAGE, STYLE, figure_files, new_figure, save_figure
 from ...tables.collisions import as_store, states
-from ..figure_style import PAGE, STYLE, figure_files, new_figure, save_figure
 from ..map_lines import point_index
 from .claims import LABELS, LINES, MODELS, ONSET_RANGE, PROJ_F, line_tables
 

@@ -1,5 +1,5 @@
 """Synthetic D(f, α) maps with known onsets, maxima and ergodicity, and each map claim's
-synthetic cases (:class:`~pipeline.claims.record.Case`: the verdict its rule must give, and
+synthetic cases (:class:`~pipeline.claims.claim.Case`: the verdict its rule must give, and
 the perturbations that must flip it), named by the claim records of :mod:`.claims`."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ...claims.record import Case
+from ...claims.claim import Case
 from ...store.layout import STOP_LEGEND, ZERO
 from .lines import threshold_frequency
 

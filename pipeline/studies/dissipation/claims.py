@@ -1,4 +1,4 @@
-"""The D(f, α) map's claims as data, judged on the map's own points (:mod:`pipeline.claims.record`).
+"""The D(f, α) map's claims as data, judged on the map's own points (:mod:`pipeline.claims.claim`).
 
 Rules, fixed before the map was looked at (tests/pipeline/studies/dissipation/test_claims.py
 turns each on synthetic maps with known answers):
@@ -76,7 +76,7 @@ import pandas as pd
 from bbb.analysis.stats.proportion import share_difference, wilson
 
 from ...claims.rank import rank_trend
-from ...claims.record import POSITIVE, Band, Claim, Measured, Part, Quantity, judge, measure
+from ...claims.claim import POSITIVE, Band, Claim, Measured, Part, Quantity, judge, measure
 from .cases import (
     cuts_cases,
     cuts_consistency_cases,

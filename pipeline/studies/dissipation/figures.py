@@ -23,7 +23,7 @@ from matplotlib import colors, rc_context
 from matplotlib.figure import Figure
 
 from bbb import Params
-from bbb.analysis.liftoff import liftoff_frequency
+from bbb.analysis.liftoff_onset import liftoff_frequency
 
 from ...plot.style import PAGE, STYLE, figure_files, new_figure, save_figure
 from .claims import CUTS, LOCKING, MAP, cut_line, threshold_frequency

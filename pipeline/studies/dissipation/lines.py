@@ -20,7 +20,7 @@ from bbb.analysis.period1 import frequency_at, gamma_1, gamma_prime
 
 from ...claims.curves import curve_extrema
 from ...claims.measures import grid_step, onset_ci
-from ...claims.record import Quantity
+from ...claims.claim import Quantity
 
 __all__ = ["COLS", "THRESHOLDS", "threshold_frequency", "listed_alphas", "judged_lines", "onset",
            "first_max_above", "first_reaching", "cut"]

@@ -1,5 +1,5 @@
 """Synthetic inputs with known answers for the paper's claims 1–19, and each claim's cases
-(:class:`~pipeline.claims.record.Case`: the verdict its frozen rule must give, and a
+(:class:`~pipeline.claims.claim.Case`: the verdict its frozen rule must give, and a
 perturbation that must flip it), named by the claim records of :mod:`.claims`.
 
 The inputs: a Fig. 2 D(f) curve with the paper's landmarks (onset at 50 Hz, maxima at 54,
@@ -23,7 +23,7 @@ import pandas as pd
 from bbb.analysis.approx import spiral
 from bbb.record import COLLISION_FIELDS
 
-from ...claims.record import Case
+from ...claims.claim import Case
 from ...store.layout import STOP_LEGEND, TARGET, ZERO
 from .measures import MAIN, context
 

@@ -1,4 +1,4 @@
-"""The claims of Klages, Barna & Mátyás (2004) as data: one :class:`~pipeline.claims.record.Claim`
+"""The claims of Klages, Barna & Mátyás (2004) as data: one :class:`~pipeline.claims.claim.Claim`
 record each, with the tolerance it is judged by and why, and the explanations a report adds
 to a claim that fails.  The few measures only this paper needs (the loops of the spiral,
 ergodicity, the spiral approximation, Mátyás 2004) are :mod:`.measures`; each claim holds
@@ -19,7 +19,7 @@ import numpy as np
 from bbb.analysis.period1 import frequency_at, gamma_prime
 
 from ...claims.measures import extremum, growth, onset_measure, table_value
-from ...claims.record import POSITIVE, Band, Claim
+from ...claims.claim import POSITIVE, Band, Claim
 
 # the paper's own measures, held by the claims below; K_TOL, MAIN, families and
 # spiral_closeness stay importable from here

@@ -15,7 +15,7 @@ Tables used (all made by ``pipeline.tables.reduce`` or ``pipeline.tables.collisi
 
 Units on every axis: f in Hz, D in mm²/s, y in mm, v in mm/s.  Sizes are for a journal
 column (3.4 in wide) or the full page width (7 in); the style is
-:mod:`pipeline.studies.figure_style`.
+:mod:`pipeline.plot.style`.
 
 Size: one paper's four figures, which share their panels (Fig. 3's letters mark Fig. 2, the
 k panel is drawn in Fig. 2's variant and in the locking figure), one function each.
@@ -36,15 +36,14 @@ from matplotlib.ticker import MultipleLocator
 from bbb.analysis.approx import spiral
 from bbb.analysis.locking import creep_speed, flight_time_max, flight_times
 
+# the house style, shared by every study's figures (pipeline.plot.style); the old
+# private names stay, for the figures of other studies that import them from here
+from ...plot.style import COLUMN, PAGE, STYLE, figure_files
+from ...plot.style import family_color as _color
+from ...plot.style import new_figure as _new_figure
+from ...plot.style import save_figure as _save
 from ...store.study_store import StudyStore
 from ...tables.collisions import as_store, states
-
-# the house style, shared by every study's figures (pipeline.studies.figure_style); the old
-# private names stay, for the figures of other studies that import them from here
-from ..figure_style import COLUMN, PAGE, STYLE, figure_files
-from ..figure_style import family_color as _color
-from ..figure_style import new_figure as _new_figure
-from ..figure_style import save_figure as _save
 
 __all__ = ["PANELS", "PAPER_K", "STYLE", "figure1", "figure2", "figure3", "figure_locking",
            "figure_files", "main_columns"]

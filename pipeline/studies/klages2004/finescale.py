@@ -152,14 +152,14 @@ def figure_finescale(table: pd.DataFrame, out_dir: str | os.PathLike | None,
     CIs, the base grid's points, and the extrema of the finest level with their intervals."""
     from matplotlib import rc_context
 
-    from ..figure_style import STYLE
+    from ...plot.style import STYLE
 
     with rc_context(STYLE):
         return _draw(table, out_dir, name)
 
 
 def _draw(table: pd.DataFrame, out_dir, name: str) -> Figure:
-    from ..figure_style import new_figure, save_figure
+    from ...plot.style import new_figure, save_figure
 
     f, D, lo, hi = table_arrays(table)
     origin = float(f.min())

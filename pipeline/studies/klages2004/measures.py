@@ -18,7 +18,7 @@ from bbb.analysis.locking import creep_speed, flight_time_max, flight_times
 
 from ...claims.curves import DEPTH_FRACTION, curve_columns, curve_extrema, families
 from ...claims.measures import row_at
-from ...claims.record import Band, Claim, Measured, Part, Quantity, combine, judge, measure
+from ...claims.claim import Band, Claim, Measured, Part, Quantity, combine, judge, measure
 from ...tables.collisions import as_store, states
 
 __all__ = ["MAIN", "context", "K_TOL", "DEPTH_FRACTION", "families", "spiral_closeness", "curve_columns",
@@ -52,7 +52,7 @@ def curves(tables: Mapping[str, pd.DataFrame]) -> dict[str, tuple[pd.DataFrame, 
 
 def context(tables: Mapping[str, pd.DataFrame], stores: Mapping[str, str] | None = None,
             f_gamma1: float | None = None, params: Mapping[str, float] | None = None) -> dict:
-    """The context the paper's claims are judged in (by :func:`pipeline.claims.record.evaluate`),
+    """The context the paper's claims are judged in (by :func:`pipeline.claims.claim.evaluate`),
     with the significant extrema of every D(f) curve under ``"extrema"``.
 
     tables   -- the study's reduce tables by scene ("figure2", "locking", ...)

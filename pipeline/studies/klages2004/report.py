@@ -4,7 +4,7 @@ captions: the extrema, stationarity, ergodicity, locking and definitions.
 Every number in it is computed from the reduce tables (D(f) with bootstrap CIs,
 stationarity and ergodicity columns), the locking tables (:mod:`pipeline.tables.collisions`, with
 bootstrap CIs of k) and the stores' attributes; nothing measured is typed in.  The claims are
-data (:data:`pipeline.studies.klages2004.claims.CLAIMS`), judged by :mod:`pipeline.claims.record` with the
+data (:data:`pipeline.studies.klages2004.claims.CLAIMS`), judged by :mod:`pipeline.claims.claim` with the
 CI of each measured number against the tolerance the claim declares (rule in that module,
 restated in the report).  Significant extrema: :func:`bbb.analysis.extrema.find_extrema`
 (Bonferroni-corrected, differences below 1 % of the curve's largest D ignored).

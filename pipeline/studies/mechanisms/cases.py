@@ -1,5 +1,5 @@
 """Synthetic mechanisms tables with known carriers, and each mechanisms claim's synthetic cases
-(:class:`~pipeline.claims.record.Case`), named by the claim records of :mod:`.claims`.
+(:class:`~pipeline.claims.claim.Case`), named by the claim records of :mod:`.claims`.
 
 A table holds f0 and its grid neighbours f0 ∓ 2 Hz; the contrast columns of f0 against each
 neighbour are set directly: the log contrast (signed for the extremum's kind), its memory share,
@@ -11,7 +11,7 @@ from functools import partial
 
 import pandas as pd
 
-from ...claims.record import Case
+from ...claims.claim import Case
 
 __all__ = ["carrier_table", "carrier_cases", "lyapunov_cases"]
 

@@ -20,7 +20,7 @@ from matplotlib import rc_context
 
 from bbb.analysis.gk_contrast import calibrated_rule
 
-from ..figure_style import STYLE, figure_files, new_figure, save_figure
+from ...plot.style import STYLE, figure_files, new_figure, save_figure
 from .claims import EXTREMA, SIDES, STEPS, neighbour_moves, side_contrast
 
 __all__ = ["CAPTIONS", "draw", "figure_mechanisms"]

@@ -20,7 +20,7 @@ import pandas as pd
 
 from bbb.params import Params
 
-from ...claims.record import POSITIVE, evaluate
+from ...claims.claim import POSITIVE, evaluate
 from ..registry import claim, study
 from .tables import DEFINITIONS, MIXTURE, WINDOWS, protocol_name
 

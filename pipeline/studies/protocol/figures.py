@@ -14,7 +14,7 @@ import xarray as xr
 from matplotlib import rc_context
 
 from ...plot.heatmap import plot_map
-from ..figure_style import PAGE, STYLE, figure_files, new_figure, save_figure
+from ...plot.style import PAGE, STYLE, figure_files, new_figure, save_figure
 from .claims import verdicts_table
 from .tables import DEFINITIONS, MIXTURE, protocol_table
 

@@ -13,7 +13,7 @@ import pandas as pd
 from bbb.analysis.period1 import frequency_at, gamma_prime
 from bbb.params import Params
 
-from ...claims.record import POSITIVE, Row
+from ...claims.claim import POSITIVE, Row
 from ...claims.section import Section, verdict_lines
 from .claims import CURVE_CLAIMS, ERGODIC_CLAIM, reproducing
 from .tables import MIXTURE

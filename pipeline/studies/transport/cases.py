@@ -1,5 +1,5 @@
 """Synthetic conveyor tables with known answers, and each transport claim's synthetic cases
-(:class:`~pipeline.claims.record.Case`), named by the claim records of :mod:`.claims`.
+(:class:`~pipeline.claims.claim.Case`), named by the claim records of :mod:`.claims`.
 
 A line's diffusion table has v(f) with a standard error of 0.1 mm/s (95 % CI ± 0.196), a
 steady, diffusive drift and D about the drift; the contact and counters tables of the
@@ -13,7 +13,7 @@ import pandas as pd
 
 from bbb.analysis.transport import SYMMETRY
 
-from ...claims.record import Case
+from ...claims.claim import Case
 from .lines import CONVEYORS, GEOMETRIES, HOPPING, SLIDING
 
 __all__ = ["F", "vtable"]

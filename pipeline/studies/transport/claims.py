@@ -1,4 +1,4 @@
-"""The transport claims as data (judged by :mod:`pipeline.claims.record` from the diffusion table
+"""The transport claims as data (judged by :mod:`pipeline.claims.claim` from the diffusion table
 of each line of the map scenes, with its v, D_drift columns; :mod:`bbb.analysis.transport`).
 Claims T1, T2, T4 are judged on five floors of the map ``transport`` (the level floor
 vibrated vertically, two tilts, two throws: :data:`HOPPING`); T3 also on its four floors both
@@ -90,10 +90,10 @@ import pandas as pd
 
 from bbb import Params
 from bbb.analysis.extrema import find_extrema
-from bbb.analysis.liftoff import liftoff_frequency
+from bbb.analysis.liftoff_onset import liftoff_frequency
 from bbb.analysis.transport import SYMMETRY
 
-from ...claims.record import (
+from ...claims.claim import (
     BY_CONSTRUCTION,
     Band,
     Claim,
@@ -319,7 +319,7 @@ def d_extrema(claim: Claim, ctx) -> Measured:
 
 
 def sliding_liftoff() -> float:
-    """The sliding scenes' lift-off frequency (Hz, bbb.analysis.liftoff): below it no particle at rest
+    """The sliding scenes' lift-off frequency (Hz, bbb.analysis.liftoff_onset): below it no particle at rest
     anywhere on their floor can lift off."""
     return liftoff_frequency(Params.preset("klages2004", f=1.0, **SLIDING_GEOMETRY))
 
@@ -511,6 +511,6 @@ def context(tables, stores=None) -> dict:
 #: the section's own words ({liftoff}: f of lift-off on the sliding floor, Hz)
 WORDS = ("Drift v with its bootstrap CI and D about the drift (bbb.analysis.transport) along f per "
          "(tilt φ, throw ψ), on one floor (φ = 0°, ψ = 30°) per contact model from low Γ "
-         "to above lift-off ({liftoff:.1f} Hz, bbb.analysis.liftoff), and over "
+         "to above lift-off ({liftoff:.1f} Hz, bbb.analysis.liftoff_onset), and over "
          "(throw ψ, f) on a floor tilted 2° against its throw per contact model, with the "
          "share of the run in flight; pipeline/studies/transport/claims.py states the rules.")

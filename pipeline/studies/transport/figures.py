@@ -23,7 +23,7 @@ from matplotlib.lines import Line2D
 from matplotlib.patches import Patch, Rectangle
 
 from ...plot.heatmap import cell_edges
-from ..figure_style import STYLE, figure_files, new_figure, save_figure
+from ...plot.style import STYLE, figure_files, new_figure, save_figure
 from .claims import (
     COMBINED,
     HOPPING,
@@ -66,7 +66,7 @@ CAPTIONS = {
     "fig_transport_sliding": (
         "The sliding regime: drift v(f) on a level floor of the paper's arcs thrown at ψ = 30°, "
         "under the stick model and Coulomb friction μ = 0.3, bootstrap 95 % CIs; dashed: the "
-        "lowest lift-off frequency of this floor (bbb.analysis.liftoff), shaded below it; (b) the "
+        "lowest lift-off frequency of this floor (bbb.analysis.liftoff_onset), shaded below it; (b) the "
         "fraction of the run each model spends held at rest on the floor (dashed) and sliding "
         "(solid), bootstrap 95 % CIs over particles, the rest in flight. Scene "
         "transport_sliding, a map with one line per contact model (claim T5)."),

@@ -37,7 +37,7 @@ import pandas as pd
 
 from bbb import Params
 
-from ...claims.record import Band, Quantity, judge
+from ...claims.claim import Band, Quantity, judge
 from .signs import reversal_intervals, significant_signs, steady_rows
 
 __all__ = ["REVERSAL_MAP", "REVERSAL_TILT", "REVERSAL_THROWS", "REVERSAL_MODELS",
@@ -149,7 +149,7 @@ def judge_boundary(boundary: tuple[float, float] | None, f_v: float,
                    step: float = F_STEP) -> tuple[str, Quantity | None]:
     """The verdict of a boundary interval against Γ_v = 1 at ``f_v`` (Hz), claim T6's rule:
     the interval minus f_v (its midpoint the value, its ends the CI) judged against ± ``step``
-    (pipeline.claims.record.judge); 'disagrees' without a boundary."""
+    (pipeline.claims.claim.judge); 'disagrees' without a boundary."""
     if boundary is None:
         return "disagrees", None
     a, b = boundary

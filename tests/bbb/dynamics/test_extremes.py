@@ -699,13 +699,13 @@ def bounces_off_cusps(p: Params, st: InitialState, run: SimRun) -> None:
 
 
 def never_lets_go_below_liftoff(p: Params, st: InitialState, run: SimRun) -> None:
-    """Below the lift-off frequency (bbb.analysis.liftoff: no particle at rest anywhere can lift off)
+    """Below the lift-off frequency (bbb.analysis.liftoff_onset: no particle at rest anywhere can lift off)
     and with sliding speeds far below those whose centripetal v²/R would eat the normal
     load's margin, particles from rest slide (Coulomb lets go) but the floor never lets go
     of them: no lift-off from rest, no lift-off from sliding.  They fly only where sliding
     brings them into a cusp and the other wall bounces them (Eqs. (5)-(6)): every run of
     collisions in the record starts at a cusp event."""
-    from bbb.analysis.liftoff import liftoff_frequency
+    from bbb.analysis.liftoff_onset import liftoff_frequency
 
     assert p.f < 0.8 * liftoff_frequency(p)  # margin ≥ 1 − 0.8² = 36 % of the normal load
     rel = relative_to_floor(p, st, run)

@@ -4,8 +4,8 @@ from __future__ import annotations
 
 import re
 
+from pipeline.claims.claim import Row
 from pipeline.claims.markdown import markdown_table
-from pipeline.claims.record import Row
 
 
 def _cells(line: str) -> list[str]:

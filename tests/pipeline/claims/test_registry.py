@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from pipeline.claims.record import Band, Case, Claim, Measured, Part, Quantity, measure
+from pipeline.claims.claim import Band, Case, Claim, Measured, Part, Quantity, measure
 from pipeline.claims.registry import case_problems, frozen_mismatches, id_problems, rule_hash
 
 
@@ -68,7 +68,7 @@ def test_repeated_ids_and_unknown_supersedes_are_registration_errors():
 
 
 def test_a_consistency_claim_never_agrees():
-    from pipeline.claims.record import evaluate_claim
+    from pipeline.claims.claim import evaluate_claim
 
     c = replace(TOY, kind="consistency")
     assert evaluate_claim(c, {"x": 1.0}).verdict == "consistent"
@@ -76,7 +76,7 @@ def test_a_consistency_claim_never_agrees():
 
 
 def test_a_rule_over_all_parts_is_not_measured_when_a_part_is_missing():
-    from pipeline.claims.record import evaluate_claim
+    from pipeline.claims.claim import evaluate_claim
 
     @measure("toy2")
     def two(claim, ctx):

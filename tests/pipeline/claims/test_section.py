@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import pytest
 
-from pipeline.claims.record import Row
+from pipeline.claims.claim import Row
 from pipeline.claims.section import Section, section_lines
 
 ROWS = [Row("A holds", "a = 1", "agrees", id="X1"), Row("B holds", "b = 2", "disagrees", id="X2")]

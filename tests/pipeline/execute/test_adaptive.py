@@ -226,7 +226,7 @@ def test_d_near_zero_is_resolved_only_with_an_absolute_half_width():
 
 
 def test_a_unit_where_nothing_moved_is_not_resolved_but_sampled_to_the_cap():
-    """No mover: D = 0 with no upper bound (hi NaN, bbb.stats.interval).  [0, 0] once counted
+    """No mover: D = 0 with no upper bound (hi NaN, bbb.analysis.stats.interval).  [0, 0] once counted
     as resolved after the first chunk; the data bound only the share of movers, which more
     particles shrink, so the unit keeps sampling until the cap."""
     still = (0.0, 0.0, math.nan)

@@ -95,8 +95,8 @@ def test_bbb_run_with_an_edited_kernel_refuses_to_resume_the_store(reference, ti
     for pkg in (bbb, pipeline):
         src = Path(pkg.__file__).parent
         shutil.copytree(src, code / src.name, ignore=shutil.ignore_patterns("__pycache__"))
-    kernel = code / "bbb" / sorted(KERNEL_SOURCES)[0]  # bbb/kernel.py is a re-export now, not hashed
-    kernel.write_text(kernel.read_text() + "\n# an edit: another kernel\n")
+    kernel = code / "bbb" / sorted(KERNEL_SOURCES)[0]
+    kernel.write_text(kernel.read_text() + "\n_EDITED = 1  # a code edit: another kernel\n")
     new = subprocess.run([sys.executable, "-c", "from bbb.provenance import kernel_hash; "
                           "print(kernel_hash())"], cwd=code, capture_output=True, text=True,
                          check=True).stdout.strip()
@@ -130,7 +130,7 @@ def test_a_worker_running_another_kernel_fails_its_task_before_writing(
     # edit goes to a hashed source that holds no jitted function, so no worker compiles
     shutil.copytree(Path(bbb.__file__).parent, code / "bbb")
     edited = code / "bbb" / "numerics.py"
-    edited.write_text(edited.read_text() + "\n# an edit: another kernel\n")
+    edited.write_text(edited.read_text() + "\n_EDITED = 1  # a code edit: another kernel\n")
     monkeypatch.setenv("PYTHONPATH", str(code))  # the workers' environment, not this process's
     (tmp_path / "cluster").mkdir()
     store = tmp_path / "s.zarr"

@@ -6,13 +6,13 @@ from __future__ import annotations
 import pandas as pd
 import pytest
 
-from pipeline.claims.record import Band, Claim, Quantity
+from pipeline.claims.claim import Band, Claim, Quantity
 from pipeline.claims.section import Section
 from pipeline.studies.interface import Study
 
 
 def _value(claim, ctx):
-    from pipeline.claims.record import Measured, Part
+    from pipeline.claims.claim import Measured, Part
 
     t = ctx["tables"].get("t")
     if t is None:

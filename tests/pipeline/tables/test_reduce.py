@@ -42,7 +42,7 @@ def test_d_is_finite_and_positive_where_particles_move(tables):
 
 def _plain_msd_D(x: np.ndarray, dt: float, discard: float, fit_from: float, fit_to: float
                  ) -> float:
-    """D, mm²/s, written out here without bbb.stats: drop the first ``discard`` of the run,
+    """D, mm²/s, written out here without bbb.analysis.stats: drop the first ``discard`` of the run,
     average (x(t + Δ) - x(t))² over particles and time origins, fit a line to it over the
     lags fit_from <= Δ <= fit_to (fractions of the analysed duration) and halve the slope."""
     x = x[:, int(round(discard * (x.shape[1] - 1))):]
@@ -97,7 +97,7 @@ def test_csv_holds_the_same_table_as_parquet(tables):
 
 
 def test_half_run_d_is_the_fit_of_each_half_of_the_analysed_run(reference, tables):
-    # independent of bbb.stationarity: bbb.stats' own fit on each half, cut here by hand
+    # independent of bbb.analysis.stationarity: bbb.analysis.stats' own fit on each half, cut here by hand
     from bbb.analysis.stats import diffusion_coefficient
 
     df = pd.read_parquet(tables / "diffusion.parquet")

@@ -85,7 +85,7 @@ def test_one_point_at_lift_off_is_enough_to_run():
 
 
 def test_a_thrown_floor_under_stick_below_its_lift_off_is_refused():
-    # throw 30 deg: lift-off at 66.7 Hz (bbb.analysis.liftoff) although Γ = 1.45 at 60 Hz
+    # throw 30 deg: lift-off at 66.7 Hz (bbb.analysis.liftoff_onset) although Γ = 1.45 at 60 Hz
     study = edit("A = 0.01\n", "throw = 30.0\n", STILL.replace("[60.0, 100.0]", "[40.0, 60.0]"))
     assert study.points[-1].params.gamma > 1 and nothing_moves(study) is not None
 

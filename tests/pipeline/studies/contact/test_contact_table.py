@@ -83,7 +83,7 @@ def test_contact_fractions_on_a_conveyor_are_the_simulated_times_over_t_max(conv
 
 def test_below_liftoff_on_a_conveyor_particles_from_rest_stay_in_contact(conveyor_store):
     # 50 Hz on the floor thrown at 30 deg: the floor never lets go of a particle at rest
-    # (bbb.liftoff); Coulomb particles slide and fly only off the other wall of a cusp
+    # (bbb.analysis.liftoff_onset); Coulomb particles slide and fly only off the other wall of a cusp
     _, path = conveyor_store
     table = reduce_store(path, path.parent / "tables", echo=lambda s: None)["contact"]
     rest = table[table.family == "rest"].iloc[0]
@@ -101,7 +101,7 @@ def assert_fractions_are_the_simulated_times(study, path) -> None:
         held, sliding = [], []
         for ci in range(acc.n_chunks):
             # on the store's sampling grid: a sliding stretch ends its steps on the sample
-            # times (bbb.contact.slide), so another grid takes other steps (docs/physics.md)
+            # times (bbb.dynamics.slide), so another grid takes other steps (docs/physics.md)
             run = simulate(study.params(f), acc.chunk_size, acc.t_max,
                            study.seed_sequence(f, fam, ci), numerics=acc.numerics(),
                            sample_times=study.sample_times(), **fam.simulate_kwargs())

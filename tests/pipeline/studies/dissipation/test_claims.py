@@ -4,7 +4,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.claims.record import evaluate_claim
+from pipeline.claims.claim import evaluate_claim
 from pipeline.studies.dissipation.claims import CLAIMS, threshold_frequency
 from pipeline.studies.dissipation.cuts import compare_cut
 

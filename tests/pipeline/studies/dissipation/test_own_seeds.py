@@ -71,7 +71,7 @@ def test_the_own_seed_line_is_other_particles_than_figure2s():
 def test_a6cs_note_gives_the_chance_of_as_many_disagreements_between_equal_curves():
     """2 of 25 disagreeing: P(X ≥ 2), X ~ Binomial(25, 0.05) = 1 − 0.95²⁵ − 25 · 0.05 · 0.95²⁴
     (about 0.36); with none disagreeing, no note."""
-    from pipeline.claims.record import evaluate_claim
+    from pipeline.claims.claim import evaluate_claim
     from pipeline.studies.dissipation.claims import CLAIMS
 
     a6c = next(c for c in CLAIMS if c.id == "A6c")

@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 
 from pipeline.claims.measures import onset
-from pipeline.claims.record import evaluate as judge_claims
+from pipeline.claims.claim import evaluate as judge_claims
 from pipeline.studies.klages2004 import STUDY
 from pipeline.studies.klages2004.claims import CLAIMS, context
 from pipeline.studies.report import write_report as write_whole_report
@@ -123,9 +123,9 @@ def test_the_report_states_parameters_amplitude_accuracy_and_run_time(tmp_path_f
     assert "task time" in text and "runs and reductions behind it: 12 s" in text
 
 
-# --- the generic verdict rule (pipeline.claims.record) on synthetic numbers --------------------------
+# --- the generic verdict rule (pipeline.claims.claim) on synthetic numbers --------------------------
 from pipeline.claims.measures import extremum  # noqa: E402
-from pipeline.claims.record import Band, Claim, Quantity, combine, judge  # noqa: E402
+from pipeline.claims.claim import Band, Claim, Quantity, combine, judge  # noqa: E402
 
 BAND = Band.around(60.0, 2.0, "test")
 

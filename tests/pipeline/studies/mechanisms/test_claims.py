@@ -11,7 +11,7 @@ import pandas as pd
 import pytest
 
 from bbb.analysis.greenkubo import expansion
-from pipeline.claims.record import evaluate_claim
+from pipeline.claims.claim import evaluate_claim
 from pipeline.studies.mechanisms.claims import CLAIMS, EXTREMA
 from pipeline.tables.mechanisms import _with_contrasts
 

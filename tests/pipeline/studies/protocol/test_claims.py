@@ -9,7 +9,7 @@ import math
 import pandas as pd
 
 from bbb.params import Params
-from pipeline.claims.record import evaluate
+from pipeline.claims.claim import evaluate
 from pipeline.studies.klages2004.claims import CLAIMS, context
 from pipeline.studies.protocol.claims import reproducing, verdicts_table
 from pipeline.studies.protocol.tables import protocol_name

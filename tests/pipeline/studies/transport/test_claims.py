@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from pipeline.claims.record import evaluate
+from pipeline.claims.claim import evaluate
 from pipeline.studies.transport.claims import (
     CLAIMS,
     COMBINED,

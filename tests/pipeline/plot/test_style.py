@@ -1,8 +1,8 @@
-"""The house style of the studies' figures (pipeline.studies.figure_style)."""
+"""The house style of every figure (pipeline.plot.style)."""
 
 from __future__ import annotations
 
-from pipeline.studies.figure_style import FAMILY_COLORS, family_color
+from pipeline.plot.style import FAMILY_COLORS, family_color
 
 
 def test_families_without_a_colour_of_their_own_get_distinct_colours_not_taken_by_named_ones():

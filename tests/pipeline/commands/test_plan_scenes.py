@@ -1,4 +1,4 @@
-"""`bbb scenes` (pipeline/commands/plan.py): one line per shipped scene with its study,
+"""`bbb scenes` (pipeline/commands/plan_scenes.py): one line per shipped scene with its study,
 description and cost, the cost read from `bbb plan`'s pilot cache, never measured unless
 asked (--cost)."""
 
@@ -8,7 +8,7 @@ import os
 from pathlib import Path
 
 from pipeline.cli import main
-from pipeline.commands.plan import study_cost
+from pipeline.commands.plan_scenes import study_cost
 from pipeline.execute.pilot import pilot_rates
 from pipeline.execute.plan import predict
 from pipeline.workflow.load import parse_workflow

@@ -1,4 +1,4 @@
-"""bbb.analysis.liftoff: the lowest lift-off frequency, against Γ = 1 and against the kernel itself."""
+"""bbb.analysis.liftoff_onset: the lowest lift-off frequency, against Γ = 1 and against the kernel itself."""
 
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from bbb import Params, simulate
-from bbb.analysis.liftoff import liftoff_frequency
+from bbb.analysis.liftoff_onset import liftoff_frequency
 
 
 def test_a_flat_floor_vibrated_vertically_lets_go_at_gamma_one():
