@@ -21,8 +21,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
+from .claim import Row
 from .markdown import markdown_table, md_cell
-from .record import Row
 
 __all__ = ["LAYOUTS", "Section", "section_lines", "verdict_lines", "summary_line"]
 

@@ -26,8 +26,8 @@ import numpy as np
 import pandas as pd
 
 from ..claims.changes import HEADING, changes_section, previous_report
-from ..claims.markdown import md_cell
 from ..claims.claim import Row
+from ..claims.markdown import md_cell
 from ..tables.collisions import as_store
 from .interface import Study
 from .registry import studies as registered

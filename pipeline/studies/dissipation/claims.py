@@ -75,8 +75,8 @@ import pandas as pd
 
 from bbb.analysis.stats.proportion import share_difference, wilson
 
-from ...claims.rank import rank_trend
 from ...claims.claim import POSITIVE, Band, Claim, Measured, Part, Quantity, judge, measure
+from ...claims.rank import rank_trend
 from .cases import (
     cuts_cases,
     cuts_consistency_cases,

@@ -18,9 +18,9 @@ import pandas as pd
 from bbb import Params
 from bbb.analysis.period1 import frequency_at, gamma_1, gamma_prime
 
+from ...claims.claim import Quantity
 from ...claims.curves import curve_extrema
 from ...claims.measures import grid_step, onset_ci
-from ...claims.claim import Quantity
 
 __all__ = ["COLS", "THRESHOLDS", "threshold_frequency", "listed_alphas", "judged_lines", "onset",
            "first_max_above", "first_reaching", "cut"]

@@ -18,8 +18,8 @@ import numpy as np
 
 from bbb.analysis.period1 import frequency_at, gamma_prime
 
-from ...claims.measures import extremum, growth, onset_measure, table_value
 from ...claims.claim import POSITIVE, Band, Claim
+from ...claims.measures import extremum, growth, onset_measure, table_value
 
 # the paper's own measures, held by the claims below; K_TOL, MAIN, families and
 # spiral_closeness stay importable from here

@@ -16,9 +16,9 @@ import pandas as pd
 from bbb.analysis.approx import spiral
 from bbb.analysis.locking import creep_speed, flight_time_max, flight_times
 
+from ...claims.claim import Band, Claim, Measured, Part, Quantity, combine, judge, measure
 from ...claims.curves import DEPTH_FRACTION, curve_columns, curve_extrema, families
 from ...claims.measures import row_at
-from ...claims.claim import Band, Claim, Measured, Part, Quantity, combine, judge, measure
 from ...tables.collisions import as_store, states
 
 __all__ = ["MAIN", "context", "K_TOL", "DEPTH_FRACTION", "families", "spiral_closeness", "curve_columns",

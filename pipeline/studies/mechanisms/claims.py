@@ -37,8 +37,8 @@ import pandas as pd
 
 from bbb.analysis.gk_contrast import Contrast, calibrated_rule, carrier, combine_sides
 
-from ...claims.measures import row_at
 from ...claims.claim import Band, Claim, Measured, Part, Quantity, measure
+from ...claims.measures import row_at
 from .cases import (
     carrier_cases,
     lyapunov_cases,

@@ -10,11 +10,7 @@ from pathlib import Path
 
 import pytest
 
-<<<<<<< HEAD
 from pipeline.studies.registry import study
-=======
-from pipeline.studies.klages2004.make_figures import SCENES
->>>>>>> h37-house
 from pipeline.workflow.scenes import draft_text, load_scene, scene_label, scene_names, scene_path
 from pipeline.workflow.scenes import toml_dump as _toml_dump
 
@@ -65,7 +61,7 @@ def test_the_draft_of_a_target_driven_scene_keeps_a_loose_target():
 
 def test_the_run_log_records_paths_relative_to_the_repository(tmp_path):
 
-    from pipeline.studies.klages2004.make_figures import run_log_entry
+    from pipeline.make_figures import run_log_entry
     from pipeline.workflow.scenes import ROOT
 
     for store in (ROOT / "runs" / "figure2.zarr", tmp_path / "runs" / "figure2.zarr"):
@@ -93,11 +89,7 @@ ROOT = Path(__file__).resolve().parents[4]
 
 
 def test_a_wheel_ships_every_scene_and_module(installed, tmp_path):
-<<<<<<< HEAD
     code = ("import pipeline, bbb, json; from pipeline.make_figures import scenes; SCENES = scenes(); "
-=======
-    code = ("import pipeline, bbb, json; from pipeline.studies.klages2004.make_figures import SCENES; "
->>>>>>> h37-house
             "from pipeline.workflow.scenes import load_scene, scene_names\n"
             "[load_scene(n, fast=f) for n in SCENES for f in (False, True)]\n"
             "print(json.dumps({'file': pipeline.__file__, 'scenes': scene_names(), "
@@ -123,7 +115,7 @@ def test_a_wheel_ships_every_scene_and_module(installed, tmp_path):
 def test_the_installed_make_figures_fast_runs_from_outside_the_repository(installed, tmp_path):
     # every scene at draft accuracy, every figure and REPORT.md: 7.4 min measured on this
     # shared 2-core machine (2026-11-23, numba compiling cold in the new environment)
-    run_outside(installed, "import sys; from pipeline.studies.klages2004.make_figures import main; "
+    run_outside(installed, "import sys; from pipeline.make_figures import main; "
                  "sys.exit(main(['--fast', '--no-progress', '--out', 'figs', '--runs', 'runs']))",
                  tmp_path)
     assert (tmp_path / "figs" / "REPORT.md").exists()

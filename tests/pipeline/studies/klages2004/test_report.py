@@ -8,8 +8,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from pipeline.claims.measures import onset
 from pipeline.claims.claim import evaluate as judge_claims
+from pipeline.claims.measures import onset
 from pipeline.studies.klages2004 import STUDY
 from pipeline.studies.klages2004.claims import CLAIMS, context
 from pipeline.studies.report import write_report as write_whole_report
@@ -124,8 +124,8 @@ def test_the_report_states_parameters_amplitude_accuracy_and_run_time(tmp_path_f
 
 
 # --- the generic verdict rule (pipeline.claims.claim) on synthetic numbers --------------------------
-from pipeline.claims.measures import extremum  # noqa: E402
 from pipeline.claims.claim import Band, Claim, Quantity, combine, judge  # noqa: E402
+from pipeline.claims.measures import extremum  # noqa: E402
 
 BAND = Band.around(60.0, 2.0, "test")
 
