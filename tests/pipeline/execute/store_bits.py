@@ -46,7 +46,7 @@ preset = "draft"
 n_particles = 8
 chunk_size = 4
 t_max = 3.0
-sample_dt = 0.5
+sample_dt = 0.05
 n_resamples = 50
 {more}"""
 
