@@ -110,7 +110,8 @@ class Observable:
     def settings(self, obs) -> dict | None:
         """Its ``[observables.NAME]`` keys as the scene gave them (None: not selected); only
         for a plug-in with :attr:`scene`."""
-        return dict(obs.more_of(self.name)) if self.scene is not None else None
+        given = obs.more_of(self.name) if self.scene is not None else None
+        return dict(given) if given is not None else None
 
     def sample_times(self, study, f: float) -> np.ndarray | None:
         """The times (s) at which a chunk at ``f`` must know the positions (None: none)."""

@@ -65,3 +65,21 @@ def test_the_dask_task_names_no_particular_observable():
     imported = {n.module for n in ast.walk(tree) if isinstance(n, ast.ImportFrom)
                 and n.module and "observables" in n.module}
     assert imported == {"workflow.observables.contract", "workflow.observables.registry"}
+
+
+def test_a_plug_in_with_its_own_table_is_on_exactly_when_the_scene_gives_that_table():
+    from dataclasses import dataclass
+
+    from pipeline.workflow.keys import Observables
+    from pipeline.workflow.observables.contract import Observable
+
+    @dataclass(frozen=True)
+    class Keys:
+        pass
+
+    class Mine(Observable):
+        name, scene = "mine", Keys
+
+    assert not Mine().on(Observables(positions=True))
+    assert Mine().on(Observables(positions=True, more=(("mine", ()),)))
+    assert Mine().settings(Observables(positions=True, more=(("mine", (("k", 2),)),))) == {"k": 2}
