@@ -128,7 +128,8 @@ def test_the_api_gives_the_tables_bbb_reduce_writes(every):
     assert list(got) == list(written)
     for name, df in got.items():
         pd.testing.assert_frame_equal(df, pd.read_parquet(out / f"{name}.parquet"), check_exact=True)
-    assert list(reduced(path)) == ["counters", "diffusion", "contact", "mechanisms"]
+    assert list(reduced(path)) == ["counters", "diffusion", "contact", "mechanisms",
+                                   *(o.name for o in own_tables())]
 
 
 def test_the_api_attaches_every_table_with_the_units_of_the_parquet_metadata(every):
