@@ -16,6 +16,7 @@ from .collisions import Collisions
 from .contact import Contact
 from .contract import Observable
 from .counters import Counters
+from .impacts import Impacts
 from .jumps import Jumps
 from .lyapunov import Lyapunov
 from .positions import Positions
@@ -25,6 +26,7 @@ __all__ = ["OBSERVABLES", "selected", "by_name", "scene_tables", "growing_dims",
 
 OBSERVABLES: tuple[Observable, ...] = (
     Positions(), Collisions(), Counters(), Contact(), Jumps(), Lyapunov(), CollisionJumps(),
+    Impacts(),
 )
 
 
