@@ -12,7 +12,9 @@ Per particle, over its first ``[observables.impacts] collisions`` recorded colli
 
 Both are sums, so the (point, family) table adds them over every done particle and the
 pooled statistics are exact functions of them: the share of impacts in the upward half of
-the period and the Pearson correlation of the pairs at each lag, each with a percentile
+the period, the Pearson correlation of the pooled pairs at each lag and the correlation about
+each particle's own means (``vx_within``: the memory within a trajectory, which differences
+between the particles' mean vx do not enter), each with a percentile
 bootstrap interval over particles (independent by construction; ``[analysis] ci``,
 ``[accuracy] n_resamples``).  A statistic that cannot be measured (no impacts, no pairs, no
 variance) is blank and ``impacts_status`` says why; an interval of zero width is blank too.
@@ -64,7 +66,9 @@ class Impacts(Observable):
          "(π/2, 3π/2))"),
         ("phase_<n>", False, "1", "share of them with ω t mod 2π in [2π n/24, 2π (n+1)/24)"),
         ("vx_corr_<n>", True, "1", "Pearson correlation of the post-collision vx n "
-         "collisions apart, pooled pairs"),
+         "collisions apart, pooled pairs (differences between the particles' mean vx count)"),
+        ("vx_within_<n>", True, "1", "the same about each particle's own means (covariances "
+         "and variances summed over the particles): the memory within a trajectory"),
         ("impacts_status", False, "", "why a blank statistic is blank (empty: all measured)"),
     )
 
@@ -147,6 +151,25 @@ def pearson(m: np.ndarray) -> np.ndarray:
     return np.where((n >= 2) & (va > 0) & (vb > 0), r, np.nan)
 
 
+def centred(m: np.ndarray) -> np.ndarray:
+    """Each particle's pair sums about its own means, from its sums m (particle, lags, 6):
+    (cov, var_a, var_b) = (Σab − Σa Σb / n, Σa² − (Σa)² / n, Σb² − (Σb)² / n), 0 without a
+    pair: float64 (3, particle, lags).  A particle counted k times has k times each."""
+    n, sa, sb, saa, sbb, sab = np.moveaxis(m, -1, 0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        out = np.stack([sab - sa * sb / n, saa - sa * sa / n, sbb - sb * sb / n])
+    return np.where(n > 0, out, 0.0)
+
+
+def within(c: np.ndarray) -> np.ndarray:
+    """The correlation about each particle's own means from summed centred sums c (3, ...):
+    Σ cov / sqrt(Σ var_a Σ var_b) (NaN: no variance)."""
+    cov, va, vb = c
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r = cov / np.sqrt(va * vb)
+    return np.where((va > 0) & (vb > 0), r, np.nan)
+
+
 def impact_row(counts: np.ndarray, moments: np.ndarray, rng: np.random.Generator,
                n_resamples: int, ci: float) -> dict:
     """The table's columns of one (point, family) from its particles' sums: counts
@@ -171,16 +194,26 @@ def impact_row(counts: np.ndarray, moments: np.ndarray, rng: np.random.Generator
     for b in range(BINS):
         row[f"phase_{b}"] = float(share[b])
     boot = pearson(np.einsum("rp,plm->rlm", w, moments)) if P else None
-    for j in range(lags):
-        row[f"vx_corr_{j + 1}"] = float(corr[j])
-        if np.isnan(corr[j]):
-            row[f"vx_corr_{j + 1}_lo"] = row[f"vx_corr_{j + 1}_hi"] = np.nan
-            why.append(f"vx_corr_{j + 1}: fewer than two pairs or no variance")
-            continue
-        row[f"vx_corr_{j + 1}_lo"], row[f"vx_corr_{j + 1}_hi"] = _bounds(
-            boot[:, j], q, f"vx_corr_{j + 1}", why)
+    _lagged(row, "vx_corr", corr, boot, q, why)
+    c = centred(moments)
+    mine = within(c.sum(axis=1)) if P else np.full(lags, np.nan)
+    boot_w = within(np.einsum("rp,cpl->crl", w, c)) if P else None
+    _lagged(row, "vx_within", mine, boot_w, q, why)
     row["impacts_status"] = "; ".join(why)
     return row
+
+
+def _lagged(row: dict, name: str, values: np.ndarray, boot: np.ndarray | None, q: float,
+            why: list[str]) -> None:
+    """Columns ``<name>_<lag>`` (+ CI) for lags 1, 2, …: blank and said where not measured."""
+    for j, v in enumerate(values):
+        col = f"{name}_{j + 1}"
+        row[col] = float(v)
+        if np.isnan(v):
+            row[f"{col}_lo"] = row[f"{col}_hi"] = np.nan
+            why.append(f"{col}: fewer than two pairs or no variance")
+            continue
+        row[f"{col}_lo"], row[f"{col}_hi"] = _bounds(boot[:, j], q, col, why)
 
 
 def _bounds(values: np.ndarray, q: float, name: str, why: list[str]) -> tuple[float, float]:

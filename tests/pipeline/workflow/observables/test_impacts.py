@@ -13,10 +13,12 @@ from pipeline.tables.units import UNKNOWN, column_unit
 from pipeline.workflow.load import WorkflowError, parse_workflow
 from pipeline.workflow.observables.impacts import (
     BINS,
+    centred,
     impact_row,
     pair_moments,
     pearson,
     phase_counts,
+    within,
 )
 
 from ...execute.store_bits import _BASE
@@ -64,6 +66,25 @@ def test_an_ar1_velocity_series_gives_the_correlation_rho_to_the_lag():
     assert pearson(m) == pytest.approx([rho, rho**2, rho**3], abs=0.01)
 
 
+def test_within_particle_correlation_sees_rho_where_particle_offsets_make_the_pooled_one_near_1():
+    # analytic: AR(1) noise (rho at lag 1) about a mean vx of its own per particle, far apart
+    rng = np.random.default_rng(4)
+    rho, P, R = -0.4, 100, 300
+    noise = np.empty((P, R))
+    noise[:, 0] = rng.normal(size=P) / np.sqrt(1 - rho**2)
+    for i in range(1, R):
+        noise[:, i] = rho * noise[:, i - 1] + rng.normal(size=P)
+    vx = noise + rng.normal(scale=50.0, size=(P, 1))
+    m = pair_moments(vx, np.full(P, R), 1)
+    assert pearson(m.sum(axis=0))[0] > 0.99
+    assert within(centred(m).sum(axis=1))[0] == pytest.approx(rho, abs=0.02)
+    # and it is the correlation of the pairs centred on each particle's own pair means
+    a, b = vx[:, :-1], vx[:, 1:]
+    a, b = a - a.mean(axis=1, keepdims=True), b - b.mean(axis=1, keepdims=True)
+    want = (a * b).sum() / np.sqrt((a * a).sum() * (b * b).sum())
+    assert within(centred(m).sum(axis=1))[0] == pytest.approx(want, rel=1e-9)
+
+
 def test_a_particle_set_without_impacts_leaves_every_statistic_blank_and_says_why():
     row = impact_row(np.zeros((3, BINS), np.int64), np.zeros((3, 2, 6)),
                      np.random.default_rng(0), 50, 0.95)
@@ -98,6 +119,11 @@ def test_a_scene_s_impacts_table_is_read_off_its_stored_collisions(tmp_path):
         a = np.concatenate([coll[p, : n[p] - 1, 3] for p in range(len(n)) if n[p] > 1])
         b = np.concatenate([coll[p, 1: n[p], 3] for p in range(len(n)) if n[p] > 1])
         assert row.vx_corr_1 == pytest.approx(np.corrcoef(a, b)[0, 1], rel=1e-9)
+        pairs = [(coll[p, : n[p] - 1, 3], coll[p, 1: n[p], 3]) for p in range(len(n)) if n[p] > 1]
+        a = np.concatenate([x - x.mean() for x, _ in pairs])
+        b = np.concatenate([y - y.mean() for _, y in pairs])
+        assert row.vx_within_1 == pytest.approx((a * b).sum() / np.sqrt((a * a).sum() * (b * b).sum()),
+                                                rel=1e-9)
 
 
 def test_a_scene_with_lags_zero_is_refused_naming_the_key():
