@@ -3,23 +3,27 @@ store chunk.
 
 :func:`compute_chunk` is all a worker runs (besides :func:`warm_numba`): it checks that the
 worker's kernel is the store's, simulates the chunk's particles from the chunk's seed
-(:meth:`pipeline.workflow.study.Study.seed_sequence`), adds the [jumps] and [lyapunov] observables,
-and writes the chunk, marking it done last.  The client side -- the cluster, which chunks to
-compute, resume, failures -- is :mod:`pipeline.execute.run`.
+(:meth:`pipeline.workflow.study.Study.seed_sequence`) with what the scene's observables ask of
+the run (sample times, recorded collisions), lets each observable compute its arrays from it
+(:mod:`pipeline.workflow.observables`), and writes the chunk, marking it done last.  The
+client side -- the cluster, which chunks to compute, resume, failures -- is
+:mod:`pipeline.execute.run`.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import functools
 import socket
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..store.layout import n_periods
 from ..store.study_store import KERNEL_ATTRS, StudyStore
 from ..workflow.identity import f_key
+from ..workflow.observables.contract import Chunk
+from ..workflow.observables.registry import selected
 from ..workflow.study import Study
 
 __all__ = ["ChunkResult", "InjectedFailure", "KernelMismatch", "compute_chunk", "warm_numba",
@@ -62,25 +66,19 @@ def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = Fal
     fam = study.families[mi]
     f = point.f
     _check_kernel(store)
-    acc, obs = study.accuracy, study.observables
-    times, pick, period_cols = _sample_grid(study, f)
+    acc, on = study.accuracy, selected(study)
+    times = _sample_times(study, f, on)
+    initial = _initial(study, point, fam, ci)
     run = simulate(
         point.params, acc.chunk_size, acc.t_max, study.seed_sequence(f, fam, ci),
-        sample_times=times,
-        record_collisions=_rows_recorded(obs), record_from=obs.collisions_from,
-        numerics=acc.numerics(), **_initial(study, point, fam, ci),
+        sample_times=times, record_collisions=max((o.rows(study) for o in on), default=0),
+        record_from=max((o.rows_from(study) for o in on if o.rows(study)), default=0.0),
+        numerics=acc.numerics(), **initial,
     )
-    extra = {}
-    if obs.collisions_x_jumps:
-        run, extra = _split_collision_jumps(run, obs)
-    if obs.jumps:
-        extra["jumps"] = np.diff(run.positions[:, period_cols], axis=1).astype(np.float32)
-    if pick is not None:
-        run = dataclasses.replace(run, positions=run.positions[:, pick])
-    if obs.lyapunov:
-        extra.update(_lyapunov_chunk(study, point, fam, ci))
+    chunk = Chunk(study, point, fam, ci, run, times, initial)
+    values = {name: v for o in on for name, v in o.compute(chunk).items()}
     seconds = time.perf_counter() - t0
-    store.write_chunk(fi, mi, ci, run, seconds, mark_done=not fail, extra=extra)
+    store.write_chunk(fi, mi, ci, values, seconds, mark_done=not fail)
     if fail:
         raise InjectedFailure(f"{FAIL_ENV} asked this chunk to fail after writing its data")
     return ChunkResult((f, fam.name, ci), int(run.counters["collisions"].sum()), seconds,
@@ -102,62 +100,13 @@ def _initial(study: Study, point, fam, ci: int) -> dict:
                                     **kw)}
 
 
-def _sample_grid(study: Study, f: float) -> tuple[np.ndarray | None, np.ndarray | None,
-                                                  np.ndarray | None]:
-    """The sample times of one chunk's simulation: the positions' grid and, with jumps, the
-    floor periods n/f, n = 0 … floor(t_max f).  Returns (times, columns of the positions
-    grid or None when it is all of them, columns of the period grid or None)."""
-    obs = study.observables
-    pos = study.sample_times() if obs.positions else None
-    if not obs.jumps:
-        return pos, None, None
-    periods = np.minimum(np.arange(n_periods(study.accuracy.t_max, f) + 1) / f,
-                         study.accuracy.t_max)
-    times = periods if pos is None else np.union1d(pos, periods)
-    pick = np.searchsorted(times, pos) if pos is not None else None
-    return times, pick, np.searchsorted(times, periods)
-
-
-def _rows_recorded(obs) -> int:
-    """Collisions recorded per particle: [collisions] record, or x_jumps + 1 when more."""
-    return max(obs.collisions_record or 0, (obs.collisions_x_jumps + 1) if obs.collisions_x_jumps
-               else 0)
-
-
-def _split_collision_jumps(run, obs) -> tuple:
-    """The per-collision x and t jumps of the recording (float32, ``x_jumps`` per particle),
-    and the run cut to the first ``record`` rows for the collisions array."""
-    from bbb.analysis.greenkubo import collision_jumps
-
-    J = obs.collisions_x_jumps
-    dx, dt = collision_jumps(run.collisions_dense[:, : J + 1], np.minimum(run.n_recorded, J + 1))
-    K = obs.collisions_record
-    cut = dataclasses.replace(run, collisions_dense=run.collisions_dense[:, :K],
-                              n_recorded=np.minimum(run.n_recorded, K))
-    return cut, {"collision_dx": dx.astype(np.float32), "collision_dt": dt.astype(np.float32)}
-
-
-def _lyapunov_chunk(study: Study, point, fam, ci: int) -> dict[str, np.ndarray]:
-    """λ (1/s, per collision) of this chunk's particles among the first
-    ``lyapunov_particles`` of the ensemble, from the same initial states as the chunk."""
-    from bbb.analysis.lyapunov import lyapunov
-    from bbb.ensemble import InitialState, initial_state
-
-    obs, acc = study.observables, study.accuracy
-    first = ci * acc.chunk_size
-    k = min(acc.chunk_size, obs.lyapunov_particles - first)
-    if k <= 0:
-        return {}
-    p = point.params
-    kw = _initial(study, point, fam, ci)
-    st = kw.pop("initial")
-    if isinstance(st, str):
-        st = initial_state(p, acc.chunk_size, study.seed_sequence(point.f, fam, ci), st, **kw)
-    sub = InitialState(**{fd.name: getattr(st, fd.name)[:k] for fd in dataclasses.fields(st)})
-    lam = lyapunov(p, k, acc.t_max, 0, sub, discard=obs.lyapunov_discard, d0=obs.lyapunov_d0,
-                   numerics=acc.numerics(), n_resamples=10)
-    return {"lyapunov": lam.lam_i, "lyapunov_per_collision": lam.per_coll_i,
-            "lyapunov_x_range": lam.x_range}
+def _sample_times(study: Study, f: float, on) -> np.ndarray | None:
+    """The sample times (s) of one chunk's simulation at ``f``: those every selected
+    observable asks for, merged (None: none asks)."""
+    asked = [t for t in (o.sample_times(study, f) for o in on) if t is not None]
+    if len(asked) <= 1:
+        return asked[0] if asked else None
+    return functools.reduce(np.union1d, asked)
 
 
 def store_argument(store: StudyStore) -> StudyStore:
@@ -221,7 +170,9 @@ def warm_numba(study: Study) -> float:
     from bbb.simulate import simulate
 
     t0 = time.perf_counter()
-    obs = study.observables
+    on = selected(study)
+    asks_times = any(o.sample_times(study, p.f) is not None for o in on for p in study.points[:1])
+    records = any(o.rows(study) for o in on)
     t = min(0.05, study.accuracy.t_max)
     variants = {}
     for p in study.points:
@@ -229,7 +180,7 @@ def warm_numba(study: Study) -> float:
     for point in variants.values():
         for fam in study.families:
             simulate(point.params, 2, t, 0,
-                     sample_times=np.array([0.0, t]) if obs.positions else None,
-                     record_collisions=2 if obs.collisions else 0, record_from=0.0,
+                     sample_times=np.array([0.0, t]) if asks_times else None,
+                     record_collisions=2 if records else 0, record_from=0.0,
                      numerics=study.accuracy.numerics(), **fam.simulate_kwargs())
     return time.perf_counter() - t0

@@ -25,8 +25,8 @@ import zarr
 from bbb.params import Params
 from bbb.surface import cell_of, depth
 
+from ..workflow.observables.counters import COUNTERS
 from ..workflow.study import Study
-from .layout import COUNTERS
 
 __all__ = ["chunk_problems", "ON_SURFACE_MM"]
 

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 import zarr
 
+from ..workflow.observables.registry import growing_dims
 from .layout import DIGEST_NONE, chunk_digest
 
 __all__ = ["Damage", "read_markers", "read_checked", "scan", "checked_arrays", "runs"]
@@ -102,7 +103,8 @@ def _check_run(g, arr, name, k, fi, mi, c0, c1, cs, block, damage: list[Damage],
         want = (rows[:, k] if rows is not None else
                 np.array([_digest_of(g, fi, mi, ci, k, damage) for ci in range(c0, c1)]))
     parts = []
-    fill, trim = arr.fill_value, "period" in (arr.metadata.dimension_names or ())
+    fill = arr.fill_value
+    trim = bool(growing_dims() & set(arr.metadata.dimension_names or ()))
     for ci in range(c0, c1):
         if block is not None:
             part = block[(ci - c0) * cs: (ci - c0 + 1) * cs]

@@ -37,6 +37,11 @@ collision_dx   (frequency, family, particle, collision_jump)  mm  f4  (1, 1, chu
 collision_dt   (frequency, family, particle, collision_jump)  s   f4  (1, 1, chunk_size, J)  [x_jumps]
 =============  ==========================================  ======  ===========================
 
+The coordinates and data arrays marked [positions], [collisions], [contact], [jumps],
+[lyapunov] and [x_jumps] (and the ``n_<counter>`` ones) are those the scene's observables
+declare (:mod:`pipeline.workflow.observables`), created in the registry's order; this module
+lays out the rest (points, families, particles, chunks, digests, done markers, stops).
+
 Every array's chunks end in a CRC-32C checksum of their stored bytes (the ``crc32c``
 codec: Zarr refuses to decode a chunk whose bytes changed).  The ``A`` arrays with a
 ``particle`` dimension (``array``, the coordinate of ``digest``, names them in this order) are
@@ -64,7 +69,6 @@ before is rewritten.
 
 from __future__ import annotations
 
-import math
 import os
 
 import google_crc32c
@@ -72,15 +76,13 @@ import numpy as np
 import zarr
 from zarr.codecs import Crc32cCodec, ZstdCodec
 
-from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES
-
 from ..workflow.identity import f_key
 from ..workflow.keys import PARAM_LONG_NAMES, PARAM_UNITS
+from ..workflow.observables.registry import selected
 from ..workflow.study import Study
 
-__all__ = ["COUNTERS", "CODECS", "chunk_digest", "DIGEST_NONE", "default_store_path", "FIELD_UNITS",
-           "collision_field_units", "create_layout",
-           "n_periods", "OPEN", "TARGET", "ZERO", "CAP", "STOP_LEGEND"]
+__all__ = ["CODECS", "chunk_digest", "DIGEST_NONE", "default_store_path", "create_layout",
+           "OPEN", "TARGET", "ZERO", "CAP", "STOP_LEGEND"]
 
 OPEN, TARGET, ZERO, CAP = 0, 1, 2, 3
 #: stop_reason codes as stored (the store's ``stop_reason`` array and its ``legend``), each named
@@ -94,9 +96,6 @@ CODECS = (ZstdCodec(level=0, checksum=False), Crc32cCodec())
 #: ``digest`` of a chunk whose data were never completely written
 DIGEST_NONE = -1
 
-# Per-particle counters kept from bbb's SimRun.counters ('recorded' is stored as n_recorded).
-COUNTERS = tuple(c for c in COUNTER_NAMES if c != "recorded")
-
 
 def default_store_path(name: str) -> str:
     """The store of the study ``name`` when none is given: ``runs/<name>.zarr`` relative to
@@ -106,7 +105,7 @@ def default_store_path(name: str) -> str:
 
 def create_layout(g: zarr.Group, study: Study) -> None:
     """Create every array of ``study``'s store in the empty group ``g`` (no data written)."""
-    acc, obs = study.accuracy, study.observables
+    acc = study.accuracy
     F, M, N, C = len(study.points), len(study.families), acc.n_particles, acc.n_chunks
     cs = acc.chunk_size
     P0 = study.point_dim  # "frequency", or "point" for a grid
@@ -151,48 +150,13 @@ def create_layout(g: zarr.Group, study: Study) -> None:
           dim="family")
     coord("particle", np.arange(N), "int64", "", "particle index within the family")
     coord("chunk", np.arange(C), "int64", "", f"ensemble chunk of {cs} particles")
-    if obs.positions:
-        times = study.sample_times()
-        coord("time", times, "float64", "s", "sample time")
-        data("positions", (P0, "family", "particle", "time"), (F, M, N, len(times)),
-             (1, 1, cs, len(times)), "float64", np.nan, "mm", "horizontal position x")
-    if obs.collisions:
-        K = obs.collisions_record
-        coord("collision", np.arange(K), "int64", "", f"collision index from t = "
-              f"{obs.collisions_from:g} s")
-        units = ", ".join(collision_field_units())
-        coord("field", list(COLLISION_FIELDS), str, units, "post-collision state component")
-        data("collisions", (P0, "family", "particle", "collision", "field"),
-             (F, M, N, K, len(COLLISION_FIELDS)), (1, 1, cs, K, len(COLLISION_FIELDS)), "float64",
-             np.nan, units, f"post-collision ({', '.join(COLLISION_FIELDS)}), NaN-padded")
-        data("n_recorded", (P0, "family", "particle"), (F, M, N), (1, 1, cs), "int64",
-             0, "", "valid rows of collisions")
-    for name in COUNTERS:
-        data(f"n_{name}", (P0, "family", "particle"), (F, M, N), (1, 1, cs), "int64", 0,
-             "", f"number of {name} up to t_max")
-    if obs.contact:
-        for name in CONTACT_TIME_NAMES:
-            data(f"{name}_time", (P0, "family", "particle"), (F, M, N), (1, 1, cs),
-                 "float64", np.nan, "s", f"time {name} in sustained contact up to t_max")
-    if obs.jumps:
-        P = max(n_periods(study.accuracy.t_max, p.f) for p in study.points)
-        coord("period", np.arange(P), "int64", "", "floor period n: jump from n/f to (n+1)/f")
-        data("jumps", (P0, "family", "particle", "period"), (F, M, N, P), (1, 1, cs, P),
-             "float32", np.nan, "mm", "displacement over floor period n, NaN beyond t_max f")
-    if obs.lyapunov:
-        data("lyapunov", (P0, "family", "particle"), (F, M, N), (1, 1, cs), "float64",
-             np.nan, "1/s", "largest Lyapunov exponent per unit time (NaN: not measured)")
-        data("lyapunov_per_collision", (P0, "family", "particle"), (F, M, N),
-             (1, 1, cs), "float64", np.nan, "1", "largest Lyapunov exponent per collision")
-        data("lyapunov_x_range", (P0, "family", "particle"), (F, M, N), (1, 1, cs),
-             "float64", np.nan, "mm", "max - min of x at the period ends of the λ window")
-    if obs.collisions and obs.collisions_x_jumps:
-        J = obs.collisions_x_jumps
-        coord("collision_jump", np.arange(J), "int64", "", "jump n: recorded collision n to n + 1")
-        for name, unit, what in (("collision_dx", "mm", "x"), ("collision_dt", "s", "t")):
-            data(name, (P0, "family", "particle", "collision_jump"), (F, M, N, J),
-                 (1, 1, cs, J), "float32", np.nan, unit,
-                 f"{what} of recorded collision n + 1 minus {what} of collision n, NaN beyond")
+    for o in selected(study):  # each observable's coordinates, then its data arrays
+        for c in o.coords(study):
+            coord(c.name, c.values, c.dtype, c.units, c.long_name, dim=c.dim)
+        for a in o.arrays(study):
+            data(a.name, (P0, "family", "particle", *(d for d, _ in a.trailing)),
+                 (F, M, N, *(n for _, n in a.trailing)), (1, 1, cs, *(n for _, n in a.trailing)),
+                 a.dtype, a.fill, a.units, a.long_name, **a.extra)
     coord("array", checked, str, "", "data array whose chunk a digest covers")
     data("digest", (P0, "family", "chunk", "array"), (F, M, C, len(checked)),
          (1, 1, 1, len(checked)), "int64", DIGEST_NONE, "",
@@ -224,18 +188,3 @@ def chunk_digest(values: np.ndarray, fill, trim: bool = False) -> int:
     a = np.ascontiguousarray(a, dtype=a.dtype.newbyteorder("<"))
     # the shape too: an all-fill chunk trimmed to nothing is not the empty chunk of another
     return google_crc32c.extend(google_crc32c.value(a.tobytes()), repr(a.shape).encode())
-
-
-def n_periods(t_max: float, f: float) -> int:
-    """Whole floor periods in t_max s at f Hz (the jumps of one particle)."""
-    return int(math.floor(t_max * f + 1e-9))
-
-
-#: units of the recorded collision fields (bbb.record.COLLISION_FIELDS), "1": dimensionless
-FIELD_UNITS = {"t": "s", "x": "mm", "y": "mm", "vx": "mm/s", "vy": "mm/s", "phase": "1"}
-
-
-def collision_field_units() -> tuple[str, ...]:
-    """Units of bbb.record.COLLISION_FIELDS in storage order ('?' for a field this module does
-    not know yet: tests/pipeline/store/test_study_store.py fails on it, so it is named here)."""
-    return tuple(FIELD_UNITS.get(name, "?") for name in COLLISION_FIELDS)

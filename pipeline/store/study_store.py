@@ -35,9 +35,11 @@ import numpy as np
 import zarr
 
 from bbb.provenance import kernel_identity
-from bbb.record import COLLISION_FIELDS, CONTACT_TIME_NAMES
+from bbb.record import COLLISION_FIELDS
 
 from ..workflow.identity import SEEDING  # noqa: F401  (importable from here, as before)
+from ..workflow.observables.counters import COUNTERS  # noqa: F401  (importable from here)
+from ..workflow.observables.registry import growing_dims, selected
 from ..workflow.study import Study
 from .attrs import (  # importable from here as before the split
     JSON_ATTRS,
@@ -54,21 +56,17 @@ from .attrs import (  # importable from here as before the split
 )
 from .integrity import Damage, checked_arrays, read_checked, read_markers, scan
 from .layout import (  # importable from here as before the split
-    COUNTERS,
     DIGEST_NONE,
-    FIELD_UNITS,
     chunk_digest,
-    collision_field_units,
     create_layout,
-    n_periods,
 )
 from .metadata import MetadataReport, inspect_metadata
 
 __all__ = ["StoreError", "StoreDamaged", "MetadataDamaged", "check_metadata", "StudyStore",
            "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
            "package_version", "read_attrs", "store_fingerprint", "JSON_ATTRS", "KERNEL_ATTRS",
-           # of pipeline.store.layout, importable from here too
-           "COUNTERS", "FIELD_UNITS", "collision_field_units", "create_layout", "n_periods"]
+           # of pipeline.store.layout and the counters observable, importable from here too
+           "COUNTERS", "create_layout"]
 
 class StoreError(ValueError):
     """A store that cannot be used as asked (wrong workflow, not a bbb store, unwritable)."""
@@ -302,22 +300,23 @@ class StudyStore:
                             self.study.families[d.mi].name, d.ci, d.why, n - 1)
 
     # -- writing ---------------------------------------------------------------------------
-    def write_chunk(self, fi: int, mi: int, ci: int, run: Any, seconds: float,
-                    mark_done: bool = True, extra: dict[str, np.ndarray] | None = None) -> None:
-        """Write one task's results (a bbb SimRun) into its own chunk of every array, then
-        its digest, then mark it done.  Indices: fi frequency, mi family, ci chunk; seconds:
-        its simulation time.
+    def write_chunk(self, fi: int, mi: int, ci: int, values: dict[str, np.ndarray],
+                    seconds: float, mark_done: bool = True) -> None:
+        """Write one task's results into its own chunk of every data array, then its digest,
+        then mark it done.  Indices: fi point, mi family, ci chunk; values: {array name: values
+        of the chunk's particles} (what the observables computed,
+        :func:`pipeline.workflow.observables.registry.chunk_values`; a shorter leading axis
+        fills the chunk's first particles, an absent array is fill); seconds: its simulation
+        time.
 
         Idempotent: Dask may run a task twice, and a rerun writes the same bytes.  Every data
         array's chunk is written whole (fill where the task has no value), so a damaged chunk
         file is overwritten, never decoded.
         mark_done=False leaves a written chunk unfinished (fault injection in tests).
-        extra: {array name: values for this chunk's particles (leading axis)} ([jumps],
-        [lyapunov]); a shorter leading axis fills the chunk's first particles.
         """
         g = self.group("r+")
         sl = self.chunk_particles(ci)
-        values = self._chunk_values(run, extra)
+        growing = growing_dims()
         digests = np.full(len(self.checked), DIGEST_NONE, dtype=np.int64)
         for k, name in enumerate(self.checked):
             arr = g[name]
@@ -327,25 +326,12 @@ class StudyStore:
                 a = np.asarray(a)
                 block[(slice(0, a.shape[0]), *(slice(0, n) for n in a.shape[1:]))] = a
             arr[fi, mi, sl] = block
-            digests[k] = chunk_digest(block, arr.fill_value, "period" in _dims(arr))
+            digests[k] = chunk_digest(block, arr.fill_value, bool(growing & set(_dims(arr))))
         g["digest"][fi, mi, ci] = digests
         g["chunk_seconds"][fi, mi, ci] = seconds
         # Only now, after every data array and its digest: the chunk is complete.
         if mark_done:
             g["done"][fi, mi, ci] = True
-
-    def _chunk_values(self, run: Any, extra: dict[str, np.ndarray] | None) -> dict[str, Any]:
-        """{array name: this chunk's values} of a SimRun and the extra observables."""
-        obs = self.study.observables
-        values: dict[str, Any] = {f"n_{name}": run.counters[name] for name in COUNTERS}
-        if obs.positions:
-            values["positions"] = run.positions
-        if obs.collisions:
-            values["collisions"] = run.collisions_dense
-            values["n_recorded"] = run.n_recorded
-        if obs.contact:
-            values.update({f"{name}_time": run.contact_time[name] for name in CONTACT_TIME_NAMES})
-        return {**values, **(extra or {})}
 
     def write_stop(self, fi: int, mi: int, n_chunks: int, reason: int) -> None:
         """Record that (frequency fi, family mi) stopped after ``n_chunks`` chunks, and why
@@ -372,24 +358,29 @@ class StudyStore:
             raise StoreError(f"{self.path}: cannot grow: the new points do not follow the "
                              "store's own")
         g = self.group("r+")
-        periods = None
-        if "jumps" in g:  # a higher frequency has more floor periods in t_max
-            periods = max(g["jumps"].shape[3],
-                          *(n_periods(study.accuracy.t_max, p.f) for p in new))
-        for _, arr in g.arrays():
+        # the observables' trailing axes that grow with the points (a higher frequency has
+        # more floor periods in t_max), as the grown study lays them out
+        grown = {a.name: dict(a.trailing) for o in selected(study) for a in o.arrays(study)}
+        coords = {c.name: c for o in selected(study) for c in o.coords(study)}
+        growing = growing_dims()
+        for name, arr in g.arrays():
             dims = arr.metadata.dimension_names
             if not dims:
                 continue
             shape = list(arr.shape)
             if dims[0] == "point":
                 shape[0] = P
-            if periods is not None and "period" in dims:
-                shape[dims.index("period")] = periods
+            for i, d in enumerate(dims):
+                if d in growing and name in grown:
+                    shape[i] = max(shape[i], grown[name][d])
+                elif d in growing and name == d:
+                    shape[i] = max(shape[i], len(coords[d].values))
             if tuple(shape) != arr.shape:
                 arr.resize(tuple(shape))
         g = zarr.open_group(self.path, mode="r+", use_consolidated=False)  # the new shapes
-        if periods is not None:
-            g["period"][:] = np.arange(periods)
+        for d in growing & set(coords):
+            if d in g:
+                g[d][:] = np.asarray(coords[d].values)[: g[d].shape[0]]
         g["point"][old:] = np.arange(old, P)
         g["frequency"][old:] = np.asarray([p.f for p in new], dtype=np.float64)
         for a, _ in study.grid:

@@ -43,11 +43,12 @@ import zarr
 from bbb.params import Params
 from bbb.provenance import kernel_identity
 
+from ..workflow.observables.counters import COUNTERS
 from ..workflow.schema import as_dict
 from ..workflow.study import Study
 from .chunk_checks import ON_SURFACE_MM, chunk_problems
 from .integrity import read_markers, scan
-from .layout import COUNTERS, create_layout
+from .layout import create_layout
 from .study_store import (
     JSON_ATTRS,
     KERNEL_ATTRS,

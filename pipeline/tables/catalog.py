@@ -31,6 +31,7 @@ import numpy as np
 import pandas as pd
 
 from ..store.study_store import StudyStore
+from ..workflow.observables.registry import feeds, own_tables, selected
 from ..workflow.study import Study
 from .collisions import locking_table
 from .contact import contact_table
@@ -55,13 +56,14 @@ class Table:
 
 
 TABLES: tuple[Table, ...] = (
-    Table("counters", ("f", "family"), lambda s: True, counters_table),
-    Table("diffusion", ("f",), lambda s: bool(s.observables.positions), diffusion_table),
-    Table("contact", ("f", "family"), lambda s: bool(s.observables.contact), contact_table),
-    Table("mechanisms", ("f",),
-          lambda s: bool(s.observables.jumps or s.observables.lyapunov), mechanisms_table),
-    Table("locking", ("f", "family"), lambda s: bool(s.observables.collisions),
+    Table("counters", ("f", "family"), lambda s: feeds(s, "counters"), counters_table),
+    Table("diffusion", ("f",), lambda s: feeds(s, "diffusion"), diffusion_table),
+    Table("contact", ("f", "family"), lambda s: feeds(s, "contact"), contact_table),
+    Table("mechanisms", ("f",), lambda s: feeds(s, "mechanisms"), mechanisms_table),
+    Table("locking", ("f", "family"), lambda s: feeds(s, "locking"),
           lambda store, done: locking_table(store), by_default=False),
+    # the observables' own tables (pipeline.workflow.observables), in store order
+    *(Table(o.name, o.index, lambda s, o=o: o in selected(s), o.table) for o in own_tables()),
 )
 _BY_NAME = {t.name: t for t in TABLES}
 

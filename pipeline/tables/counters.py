@@ -14,8 +14,8 @@ import math
 import numpy as np
 import pandas as pd
 
-from ..store.layout import COUNTERS
 from ..store.study_store import StudyStore
+from ..workflow.observables.counters import COUNTERS
 
 __all__ = ["counters_table"]
 

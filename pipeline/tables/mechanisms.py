@@ -58,9 +58,9 @@ import math
 import numpy as np
 import pandas as pd
 
-from ..store.layout import n_periods
 from ..store.study_store import StudyStore
 from ..workflow.identity import mechanisms_seed
+from ..workflow.observables.jumps import n_periods
 
 __all__ = ["mechanisms_table", "MECHANISM_ORDERS", "DEGENERATE_DISTINCT", "degenerate",
            "distinct_values"]

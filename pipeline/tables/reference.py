@@ -12,6 +12,7 @@ from __future__ import annotations
 import sys
 from pathlib import Path
 
+from ..workflow.observables.registry import by_name
 from .catalog import TABLES
 from .units import CI_SUFFIXES, NOT_A_QUANTITY, TABLE_COLUMNS, row_unit
 
@@ -72,12 +73,17 @@ def reference_markdown() -> str:
         rows = TABLE_COLUMNS[table.name]
         index = ", ".join(table.index)
         out.append(f"\n## {table.name}\n\n`{table.name}.parquet` / `.csv`, one row per "
-                   f"({index}): {_WHEN[table.name]}.\n\n| column | unit | meaning |\n"
+                   f"({index}): {_WHEN.get(table.name) or _own_when(table.name)}.\n\n"
+                   "| column | unit | meaning |\n"
                    "| --- | --- | --- |\n")
         for name, ci, doc in rows:
             shown = f"`{name}` (+ CI)" if ci else f"`{name}`"
             out.append(f"| {shown} | {_unit(name)} | {doc.replace('|', '/')} |\n")
     return "".join(out)
+
+
+def _own_when(name: str) -> str:
+    return by_name(name).when
 
 
 def main(argv: list[str] | None = None) -> int:

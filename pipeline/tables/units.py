@@ -27,6 +27,7 @@ import re
 from collections.abc import Iterable, Mapping
 
 from ..workflow.keys import PARAM_UNITS
+from ..workflow.observables.registry import own_tables
 
 __all__ = ["DIMENSIONLESS", "NOT_A_QUANTITY", "UNKNOWN", "D_UNIT", "V_UNIT", "UNITS",
            "FAMILIES", "CI_SUFFIXES", "unit", "column_unit", "units", "PLACEHOLDERS",
@@ -73,6 +74,8 @@ UNITS: dict[str, str] = {
     "k_peak": _1, "n_flights": _1, "loops": _1,
     # a grid's axis columns: the [params] keys, in the workflow's own map
     **{k: u for k, u in PARAM_UNITS.items() if k != "Gamma"},
+    # the observables' own tables: their columns as each declares them (patterns: _OWN)
+    **{name: u for o in own_tables() for name, _, u, _ in o.columns if "<" not in name},
 }
 
 #: (pattern of the whole name, unit) for column families, first match wins
@@ -99,7 +102,7 @@ def unit(column: str, extra: Mapping[str, str] | None = None) -> str | None:
             found = unit(column[: -len(suffix)], extra)
             if found is not None:
                 return found
-    for pattern, u in _FAMILIES:
+    for pattern, u in _FAMILIES + _OWN:
         if pattern.fullmatch(column):
             return u
     return None
@@ -273,6 +276,8 @@ TABLE_COLUMNS: dict[str, tuple[tuple[str, bool, str], ...]] = {
         ("n_flights", False, "free flights t_max was computed from"),
         ("loops", False, "f t_max: turns of the spiral approximation"),
     ),
+    **{o.name: tuple((n, False, d) for n, d in (*_WHICH, *_FAMILY))
+       + tuple((name, ci, doc) for name, ci, _, doc in o.columns) for o in own_tables()},
 }
 
 
@@ -281,6 +286,11 @@ def _pattern(name: str, ci: bool) -> re.Pattern:
     for ph, sub in PLACEHOLDERS.items():
         rx = rx.replace(re.escape(ph), f"(?:{sub})")
     return re.compile(rx + ("(?:_lo|_hi)?" if ci else ""))
+
+
+#: the observables' own column families (names with placeholders, as they declare them)
+_OWN = tuple((_pattern(name, False), u) for o in own_tables() for name, _, u, _ in o.columns
+             if "<" in name)
 
 
 def describe(table: str, column: str) -> str | None:

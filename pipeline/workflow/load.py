@@ -65,14 +65,15 @@ from .keys import (
     Family,
     FrequenciesTable,
     Observables,
-    ObservablesTable,
     ParamsTable,
     RefineTable,
     StudyTable,
+    observables_table,
     readme_with_reference,
     reference_markdown,
 )
-from .schema import Reader, declared, tname
+from .observables.registry import scene_tables
+from .schema import Reader, as_dict, declared, tname
 from .study import (  # the validated workflow; importable from here as before the split
     GridNotRunnable,
     Study,
@@ -325,7 +326,7 @@ def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
           "[observables.jumps], [observables.lyapunov])")
     if "observables" not in doc:
         r.fail(("observables",), "missing", on)
-    obs = r.table(doc["observables"], ("observables",), ObservablesTable, {"t_max": acc.t_max})
+    obs = r.table(doc["observables"], ("observables",), observables_table(), {"t_max": acc.t_max})
     if all(v is None for v in obs.values()):
         r.fail(("observables",), "nothing to record", on)
     adaptive = "target_ci" if acc.adaptive else "frequencies.refine" if _has_refine(doc) else None
@@ -345,7 +346,10 @@ def _observables(r: Reader, doc: dict, acc: Accuracy) -> Observables:
                        lyapunov_particles=lyap.particles if lyap else None,
                        lyapunov_d0=float(lyap.d0) if lyap else 1e-8,
                        lyapunov_discard=float(lyap.discard) if lyap else 0.1,
-                       collisions_x_jumps=int(coll.x_jumps) if coll else 0)
+                       collisions_x_jumps=int(coll.x_jumps) if coll else 0,
+                       more=tuple((o.name, tuple(as_dict(obs[o.name]).items()))
+                                  for o in scene_tables() if obs[o.name] is not None))
+
 
 
 def _analysis(r: Reader, doc: dict) -> Analysis:

@@ -26,8 +26,9 @@ import zarr
 from bbb.provenance import kernel_hash
 from pipeline.cli import main
 from pipeline.execute.run import run_study
-from pipeline.store.study_store import COUNTERS, KERNEL_ATTRS, StoreError, store_fingerprint
+from pipeline.store.study_store import KERNEL_ATTRS, StoreError, store_fingerprint
 from pipeline.workflow.load import load_workflow
+from pipeline.workflow.observables.counters import COUNTERS
 
 from .helpers import QUIET, assert_same_store, write_as_a_run
 

@@ -13,23 +13,11 @@ from pipeline.store.study_store import StoreDamaged, StudyStore
 from pipeline.workflow.load import parse_workflow
 
 from ..helpers import TINY
+from .test_study_store import fake_chunk
 
 # one grid point at 54 Hz with per-period jumps; widened to 72 Hz, which has more periods
 JUMPS_MAP = (TINY.replace("[54.0, 60.0]", "[54.0]") + "\n[observables.jumps]\n\n[grid]\n"
              "alpha = [0.7]\n")
-
-
-class Run:
-    """Stands in for a bbb SimRun of one chunk (the store only reads its arrays)."""
-
-    def __init__(self, study, value: float):
-        acc, obs = study.accuracy, study.observables
-        n = acc.chunk_size
-        self.positions = np.full((n, len(study.sample_times())), value)
-        self.collisions_dense = np.full((n, obs.collisions_record, 6), value)
-        self.n_recorded = np.full(n, obs.collisions_record, dtype=np.int64)
-        self.counters = {c: np.full(n, 3, dtype=np.int64)
-                         for c in ("collisions", "sticks", "liftoffs", "recorded", "anomalies")}
 
 
 def test_the_digest_of_a_period_chunk_ignores_fill_appended_along_its_last_axis():
@@ -55,7 +43,7 @@ def test_jumps_written_before_a_map_grew_read_back_intact_after_it(tmp_path):
     store = StudyStore.create_or_open(tmp_path / "m.zarr", study)
     P = store.group()["jumps"].shape[3]
     jumps = np.arange(4 * P, dtype=np.float32).reshape(4, P)
-    store.write_chunk(0, 0, 0, Run(study, 0.5), 0.1, extra={"jumps": jumps})
+    store.write_chunk(0, 0, 0, {**fake_chunk(study, 0.5), "jumps": jumps}, 0.1)
     wider = parse_workflow(JUMPS_MAP.replace("[54.0]", "[54.0, 72.0]"), source="m.toml")
     grown = StudyStore.create_or_open(store.path, wider)
     Q = grown.group()["jumps"].shape[3]
@@ -64,7 +52,7 @@ def test_jumps_written_before_a_map_grew_read_back_intact_after_it(tmp_path):
     assert np.array_equal(old[:, :P], jumps) and np.isnan(old[:, P:]).all()
     fi = [p.f for p in grown.study.points].index(72.0)
     more = np.arange(4 * Q, dtype=np.float32).reshape(4, Q)
-    grown.write_chunk(fi, 0, 1, Run(study, 0.5), 0.1, extra={"jumps": more})
+    grown.write_chunk(fi, 0, 1, {**fake_chunk(study, 0.5), "jumps": more}, 0.1)
     assert np.array_equal(grown.read_done("jumps", fi, 0), more)
 
 
@@ -73,16 +61,16 @@ def test_a_chunk_file_left_by_a_torn_write_is_overwritten_whole_never_decoded(tm
     garbage left in its file by an interrupted run cannot break the rewrite."""
     study = parse_workflow(TINY, source="t.toml")
     store = StudyStore.create_or_open(tmp_path / "t.zarr", study)
-    store.write_chunk(0, 0, 0, Run(study, 0.5), 0.1, mark_done=False)
+    store.write_chunk(0, 0, 0, fake_chunk(study, 0.5), 0.1, mark_done=False)
     (tmp_path / "t.zarr" / "positions" / "c" / "0" / "0" / "0" / "0").write_bytes(b"torn")
-    store.write_chunk(0, 0, 0, Run(study, 0.5), 0.1)
+    store.write_chunk(0, 0, 0, fake_chunk(study, 0.5), 0.1)
     assert np.all(store.read_done("positions", 0, 0) == 0.5)
 
 
 def test_a_deleted_chunk_of_a_store_without_a_cluster_raises_store_damaged(tmp_path):
     study = parse_workflow(TINY, source="t.toml")
     store = StudyStore.create_or_open(tmp_path / "t.zarr", study)
-    store.write_chunk(1, 1, 0, Run(study, 0.5), 0.1)
+    store.write_chunk(1, 1, 0, fake_chunk(study, 0.5), 0.1)
     (tmp_path / "t.zarr" / "n_sticks" / "c" / "1" / "1" / "0").unlink()
     assert np.all(zarr.open_group(str(store.path))["n_sticks"][1, 1, :4] == 0)  # reads as fill
     with pytest.raises(StoreDamaged, match=r"n_sticks\[f = 60 Hz, family launched, chunk 0\] is "

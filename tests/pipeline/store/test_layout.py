@@ -6,7 +6,7 @@ from __future__ import annotations
 import xarray as xr
 
 from bbb.record import COLLISION_FIELDS
-from pipeline.store.layout import collision_field_units
+from pipeline.workflow.observables.collisions import collision_field_units
 
 
 def test_xarray_opens_the_store_with_named_dims_and_coords(store, study):

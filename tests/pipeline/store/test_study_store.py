@@ -31,22 +31,21 @@ from pipeline.workflow.load import parse_workflow
 from ..helpers import TINY
 
 
-class FakeRun:
-    """Stands in for a bbb SimRun with recognisable values (the store only reads arrays)."""
-
-    def __init__(self, study, value: float):
-        acc, obs = study.accuracy, study.observables
-        n, t, k = acc.chunk_size, len(study.sample_times()), obs.collisions_record
-        self.positions = np.full((n, t), value)
-        self.collisions_dense = np.full((n, k, len(COLLISION_FIELDS)), value)
-        self.n_recorded = np.full(n, k, dtype=np.int64)
-        self.counters = {c: np.full(n, 3, dtype=np.int64)
-                         for c in ("collisions", "sticks", "liftoffs", "recorded", "anomalies")}
+def fake_chunk(study, value: float) -> dict[str, np.ndarray]:
+    """One chunk's values as a task gives them to the store (the store only writes arrays),
+    recognisable: every position and collision field ``value``, every counter 3."""
+    acc, obs = study.accuracy, study.observables
+    n, t, k = acc.chunk_size, len(study.sample_times()), obs.collisions_record
+    return {"positions": np.full((n, t), value),
+            "collisions": np.full((n, k, len(COLLISION_FIELDS)), value),
+            "n_recorded": np.full(n, k, dtype=np.int64),
+            **{f"n_{c}": np.full(n, 3, dtype=np.int64)
+               for c in ("collisions", "sticks", "liftoffs", "anomalies")}}
 
 
 def test_the_documented_xarray_mask_hides_chunks_not_marked_done(store, study):
-    store.write_chunk(1, 0, 1, FakeRun(study, 5.0), 0.1)                    # done
-    store.write_chunk(0, 1, 0, FakeRun(study, 6.0), 0.1, mark_done=False)  # written, not done
+    store.write_chunk(1, 0, 1, fake_chunk(study, 5.0), 0.1)                    # done
+    store.write_chunk(0, 1, 0, fake_chunk(study, 6.0), 0.1, mark_done=False)  # written, not done
     store.consolidate()
     ds = xr.open_zarr(store.path)
     done = ds.done.isel(chunk=ds.particle // (ds.sizes["particle"] // ds.sizes["chunk"]))
@@ -85,7 +84,7 @@ def test_root_attributes_survive_to_netcdf(store, study, tmp_path):
 
 def test_a_task_writes_only_its_own_chunk_files(store, study):
     before = _chunk_files(store.path)
-    store.write_chunk(1, 0, 1, FakeRun(study, 5.0), 0.1)
+    store.write_chunk(1, 0, 1, fake_chunk(study, 5.0), 0.1)
     new = _chunk_files(store.path) - before
     # every data array gained exactly its chunk (1, 0, 1, ...) and nothing else
     assert new and all(key.split("/c/")[1].startswith("1/0/1") for key in new)
@@ -94,21 +93,21 @@ def test_a_task_writes_only_its_own_chunk_files(store, study):
 
 
 def test_done_is_marked_after_the_data_and_only_then(store, study):
-    store.write_chunk(0, 1, 0, FakeRun(study, 1.0), 0.1, mark_done=False)
+    store.write_chunk(0, 1, 0, fake_chunk(study, 1.0), 0.1, mark_done=False)
     assert not store.done().any()  # data written, chunk not done: a re-run recomputes it
-    store.write_chunk(0, 1, 0, FakeRun(study, 1.0), 0.1)
+    store.write_chunk(0, 1, 0, fake_chunk(study, 1.0), 0.1)
     assert store.done()[0, 1, 0] and store.done().sum() == 1
 
 
 def test_chunk_writes_are_idempotent(store, study):
-    store.write_chunk(0, 0, 0, FakeRun(study, 2.0), 0.1)
+    store.write_chunk(0, 0, 0, fake_chunk(study, 2.0), 0.1)
     first = store.group()["collisions"][...]
-    store.write_chunk(0, 0, 0, FakeRun(study, 2.0), 0.2)
+    store.write_chunk(0, 0, 0, fake_chunk(study, 2.0), 0.2)
     assert np.array_equal(first, store.group()["collisions"][...], equal_nan=True)
 
 
 def test_reopening_with_the_same_workflow_keeps_the_data(store, study):
-    store.write_chunk(0, 0, 0, FakeRun(study, 2.0), 0.1)
+    store.write_chunk(0, 0, 0, fake_chunk(study, 2.0), 0.1)
     again = StudyStore.create_or_open(store.path, study)
     assert again.done()[0, 0, 0]
 
@@ -151,7 +150,7 @@ def test_a_layout_2_store_without_a_kernel_hash_is_refused(store, study):
 
 
 def test_a_store_of_another_kernel_is_refused_naming_both_hashes(store, study):
-    store.write_chunk(0, 0, 0, FakeRun(study, 2.0), 0.1)
+    store.write_chunk(0, 0, 0, fake_chunk(study, 2.0), 0.1)
     old = "0123456789abcdef" * 4
     _as_older_bbb_wrote_it(store.path, kernel_hash=old)
     before = store.group()["positions"][...]
@@ -294,8 +293,8 @@ def test_read_done_reads_runs_of_done_chunks_and_skips_the_gaps(tmp_path):
     study = parse_workflow(TINY.replace("n_particles = 8", "n_particles = 20"), source="t.toml")
     store = StudyStore.create_or_open(tmp_path / "g.zarr", study)
     for ci in (0, 1, 3, 4):  # two runs of done chunks around chunk 2, written but not done
-        store.write_chunk(0, 1, ci, FakeRun(study, 10.0 + ci), 0.1)
-    store.write_chunk(0, 1, 2, FakeRun(study, 99.0), 0.1, mark_done=False)
+        store.write_chunk(0, 1, ci, fake_chunk(study, 10.0 + ci), 0.1)
+    store.write_chunk(0, 1, 2, fake_chunk(study, 99.0), 0.1, mark_done=False)
     x = store.read_done("positions", 0, 1)
     assert x[:, 0].tolist() == [v for ci in (0, 1, 3, 4) for v in [10.0 + ci] * 4]
     assert store.read_done("positions", 1, 1).shape == (0, x.shape[1])  # nothing done there

@@ -6,17 +6,16 @@ from __future__ import annotations
 
 import math
 import warnings
-from types import SimpleNamespace
 
 import numpy as np
 import pandas as pd
 
 from pipeline.execute.task import compute_chunk
-from pipeline.store.layout import COUNTERS
 from pipeline.store.study_store import StudyStore
 from pipeline.tables.notes import DRIFT_TEXT, reduce_notes
 from pipeline.tables.reduce import reduce_store
 from pipeline.workflow.load import parse_workflow
+from pipeline.workflow.observables.counters import COUNTERS
 
 # One point, one family of 64 particles, x every 0.1 s for 20 s; the MSD is fitted over lags
 # 5.4-8.1 s (fit_from 0.3, fit_to 0.45 of T = 18 s).
@@ -54,9 +53,8 @@ def _store(tmp_path, x: np.ndarray, params: str = "") -> str:
     """A store of SYNTHETIC holding positions ``x`` (particle, time), mm, marked done."""
     study = parse_workflow(SYNTHETIC.format(params=params), source="synthetic.toml")
     store = StudyStore.create_or_open(tmp_path / "syn.zarr", study)
-    run = SimpleNamespace(positions=x, counters={c: np.zeros(x.shape[0], np.int64)
-                                                 for c in COUNTERS})
-    store.write_chunk(0, 0, 0, run, seconds=0.0)
+    values = {"positions": x, **{f"n_{c}": np.zeros(x.shape[0], np.int64) for c in COUNTERS}}
+    store.write_chunk(0, 0, 0, values, seconds=0.0)
     return store.path
 
 

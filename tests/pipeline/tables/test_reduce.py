@@ -193,13 +193,13 @@ def test_a_damaged_done_chunk_is_named_in_one_line(reference, tmp_path, capsys):
 def test_task_seconds_sum_the_done_chunks_only(tmp_path):
     from pipeline.tables.counters import counters_table
 
-    from ..store.test_study_store import FakeRun
+    from ..store.test_study_store import fake_chunk
 
     study = parse_workflow(TINY.replace("n_particles = 8", "n_particles = 20"), source="t.toml")
     store = StudyStore.create_or_open(tmp_path / "g.zarr", study)
     for ci, s in ((1, 0.5), (3, 2.0), (4, 8.0)):  # chunks 0 and 2 not done, 2 with seconds
-        store.write_chunk(0, 0, ci, FakeRun(study, 1.0), s)
-    store.write_chunk(0, 0, 2, FakeRun(study, 1.0), 100.0, mark_done=False)
+        store.write_chunk(0, 0, ci, fake_chunk(study, 1.0), s)
+    store.write_chunk(0, 0, 2, fake_chunk(study, 1.0), 100.0, mark_done=False)
     t = counters_table(store, store.done())
     assert t.task_seconds.tolist() == [10.5, 0.0, 0.0, 0.0]
 

@@ -21,6 +21,7 @@ from pipeline.tables.catalog import TABLES, table_names, tables
 from pipeline.tables.reduce import reduce_store, table_metadata
 from pipeline.tables.units import D_UNIT, DIMENSIONLESS, UNITS, column_unit, unit
 from pipeline.workflow.load import parse_workflow
+from pipeline.workflow.observables.registry import own_tables, scene_tables
 
 from ..helpers import TINY
 
@@ -33,7 +34,9 @@ STUDY_UNITS = {**ACCURACY_UNITS, **EXTREMA_UNITS, **PROTOCOL_UNITS, **CUT_UNITS}
 EVERY = (TINY.replace('name = "tiny"', 'name = "every"')
          .replace('preset = "klages2004"\n', 'preset = "klages2004"\ntilt = 0.0\n', 1)
          .replace("record_from = 2.0\n", "record_from = 2.0\nx_jumps = 20\n")
-         + "\n[observables.contact]\n\n[observables.jumps]\n\n[observables.lyapunov]\nparticles = 4\n")
+         + "\n[observables.contact]\n\n[observables.jumps]\n\n[observables.lyapunov]\nparticles = 4\n"
+         # and every observable that brings its own table, at its defaults
+         + "".join(f"\n[observables.{o.name}]\n" for o in scene_tables()))
 
 
 def columns_without_unit(paths, extra=STUDY_UNITS) -> dict[str, list[str]]:
@@ -83,7 +86,9 @@ def test_dimensionless_is_1_and_nothing_reads_as_dimensionless_by_a_blank():
                             "eb_ok", "rule", "level_ok", "decay_ok", "spread_ok", "verdict",
                             "stop", "stationary", "v_by", "D_drift_status", "steady",
                             "diffusive", "v_status", "converged", "converged_coll", "still",
-                            "contact"])
+                            "contact"]
+                           # the observables' own texts, as each declares them
+                           + [c for o in own_tables() for c, _, u, _ in o.columns if u == ""])
 
 
 @pytest.fixture(scope="module")
@@ -106,7 +111,8 @@ def every(tmp_path_factory):
 def test_the_catalog_lists_every_table_and_reduce_writes_its_default_ones(every):
     path, _, written = every
     study = StudyStore.open(path).study
-    assert table_names(study) == ["counters", "diffusion", "contact", "mechanisms"]
+    assert table_names(study) == ["counters", "diffusion", "contact", "mechanisms",
+                                  *(o.name for o in own_tables())]
     assert table_names(study, every=True) == [t.name for t in TABLES]
     assert list(written) == [t.name for t in TABLES]
     tiny = parse_workflow(TINY, source="tiny.toml")  # positions and collisions only
@@ -122,7 +128,8 @@ def test_the_api_gives_the_tables_bbb_reduce_writes(every):
     assert list(got) == list(written)
     for name, df in got.items():
         pd.testing.assert_frame_equal(df, pd.read_parquet(out / f"{name}.parquet"), check_exact=True)
-    assert list(reduced(path)) == ["counters", "diffusion", "contact", "mechanisms"]
+    assert list(reduced(path)) == ["counters", "diffusion", "contact", "mechanisms",
+                                   *(o.name for o in own_tables())]
 
 
 def test_the_api_attaches_every_table_with_the_units_of_the_parquet_metadata(every):
