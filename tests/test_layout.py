@@ -23,6 +23,9 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 MAX_LINES = 400
+#: folders of plug-ins, each module named for the study or observable it is (not held to
+#: unique module names)
+PLUG_IN_FOLDERS = ("pipeline/studies/", "pipeline/workflow/observables/")
 #: the engine's layers, bottom first (docs/design.md): pipeline/<layer>/ may import only
 #: pipeline/<a layer at or below it>/; every other pipeline module (api, cli, make_figures,
 #: studies/) is above them all
@@ -322,8 +325,8 @@ def duplicate_basenames(*packages: str, root: Path = ROOT) -> dict[str, list[str
 
 
 def engine_duplicates(root: Path = ROOT) -> dict[str, list[str]]:
-    """:func:`duplicate_basenames` of bbb/ and pipeline/ with pipeline/studies/ left out."""
-    found = {k: [f for f in v if not f.startswith("pipeline/studies/")]
+    """:func:`duplicate_basenames` of bbb/ and pipeline/ with the plug-in folders left out."""
+    found = {k: [f for f in v if not f.startswith(PLUG_IN_FOLDERS)]
              for k, v in duplicate_basenames("bbb", "pipeline", root=root).items()}
     return {k: v for k, v in found.items() if len(v) > 1}
 
@@ -350,9 +353,10 @@ def test_an_old_module_path_now_a_package_re_exports_nothing(old):
 
 
 def test_module_file_names_are_unique_in_bbb_and_the_engine():
-    """The library and the engine name each module once; the studies (pipeline/studies/) share
-    one template (claims.py, figures.py, cases.py, report.py in each study's folder) and are
-    left out."""
+    """The library and the engine name each module once; the plug-in folders are left out: the
+    studies (pipeline/studies/) share one template (claims.py, figures.py, cases.py, report.py
+    in each study's folder) and each observable plug-in (pipeline/workflow/observables/) is
+    named for what it records, as the table that reduces it is (tables/collisions.py)."""
     assert engine_duplicates() == {}
 
 
