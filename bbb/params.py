@@ -251,6 +251,13 @@ class Params:
         return self.floor == "flat"
 
     @property
+    def mirror_symmetric(self) -> bool:
+        """Whether the floor is its own mirror image x → −x (level, vibrated vertically, and
+        not a sawtooth with its peak off centre): a particle's image then moves as its
+        reflection, so the mean drift is 0 by symmetry."""
+        return not self.transport and (self.floor != "sawtooth" or self.peak == 0.5)
+
+    @property
     def transport(self) -> bool:
         """Whether the floor is tilted or thrown off the vertical (the conveyor kernel runs)."""
         return self.tilt != 0.0 or self.throw != 90.0
