@@ -92,6 +92,23 @@ def test_no_anomaly_is_counted(bouncing):
     assert run.counters["anomalies"].sum() == 0 and run.counters["collisions"].min() > 20
 
 
+#: steep shapes, strong vibration: flanks near 60° and 80°, c'' of the sine to ±5 /mm, Γ ≈ 3.3
+STEEP = {
+    "sine": {"floor": "sine", "depth": 1.0, "A": 0.1},
+    "sawtooth": {"floor": "sawtooth", "depth": 1.0, "peak": 0.1, "A": 0.1},
+}
+
+
+@pytest.mark.parametrize("floor", sorted(STEEP))
+def test_no_flight_passes_below_a_steep_floor_at_high_frequency(floor):
+    p = Params.preset("klages2004", f=90.0, alpha=0.9, **STEEP[floor])
+    run = simulate(p, 8, 3.0, seed=4, initial="launched", launch_speed=(0.0, 400.0),
+                   record_collisions=4000, record_liftoffs=True)
+    for i in range(run.n_particles):
+        worst, off, n = lowest_gap(p, run.collisions_dense[i, : run.n_recorded[i]])
+        assert n > 20 and worst > -ON_SURFACE_MM and off < ON_SURFACE_MM
+
+
 @pytest.mark.parametrize("floor", sorted(FLOORS))
 def test_elastic_bounces_on_a_motionless_floor_conserve_energy(floor):
     p = Params(g=9800.0, A=0.0, f=50.0, R=15.0, S=2.0, alpha=1.0, beta=1.0, **{
