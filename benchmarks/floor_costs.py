@@ -2,14 +2,15 @@
 
     .venv/bin/python benchmarks/floor_costs.py [--particles 100] [--t-max 10] [--repeats 3]
 
-For each floor (the paper's arcs, a sine and a sawtooth of depth 0.3 mm on S = 2 mm: the
-scenes of workflows/sine.toml and sawtooth.toml) a fresh process with an empty numba cache
-times its first ``simulate`` (import and compile of that shape's kernel: cold compile), then
-fresh processes with the warm cache time an ensemble from rest at f = 60 and 80 Hz (CPU time,
-robust against other processes on the cores; median of the repeats).  The cost per collision
-is CPU time over collisions; the table also gives the collision rate per particle-second, so
-that shapes are compared at the rates they run at, and the ratio to the arcs' cost.  Commit
-the output under benchmarks/results/ with the date and CPU.
+For each floor (the paper's arcs; a sine and a sawtooth of depth 0.3 mm on S = 2 mm, the
+scenes of workflows/sine.toml and sawtooth.toml; and both as deep as the arcs) a fresh
+process with an empty numba cache times its first ``simulate`` (import and compile of that
+shape's kernel: cold compile), then fresh processes with the warm cache time an ensemble
+from rest at f = 60 and 80 Hz (CPU time, robust against other processes on the cores;
+median of the repeats).  The cost per collision is CPU time over collisions; the table also
+gives the collision rate per particle-second, so that shapes are compared at the rates they
+run at, and the ratio to the arcs' cost.  Commit the output under benchmarks/results/ with
+the date and CPU.
 """
 
 from __future__ import annotations
@@ -25,8 +26,13 @@ import tempfile
 
 import numba
 
+#: the arcs' own depth, R − √(R² − S²/4) for the preset's R = 15, S = 2 (mm): shapes as deep
+#: as the paper's floor, besides the scenes' ten times deeper ones
+ARC_DEPTH = 15.0 - (15.0**2 - 1.0) ** 0.5
 FLOORS = {"arc": {}, "sine": {"floor": "sine", "depth": 0.3},
-          "sawtooth": {"floor": "sawtooth", "depth": 0.3, "peak": 0.3}}
+          "sawtooth": {"floor": "sawtooth", "depth": 0.3, "peak": 0.3},
+          "sine/arc depth": {"floor": "sine", "depth": ARC_DEPTH},
+          "sawtooth/arc depth": {"floor": "sawtooth", "depth": ARC_DEPTH, "peak": 0.3}}
 
 SNIPPET = """
 import json, sys, time
@@ -71,15 +77,17 @@ def main() -> None:
     ap.add_argument("--particles", type=int, default=100)
     ap.add_argument("--t-max", type=float, default=10.0)
     ap.add_argument("--repeats", type=int, default=3)
+    ap.add_argument("--floors", nargs="*", default=list(FLOORS), choices=list(FLOORS))
     a = ap.parse_args()
     print(f"# bbb floor shapes: cold compile and cost per collision  "
           f"{datetime.datetime.now().isoformat(timespec='seconds')}")
     print(f"# CPU: {cpu_name()}  python {platform.python_version()}  numba {numba.__version__}")
     print(f"# {a.particles} particles x {a.t_max:g} s from rest, CPU time, median of {a.repeats}")
-    print(f"{'floor':9s} {'cold s':>7s} {'f':>4s} {'coll/(particle s)':>18s} "
+    print(f"{'floor':18s} {'cold s':>7s} {'f':>4s} {'coll/(particle s)':>18s} "
           f"{'us/coll':>8s} {'x arc':>6s}")
     arc_cost = {}
-    for name, kw in FLOORS.items():
+    for name in a.floors:
+        kw = FLOORS[name]
         with tempfile.TemporaryDirectory() as cache:
             cold = measure(cache, kw, 60.0, 2, 0.01)[0]
             for f in (60.0, 80.0):
@@ -88,7 +96,7 @@ def main() -> None:
                 assert all(r[1] == coll for r in runs)
                 us = 1e6 * statistics.median(r[2] for r in runs) / coll
                 arc_cost.setdefault(f, us)
-                print(f"{name:9s} {cold:7.1f} {f:4.0f} {coll / (a.particles * a.t_max):18.1f} "
+                print(f"{name:18s} {cold:7.1f} {f:4.0f} {coll / (a.particles * a.t_max):18.1f} "
                       f"{us:8.3f} {us / arc_cost[f]:6.2f}", flush=True)
 
 
