@@ -83,7 +83,7 @@ def test_dimensionless_is_1_and_nothing_reads_as_dimensionless_by_a_blank():
                             "eb_ok", "rule", "level_ok", "decay_ok", "spread_ok", "verdict",
                             "stop", "stationary", "v_by", "D_drift_status", "steady",
                             "diffusive", "v_status", "converged", "converged_coll", "still",
-                            "contact"])
+                            "contact", "floor"])
 
 
 @pytest.fixture(scope="module")
