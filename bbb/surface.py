@@ -1,10 +1,11 @@
-"""The vibrating corrugated floor: height, slope, curvature and normal of the arcs.
+"""The vibrating corrugated floor: its motion (jitted) and numpy faces of its shape.
 
 The floor moves rigidly with y_f(t) = -A sin(2π f t) (mm).  Arcs of radius R (mm) are
 centred at x = kS with their tops at y_f; a point at offset d = x - kS (|d| ≤ S/2)
 lies c(d) = R - sqrt(R² - d²) below the top.  Cusps (valleys) sit at x = (k + 1/2) S.
 ``R = inf`` is a flat floor (c ≡ 0).  All jitted functions take time as the offset
-``s`` (s) within the current floor period, never a huge absolute time.  Other floor shapes
+``s`` (s) within the current floor period, never a huge absolute time.  The arcs' jitted
+formulae are bbb.dynamics.floors.arc's.  Other floor shapes
 (sine, sawtooth: bbb.dynamics.floors) share the cells; :func:`shape_of` is a Params' shape
 record for the kernel, :func:`floor_depth` its depth below the tops at any offset.
 """
@@ -36,51 +37,6 @@ def floor_v(s, A, w):
 @njit(cache=True, inline="always")
 def floor_a(s, A, w):
     return A * w * w * math.sin(w * s)
-
-
-@njit(cache=True, inline="always")
-def root_r2_d2(d, R):
-    # (R-|d|)(R+|d|) instead of R²-d²: exact to rounding at the cusps when R = S/2
-    ad = abs(d)
-    return math.sqrt(max(0.0, (R - ad) * (R + ad)))
-
-
-@njit(cache=True, inline="always")
-def arc_depth(d, R):
-    # Fig. 1 geometry: R - sqrt(R²-d²) written as d²/(R+sqrt(R²-d²)), free of cancellation
-    if math.isinf(R):
-        return 0.0
-    return d * d / (R + root_r2_d2(d, R))
-
-
-@njit(cache=True, inline="always")
-def arc_slope(d, R):
-    # dc/dd; infinite at a vertical cusp (R = S/2, |d| = R)
-    if math.isinf(R):
-        return 0.0
-    q = root_r2_d2(d, R)
-    if q == 0.0:
-        return math.copysign(math.inf, d)
-    return d / q
-
-
-@njit(cache=True, inline="always")
-def arc_curvature(d, R):
-    # d²c/dd² = R²/(R²-d²)^(3/2), increasing in |d|
-    if math.isinf(R):
-        return 0.0
-    q = root_r2_d2(d, R)
-    if q == 0.0:
-        return math.inf
-    return R * R / (q * q * q)
-
-
-@njit(cache=True, inline="always")
-def arc_normal(d, R):
-    # outward unit normal of the arc at offset d (Fig. 1's v_perp direction)
-    if math.isinf(R):
-        return 0.0, 1.0
-    return d / R, root_r2_d2(d, R) / R
 
 
 # ---- thin numpy wrappers for analysis, plots and tests --------------------------------

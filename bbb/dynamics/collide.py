@@ -9,9 +9,10 @@ import math
 
 from numba import njit
 
-from ..surface import arc_curvature, arc_normal, arc_slope, floor_a, floor_v
+from ..surface import floor_a, floor_v
 from .bounds_conveyor import cusp_side, times_or_zero
 from .floors import curvature, normal
+from .floors.arc import arc_curvature, arc_normal, arc_slope
 
 
 @njit(cache=True, inline="always")

@@ -1,7 +1,8 @@
 """The paper's floor shape: circular arcs of radius R (mm) centred at the cell centres, cusps
 at the cell edges (Fig. 1); R = inf is the flat floor.  The kernel carries the arc as its
 radius, a float, so that the paper's floor compiles to exactly the expressions it always had
-(bbb.surface's arc_* functions).  Offsets d (mm) are from the arc's centre, |d| ≤ S/2."""
+(the arc_* functions here, which the conveyor's modules call directly).  Offsets d (mm) are
+from the arc's centre, |d| ≤ S/2."""
 
 from __future__ import annotations
 
@@ -9,7 +10,53 @@ import math
 
 from numba import njit
 
-from ...surface import arc_curvature, arc_depth, arc_normal, arc_slope
+
+@njit(cache=True, inline="always")
+def root_r2_d2(d, R):
+    # (R-|d|)(R+|d|) instead of R²-d²: exact to rounding at the cusps when R = S/2
+    ad = abs(d)
+    return math.sqrt(max(0.0, (R - ad) * (R + ad)))
+
+
+@njit(cache=True, inline="always")
+def arc_depth(d, R):
+    # Fig. 1 geometry: R - sqrt(R²-d²) written as d²/(R+sqrt(R²-d²)), free of cancellation
+    if math.isinf(R):
+        return 0.0
+    return d * d / (R + root_r2_d2(d, R))
+
+
+@njit(cache=True, inline="always")
+def arc_slope(d, R):
+    # dc/dd; infinite at a vertical cusp (R = S/2, |d| = R)
+    if math.isinf(R):
+        return 0.0
+    q = root_r2_d2(d, R)
+    if q == 0.0:
+        return math.copysign(math.inf, d)
+    return d / q
+
+
+@njit(cache=True, inline="always")
+def arc_curvature(d, R):
+    # d²c/dd² = R²/(R²-d²)^(3/2), increasing in |d|
+    if math.isinf(R):
+        return 0.0
+    q = root_r2_d2(d, R)
+    if q == 0.0:
+        return math.inf
+    return R * R / (q * q * q)
+
+
+@njit(cache=True, inline="always")
+def arc_normal(d, R):
+    # outward unit normal of the arc at offset d (Fig. 1's v_perp direction)
+    if math.isinf(R):
+        return 0.0, 1.0
+    return d / R, root_r2_d2(d, R) / R
+
+
+# ---- the shape interface (bbb.dynamics.floors) on the arc's radius ----------------------
 
 #: the record type of an arc: its radius R (mm), a float (``sh`` below)
 RECORD = float
