@@ -25,7 +25,7 @@ from dataclasses import dataclass, fields, replace
 import numpy as np
 
 from .params import Params, real
-from .surface import depth
+from .surface import floor_depth
 
 __all__ = ["CELL_MAX", "FAMILIES", "InitialState", "SPEED_CAP_FACTOR", "initial_state", "mirrored",
            "mirror_pairs", "mirror_pair_units", "speed_cap"]
@@ -116,7 +116,7 @@ class InitialState:
         _refuse_where("s", self.s, (self.s < 0.0) | (self.s >= period),
                       f"0 ≤ s < 1/f = {period:.17g} (s)")
         gx, gy, _ax, ay = p.floor_frame() if p.transport else (0.0, p.g, 0.0, p.A)
-        surface = -ay * np.sin(p.omega * self.s) - depth(self.d, p.R)
+        surface = -ay * np.sin(p.omega * self.s) - floor_depth(p, self.d)
         height = self.y - surface
         tol = ON_SURFACE_TOL * (1.0 + p.A + p.S)
         _refuse_where("y", self.y, height < -tol, "on or above the surface, -A sin(2πfs) - "
@@ -176,7 +176,7 @@ def initial_state(
     period = 1.0 / p.f
     d = rng.uniform(-0.5 * p.S, 0.5 * p.S, n)
     s = rng.uniform(0.0, period, n)
-    surface = -p.A * np.sin(p.omega * s) - depth(d, p.R)
+    surface = -p.A * np.sin(p.omega * s) - floor_depth(p, d)
     floor_v = -p.A * p.omega * np.cos(p.omega * s)
     cell = np.zeros(n, dtype=np.int64)
     vx = np.zeros(n)
@@ -184,7 +184,7 @@ def initial_state(
         # a thrown floor (bbb.dynamics, the conveyor): d is the offset relative to the floor, which moves
         # (Ax, Ay)(−sin 2πft); 'rest' and 'launched' start with its along-plane velocity
         _gx, _gy, ax, ay = p.floor_frame()
-        surface = -ay * np.sin(p.omega * s) - depth(d, p.R)
+        surface = -ay * np.sin(p.omega * s) - floor_depth(p, d)
         floor_v = -ay * p.omega * np.cos(p.omega * s)
         if family != "dropped":
             vx = -ax * p.omega * np.cos(p.omega * s)

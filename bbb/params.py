@@ -10,7 +10,7 @@ from dataclasses import asdict, dataclass, fields, replace
 
 import numpy as np
 
-__all__ = ["CONTACT_MODELS", "GAMMA_MAX", "PARAM_RANGES", "Params", "PRESETS", "Range", "real"]
+__all__ = ["CONTACT_MODELS", "FLOORS", "GAMMA_MAX", "PARAM_RANGES", "Params", "PRESETS", "Range", "real"]
 
 #: what a particle does in sustained contact with an arc (docs/physics.md, "Contact models"):
 #: carried with the floor at fixed x (the default, today's model), frictionless sliding, or
@@ -21,6 +21,10 @@ CONTACT_MODELS = ("stick", "slide", "coulomb")
 #: above it (1 + 1e-9) the checker still flags the contact starts; 1.05 is the smallest ratio
 #: the hypothesis no-miss test has covered (docs/physics.md, "Contact models")
 VERTICAL_CUSP_R = 1.05
+#: the floor shapes (docs/physics.md, "Floors"): the paper's circular arcs of radius R, a flat
+#: floor (R = inf), a sine of top-to-valley ``depth`` and wavelength S, a sawtooth of ``depth``
+#: and period S with its peak a fraction ``peak`` of S from the left valley
+FLOORS = ("arc", "flat", "sine", "sawtooth")
 
 
 
@@ -67,6 +71,8 @@ PARAM_RANGES: dict[str, Range] = {
     "tilt": Range(-30.0, 30.0, "degrees"),
     "throw": Range(10.0, 170.0, "degrees"),
     "mu": Range(0.0, 1e12),
+    "depth": Range(0.0, 1e6, "mm"),
+    "peak": Range(0.0, 1.0, lo_open=True, hi_open=True),
 }
 #: the largest peak floor acceleration Γ = A(2πf)²/g (in g): a particle thrown by such a
 #: floor flies ~Γ/π periods, each searched in steps of at most Numerics.max_step; the paper's
@@ -113,13 +119,20 @@ class Params:
              tilted or thrown floor: bbb.dynamics.contact_conveyor); only "stick" with vertical cusp
              walls, R < S/2 · (1 + 1e-9) (sliding there never ends: Zeno)
     mu    -- Coulomb friction coefficient (0 ≤ mu ≤ 1e12; only with contact = "coulomb", else 0)
+    floor -- the floor's shape (FLOORS): "arc" (default, the paper's arcs of radius R), "flat"
+             (R = inf; an arc with R = inf is read as "flat"), "sine" or "sawtooth" (R does not
+             apply and is held at inf; level floor and stick model only)
+    depth -- top-to-valley depth of a sine or sawtooth, mm (0 < depth ≤ 1e6; else 0)
+    peak  -- where a sawtooth's peak sits, as a fraction of S from its left valley
+             (0 < peak < 1; 0.5 symmetric teeth; default 0.5, the only value elsewhere)
 
     Also Γ = A(2πf)²/g ≤ GAMMA_MAX = 1e3.  The ranges are :data:`PARAM_RANGES` (numbers may be
     Python or numpy ints and floats, never bools); a value outside raises a one-line
     ValueError naming the field, its value and the allowed range.
 
-    ``tilt``, ``throw``, ``contact`` and ``mu`` are left out of :meth:`as_dict` at their
-    defaults, so every store and fingerprint of a scene without them is what it was before they existed.
+    ``tilt``, ``throw``, ``contact``, ``mu``, ``floor``, ``depth`` and ``peak`` are left out of
+    :meth:`as_dict` at their defaults (``floor`` also when "flat": R = inf says it), so every
+    store and fingerprint of a scene without them is what it was before they existed.
     """
 
     g: float
@@ -133,13 +146,24 @@ class Params:
     throw: float = 90.0
     contact: str = "stick"
     mu: float = 0.0
+    floor: str = "arc"
+    depth: float = 0.0
+    peak: float = 0.5
 
     def __post_init__(self) -> None:
         if not isinstance(self.contact, str) or self.contact not in CONTACT_MODELS:
             raise ValueError(f"Params.contact = {self.contact!r} is not a contact model; "
                              f"allowed: {', '.join(CONTACT_MODELS)}")
+        if not isinstance(self.floor, str) or self.floor not in FLOORS:
+            raise ValueError(f"Params.floor = {self.floor!r} is not a floor shape; "
+                             f"allowed: {', '.join(FLOORS)}")
+        if self.floor != "arc":
+            # flat, sine and sawtooth have no arcs: R = inf (the flat floor's own definition)
+            object.__setattr__(self, "R", math.inf)
+        elif isinstance(self.R, (int, float, np.integer, np.floating)) and math.isinf(self.R):
+            object.__setattr__(self, "floor", "flat")
         for fl in fields(self):
-            if fl.name == "contact":
+            if fl.name in ("contact", "floor"):
                 continue
             value = real("Params", fl.name, getattr(self, fl.name))
             object.__setattr__(self, fl.name, value)
@@ -149,11 +173,13 @@ class Params:
         for name, rng in PARAM_RANGES.items():
             if name != "R":
                 _check(name, getattr(self, name), getattr(self, name) in rng, rng.text(name))
-        _check("R", self.R, self.S / 2 <= self.R and (self.R <= PARAM_RANGES["R"].hi or self.flat),
+        _check("R", self.R,
+               self.S / 2 <= self.R and (self.R <= PARAM_RANGES["R"].hi or math.isinf(self.R)),
                f"S/2 = {self.S / 2:g} ≤ R ≤ {PARAM_RANGES['R'].hi:g} (mm; arcs must close the "
                "floor), or inf")
         _check("mu", self.mu, self.mu == 0 or self.contact == "coulomb",
                "mu = 0 unless contact = 'coulomb'")
+        self._check_floor()
         _check("A", self.A, self.gamma <= GAMMA_MAX,
                f"Γ = A(2πf)²/g = {self.gamma:.6g} ≤ {GAMMA_MAX:g}, i.e. A ≤ "
                f"{GAMMA_MAX * self.g / self.omega**2:.6g} mm at f = {self.f:g} Hz, g = {self.g:g}")
@@ -175,6 +201,19 @@ class Params:
                              "conveyor kernel does not handle yet; allowed: R ≥ S/2 · "
                              f"{VERTICAL_CUSP_R:g} (or inf) with tilt/throw, or tilt = 0 and throw = 90")
 
+    def _check_floor(self) -> None:
+        profiled = self.floor in ("sine", "sawtooth")
+        _check("depth", self.depth, self.depth > 0 if profiled else self.depth == 0,
+               "0 < depth ≤ 1e6 (mm) on a sine or sawtooth floor" if profiled
+               else f"depth = 0 unless floor = 'sine' or 'sawtooth' (floor = {self.floor!r})")
+        _check("peak", self.peak, self.floor == "sawtooth" or self.peak == 0.5,
+               f"peak = 0.5 unless floor = 'sawtooth' (floor = {self.floor!r})")
+        if profiled and (self.contact != "stick" or self.transport):
+            raise ValueError(f"Params.floor = {self.floor!r} with contact = {self.contact!r}, tilt = "
+                             f"{self.tilt:g}, throw = {self.throw:g}: the kernel runs a {self.floor} floor "
+                             "level and vertically vibrated under the stick model only; allowed: "
+                             "contact = 'stick', tilt = 0, throw = 90 there, or floor = 'arc' or 'flat'")
+
     @classmethod
     def preset(cls, name: str, **overrides: float | str) -> Params:
         """A named parameter set (``klages2004``, ``matyas2004``) with ``f`` and any overrides."""
@@ -185,7 +224,7 @@ class Params:
         if unknown:
             raise ValueError(
                 f"unknown Params field(s) {sorted(unknown)}; allowed: "
-                "g, A, f, R, S, alpha, beta, tilt, throw, contact, mu"
+                "g, A, f, R, S, alpha, beta, tilt, throw, contact, mu, floor, depth, peak"
             )
         values.update(overrides)
         if "f" not in values:
@@ -208,7 +247,15 @@ class Params:
 
     @property
     def flat(self) -> bool:
-        return math.isinf(self.R)
+        """Whether the floor is flat (floor = "flat", R = inf)."""
+        return self.floor == "flat"
+
+    @property
+    def mirror_symmetric(self) -> bool:
+        """Whether the floor is its own mirror image x → −x (level, vibrated vertically, and
+        not a sawtooth with its peak off centre): a particle's image then moves as its
+        reflection, so the mean drift is 0 by symmetry."""
+        return not self.transport and (self.floor != "sawtooth" or self.peak == 0.5)
 
     @property
     def transport(self) -> bool:
@@ -225,8 +272,8 @@ class Params:
                 -self.A * math.sin(dev), self.A * math.cos(dev))
 
     def as_dict(self) -> dict[str, float | str]:
-        """The fields; ``tilt``, ``throw``, ``contact``, ``mu`` only when they differ from 0, 90,
-        stick, 0."""
+        """The fields; ``tilt``, ``throw``, ``contact``, ``mu``, ``depth``, ``peak`` only when they
+        differ from 0, 90, stick, 0, 0, 0.5; ``floor`` only when sine or sawtooth."""
         d = asdict(self)
         if d["tilt"] == 0.0:
             del d["tilt"]
@@ -236,6 +283,12 @@ class Params:
             del d["contact"]
         if self.mu == 0.0:
             del d["mu"]
+        if self.floor in ("arc", "flat"):
+            del d["floor"]
+        if self.depth == 0.0:
+            del d["depth"]
+        if self.peak == 0.5:
+            del d["peak"]
         return d
 
 

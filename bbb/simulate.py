@@ -22,6 +22,7 @@ from .ensemble import InitialState, initial_state
 from .numerics import Numerics
 from .params import Params, real
 from .record import COLLISION_FIELDS, CONTACT_TIME_NAMES, COUNTER_NAMES, EVENT_FIELDS, SimRun
+from .surface import shape_of
 
 __all__ = ["MAX_PERIODS", "simulate"]
 
@@ -137,7 +138,8 @@ def simulate(
     # its own (frame None: numba prunes the conveyor's branches)
     frame = frame_of(p.g, p.A, p.tilt, p.throw) if p.transport or _force_conveyor else None
     evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
-                    Floor(*(float(v) for v in (p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta))),
+                    Floor(float(p.g), float(p.A), float(p.omega), shape_of(p), float(p.S),
+                          float(p.alpha), float(p.beta)),
                     Run(float(t_max), float(record_from), numerics.tol_t, numerics.v_stick,
                         numerics.max_step), frame, None if p.contact == "stick" else p.mu,
                     times, (pos, rec, counters, held, status))

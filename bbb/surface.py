@@ -1,10 +1,13 @@
-"""The vibrating corrugated floor: height, slope, curvature and normal of the arcs.
+"""The vibrating corrugated floor: its motion (jitted) and numpy faces of its shape.
 
 The floor moves rigidly with y_f(t) = -A sin(2π f t) (mm).  Arcs of radius R (mm) are
 centred at x = kS with their tops at y_f; a point at offset d = x - kS (|d| ≤ S/2)
 lies c(d) = R - sqrt(R² - d²) below the top.  Cusps (valleys) sit at x = (k + 1/2) S.
 ``R = inf`` is a flat floor (c ≡ 0).  All jitted functions take time as the offset
-``s`` (s) within the current floor period, never a huge absolute time.
+``s`` (s) within the current floor period, never a huge absolute time.  The arcs' jitted
+formulae are bbb.dynamics.floors.arc's.  Other floor shapes
+(sine, sawtooth: bbb.dynamics.floors) share the cells; :func:`shape_of` is a Params' shape
+record for the kernel, :func:`floor_depth` its depth below the tops at any offset.
 """
 
 from __future__ import annotations
@@ -16,7 +19,8 @@ from numba import njit
 
 from .params import Params
 
-__all__ = ["depth", "floor_height", "surface_height", "surface_normal", "cell_of"]
+__all__ = ["depth", "floor_depth", "floor_height", "shape_of", "surface_height", "surface_normal",
+           "cell_of"]
 
 
 @njit(cache=True, inline="always")
@@ -33,51 +37,6 @@ def floor_v(s, A, w):
 @njit(cache=True, inline="always")
 def floor_a(s, A, w):
     return A * w * w * math.sin(w * s)
-
-
-@njit(cache=True, inline="always")
-def root_r2_d2(d, R):
-    # (R-|d|)(R+|d|) instead of R²-d²: exact to rounding at the cusps when R = S/2
-    ad = abs(d)
-    return math.sqrt(max(0.0, (R - ad) * (R + ad)))
-
-
-@njit(cache=True, inline="always")
-def arc_depth(d, R):
-    # Fig. 1 geometry: R - sqrt(R²-d²) written as d²/(R+sqrt(R²-d²)), free of cancellation
-    if math.isinf(R):
-        return 0.0
-    return d * d / (R + root_r2_d2(d, R))
-
-
-@njit(cache=True, inline="always")
-def arc_slope(d, R):
-    # dc/dd; infinite at a vertical cusp (R = S/2, |d| = R)
-    if math.isinf(R):
-        return 0.0
-    q = root_r2_d2(d, R)
-    if q == 0.0:
-        return math.copysign(math.inf, d)
-    return d / q
-
-
-@njit(cache=True, inline="always")
-def arc_curvature(d, R):
-    # d²c/dd² = R²/(R²-d²)^(3/2), increasing in |d|
-    if math.isinf(R):
-        return 0.0
-    q = root_r2_d2(d, R)
-    if q == 0.0:
-        return math.inf
-    return R * R / (q * q * q)
-
-
-@njit(cache=True, inline="always")
-def arc_normal(d, R):
-    # outward unit normal of the arc at offset d (Fig. 1's v_perp direction)
-    if math.isinf(R):
-        return 0.0, 1.0
-    return d / R, root_r2_d2(d, R) / R
 
 
 # ---- thin numpy wrappers for analysis, plots and tests --------------------------------
@@ -99,6 +58,29 @@ def depth(d: np.ndarray | float, R: float) -> np.ndarray:
     return d * d / (R + q)
 
 
+def shape_of(p: Params):
+    """The kernel's record of the floor's shape (bbb.dynamics.floors): the arc's radius R
+    (a float; inf on a flat floor) or a sine's or sawtooth's record."""
+    from .dynamics.floors import sawtooth, sine  # bbb.dynamics reads this module's arc formulae
+
+    if p.floor == "sine":
+        return sine.record(p.depth, p.S)
+    if p.floor == "sawtooth":
+        return sawtooth.record(p.depth, p.peak, p.S)
+    return float(p.R)
+
+
+def floor_depth(p: Params, d: np.ndarray | float) -> np.ndarray:
+    """Depth c(d) (mm) of the floor below its tops at offset d (mm) from a cell's centre, on
+    every floor shape (the arc's is :func:`depth`)."""
+    if p.floor in ("arc", "flat"):
+        return depth(d, p.R)
+    from .dynamics.floors import depths
+
+    d = np.asarray(d, dtype=np.float64)
+    return depths(shape_of(p), d.ravel()).reshape(d.shape)
+
+
 def floor_height(p: Params, t: np.ndarray | float) -> np.ndarray:
     """Height y_f(t) (mm) of the arc tops at time t (s)."""
     t = np.asarray(t, dtype=np.float64)
@@ -109,12 +91,17 @@ def floor_height(p: Params, t: np.ndarray | float) -> np.ndarray:
 def surface_height(p: Params, x: np.ndarray | float, t: np.ndarray | float) -> np.ndarray:
     """Height (mm) of the floor surface at position x (mm) and time t (s)."""
     _, d = cell_of(x, p.S)
-    return floor_height(p, t) - depth(d, p.R)
+    return floor_height(p, t) - floor_depth(p, d)
 
 
 def surface_normal(p: Params, x: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
-    """Outward unit normal (n_x, n_y) of the arc under x (mm)."""
+    """Outward unit normal (n_x, n_y) of the floor under x (mm)."""
     _, d = cell_of(x, p.S)
+    if p.floor in ("sine", "sawtooth"):
+        from .dynamics.floors import normals
+
+        nx, ny = normals(shape_of(p), np.ravel(d))
+        return nx.reshape(np.shape(d)), ny.reshape(np.shape(d))
     if p.flat:
         return np.zeros_like(d), np.ones_like(d)
     q = np.sqrt(np.maximum(0.0, (p.R - np.abs(d)) * (p.R + np.abs(d))))

@@ -37,7 +37,7 @@ from ..ensemble import InitialState, initial_state
 from ..numerics import Numerics
 from ..params import Params
 from ..simulate import simulate
-from ..surface import cell_of, depth
+from ..surface import cell_of, floor_depth
 
 __all__ = ["Lyapunov", "flat_floor_jacobian", "flat_floor_tangent_exponent", "lyapunov"]
 
@@ -220,7 +220,7 @@ def _halves(st: dict[str, np.ndarray], n: int) -> tuple[dict, dict]:
 
 
 def _surface(p: Params, d: _FLOAT, s: _FLOAT) -> _FLOAT:
-    return -p.A * np.sin(p.omega * s) - depth(d, p.R)
+    return -p.A * np.sin(p.omega * s) - floor_depth(p, d)
 
 
 def _displace(p: Params, prim: dict[str, np.ndarray], unit: _FLOAT, d0: float,
@@ -318,7 +318,7 @@ def _end_state(p: Params, st: dict[str, np.ndarray], last: _FLOAT, has: NDArray[
             ta += wait
             sa = (sa + wait) % period
             _, dd = cell_of(xa, p.S)
-            ya = -A * math.sin(w * sa) - float(depth(dd, p.R))
+            ya = -A * math.sin(w * sa) - float(floor_depth(p, dd))
             vxa = 0.0
             vya = -A * w * math.cos(w * sa)
         tau = t_end - ta

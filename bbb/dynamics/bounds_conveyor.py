@@ -26,8 +26,8 @@ import math
 
 from numba import njit
 
-from ..surface import arc_curvature, arc_depth, arc_slope
 from .bounds_level import quartic_step
+from .floors.arc import arc_curvature, arc_depth, arc_slope
 
 #: a carried particle within CUSP_REACH·S of a cusp rests in it: both arcs hold it, and it
 #: lifts off only when both let go (docs/physics.md, "Transport"); 1e-9 S is far above the

@@ -9,8 +9,10 @@ import math
 
 from numba import njit
 
-from ..surface import arc_curvature, arc_normal, arc_slope, floor_a, floor_v
+from ..surface import floor_a, floor_v
 from .bounds_conveyor import cusp_side, times_or_zero
+from .floors import curvature, normal
+from .floors.arc import arc_curvature, arc_normal, arc_slope
 
 
 @njit(cache=True, inline="always")
@@ -25,10 +27,11 @@ def restitute(ux, uy, nx, ny, alpha, beta):
 
 @njit(cache=True)
 def collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, allow_kick):
-    """Eqs. (5)-(6): restitution in the arc's normal/tangential frame, relative to the
-    floor velocity.  Returns (vx⁺, vy⁺, outgoing relative normal speed, kicked); a speed
-    below ``v_stick`` means the particle sticks."""
-    nx, ny = arc_normal(d, R)
+    """Eqs. (5)-(6): restitution in the floor's normal/tangential frame at offset d, relative
+    to the floor velocity, on the floor shape R (bbb.dynamics.floors).  Returns (vx⁺, vy⁺,
+    outgoing relative normal speed, kicked); a speed below ``v_stick`` means the particle
+    sticks."""
+    nx, ny = normal(R, d)
     vf = floor_v(s, A, w)
     un_out, ut_out = restitute(vx, vy - vf, nx, ny, alpha, beta)
     if un_out < v_stick:
@@ -38,7 +41,7 @@ def collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, allow_kick):
         # tangential touch), the particle flies off instead: leave with v_stick.
         # Never twice in a row: in a cusp (R = S/2) the neighbouring wall sends the particle
         # straight back, and repeated kicks would be an endless Zeno sequence.
-        g2 = -g - floor_a(s, A, w) + (ut_out * ny) ** 2 * arc_curvature(d, R)
+        g2 = -g - floor_a(s, A, w) + (ut_out * ny) ** 2 * curvature(R, d)
         if allow_kick and g2 > 0.0 and abs(ut_out) >= v_stick:
             return v_stick * nx + ut_out * ny, vf + v_stick * ny - ut_out * nx, v_stick, True
     return un_out * nx + ut_out * ny, vf + un_out * ny - ut_out * nx, un_out, False

@@ -26,10 +26,10 @@ import math
 
 from numba import njit
 
-from ..surface import arc_depth, arc_normal
 from .bounds_conveyor import cusp_side
 from .collide import collide_c
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row, wrap_period
+from .floors.arc import arc_depth, arc_normal
 from .slide import BUDGET, CUSP, END, LIFT, normal_force, slide, tangential_force
 
 # a contact step's verdicts for bbb.dynamics.evolve's loop (contact_c, bbb.dynamics.contact_level)

@@ -10,10 +10,11 @@ import math
 
 from numba import njit
 
-from ..surface import arc_normal, floor_v
+from ..surface import floor_v
 from .collide import collide
 from .contact_conveyor import DONE, HELD, NEXT, STALLED
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row
+from .floors.arc import arc_normal
 from .motion import surface_y
 from .slide import BUDGET, CUSP, END, LIFT, g_eff, normal_force, slide
 

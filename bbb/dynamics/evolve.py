@@ -19,7 +19,6 @@ import math
 import numpy as np
 from numba import njit
 
-from ..surface import arc_normal
 from .collide import collision, wall_met
 from .contact_conveyor import DONE, HELD, STALLED, contact_c, enter_contact_c
 from .contact_level import contact_level, enter_contact
@@ -38,6 +37,7 @@ from .events import (
     write_counters,
     write_row,
 )
+from .floors import is_flat, normal
 from .liftoff import liftoff_wait_c, rest_wait
 from .motion import fill_carried, fill_flight, floor_velocity, fly, lab_x, on_arc_velocity, surface_y
 from .search import SEARCH_SPENT, STACK_DEPTH, next_collision
@@ -85,7 +85,9 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
     floor and the time sliding; ``status`` the guards' verdict (bbb.dynamics.events; a 5th
     column, if there is one, gets the deepest draw on the search budget).
     ``friction`` is None for the stick model, else μ (0 for slide); ``frame`` None for the
-    paper's floor, else the conveyor's Frame: their types select the compiled kernel."""
+    paper's floor, else the conveyor's Frame; ``fl.R`` is the floor's shape
+    (bbb.dynamics.floors: the arc's radius, or a sine's or sawtooth's record, level floor and
+    stick model only): their types select the compiled kernel."""
     pos, rec, counters, times, status = out
     g, A, w, R, S, alpha, beta = fl
     t_max, rec_from, tol_t, v_stick, h_max_periods = run
@@ -102,7 +104,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
     lifting = False
     retry = False
     kicked = False
-    flat = math.isinf(R)
+    flat = is_flat(R)
     t_held = 0.0
     t_slid = 0.0
     sliding = False
@@ -231,7 +233,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
                 vy = vfy
                 n_stick += 1
             else:
-                nx, ny = arc_normal(d, R)
+                nx, ny = normal(R, d)
                 vx, vy = on_arc_velocity(vt, nx, ny, vfx, vfy, frame)
                 code = EV_CONTACT
         t_c = tp * T + (s - s0)

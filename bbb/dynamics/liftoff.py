@@ -8,8 +8,8 @@ import math
 
 from numba import njit
 
-from ..surface import arc_normal
 from .bounds_conveyor import cusp_side
+from .floors.arc import arc_normal
 
 
 @njit(cache=True, inline="always")

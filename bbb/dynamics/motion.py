@@ -1,9 +1,10 @@
 """Where a particle is between events, on either floor: the lab position of a state, the
 floor's velocity, a flight's end (Eqs. 1-4) and the position samples written along the way.
 
-``frame`` is None on the paper's floor (numba prunes the conveyor branches at compile
-time) or the conveyor's :class:`bbb.dynamics.options.Frame`, whose offsets d are relative
-to the moving floor (lab x = cell·S + d + X_f, X_f = −Ax sin ωs).
+``R`` is the floor's shape (bbb.dynamics.floors).  ``frame`` is None on the paper's floor
+(numba prunes the conveyor branches at compile time) or the conveyor's
+:class:`bbb.dynamics.options.Frame`, whose offsets d are relative to the moving floor
+(lab x = cell·S + d + X_f, X_f = −Ax sin ωs).
 """
 
 from __future__ import annotations
@@ -12,8 +13,9 @@ import math
 
 from numba import njit
 
-from ..surface import arc_depth, floor_v, floor_y
+from ..surface import floor_v, floor_y
 from .bounds_conveyor import round_half_away
+from .floors import depth, is_flat
 
 
 @njit(cache=True, inline="always")
@@ -28,8 +30,8 @@ def lab_x(cell, d, s, S, w, frame):
 def surface_y(s, d, A, w, R, frame):
     # Sec. 2: the surface's height under offset d, y_f − c(d)
     if frame is None:
-        return floor_y(s, A, w) - arc_depth(d, R)
-    return -frame.Ay * math.sin(w * s) - arc_depth(d, R)
+        return floor_y(s, A, w) - depth(R, d)
+    return -frame.Ay * math.sin(w * s) - depth(R, d)
 
 
 @njit(cache=True, inline="always")
@@ -82,7 +84,7 @@ def fly(cell, d, vx, vy, s, tau, j, g, w, R, S, frame):
     if frame is None:
         d = d + vx * tau - j * S
         cell += j
-        if math.isinf(R):
+        if is_flat(R):
             k = math.floor(d / S + 0.5)
             d -= k * S
             cell += int(k)

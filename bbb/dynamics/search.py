@@ -6,7 +6,9 @@ interval when a rigorous lower bound is positive there; a root is refined by New
 safeguarded by bisection to ``tol_t``.  The gap and its certificates are each floor's own
 (:mod:`bbb.dynamics.bounds_level`, :mod:`bbb.dynamics.bounds_conveyor`); ``frame`` (None:
 the paper's floor) selects them at compile time.  The paper's floor splits a flight at the
-cusps it crosses (one arc per piece); the conveyor's bounds hold across them.
+cusps it crosses (one arc per piece); the conveyor's bounds hold across them.  On the level
+floor ``R`` is any floor shape (bbb.dynamics.floors: the arc's radius or a shape's record),
+whose cells the search crosses one at a time; the conveyor's is the arc's radius.
 """
 
 from __future__ import annotations
@@ -15,9 +17,9 @@ import math
 
 from numba import njit
 
-from ..surface import arc_depth
 from .bounds_conveyor import gap_c, lower_bound_c, offset_range, start_step_c, upper_curvature
 from .bounds_level import curvature_bound, gap, lower_bound, start_step
+from .floors import is_flat, valley_depth
 
 NO_COLLISION = -1.0
 #: what a search returns instead of τ when its step budget ran out (bbb.dynamics.events)
@@ -73,7 +75,7 @@ def gap_lower_bound(h, Ga, G1a, Gb, da, db, d1a, d1b, vx, g, A, w, R, S, Dx, fra
 def first_step(h_max, G1, d0, d10, vx, s, g, A, w, R, S, Dx, frame, lifting):
     # a step σ > 0 with G > 0 on (0, σ] for a flight from the surface, 0 if none certified
     if frame is None:
-        return start_step(h_max, G1, vx, s, g, A, w, lifting)
+        return start_step(h_max, G1, vx, s, g, A, w, R, lifting)
     return start_step_c(h_max, G1, d0, d10, s, frame.gx, frame.gy, frame.Ax, frame.Ay, w, R, S,
                         Dx, lifting)
 
@@ -206,8 +208,9 @@ def flight_windows(y, vy, g, top, bottom):
 def search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, tol_t, h_max,
                  stack, left):
     """The paper floor's search over [wa, wb], one arc at a time: (τ, cell offset j of the
-    arc hit, the step budget left), NO_COLLISION if none; each arc costs a step."""
-    if math.isinf(R):
+    arc hit, the step budget left), NO_COLLISION if none; each arc costs a step.  ``R`` is the
+    floor's shape (bbb.dynamics.floors); a flat one is searched in one piece."""
+    if is_flat(R):
         tau, left = search_piece(wa, wb, d, y, vy, s, 0.0, 0.0, g, A, w, R, S, 0.0, None,
                                  from_surface and wa == 0.0, lifting, tol_t, h_max, stack, left)
         return tau, 0, left
@@ -252,7 +255,7 @@ def next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, frame,
     (relative to the current cell) of the arc hit (the conveyor's: 0, its flight's end takes
     the nearest arc) and the step budget ``left`` after the search (bbb.dynamics.events).
     τ = NO_COLLISION if none before ``tau_limit``, SEARCH_SPENT if the budget ran out."""
-    cmax = arc_depth(0.5 * S, R)
+    cmax = valley_depth(R, S)
     if frame is None:
         gn = g
         top = A

@@ -23,6 +23,7 @@ __all__ = ["SYMBOLS", "symbol", "pretty_unit", "unit_of", "axis_label", "value_l
 SYMBOLS = {
     "frequency": "f", "alpha": "α", "beta": "β", "Gamma": "Γ", "mu": "μ", "R": "R", "S": "S",
     "A": "A", "tilt": "tilt", "throw": "throw", "contact": "contact", "family": "family",
+    "floor": "floor", "depth": "depth", "peak": "peak",
     "D": "D", "D_family": "D", "v": "v", "D_drift": r"$D_\mathrm{drift}$",
 }
 _SUPERSCRIPTS = {"2": "²", "3": "³", "-1": "⁻¹", "-2": "⁻²"}

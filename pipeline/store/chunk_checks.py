@@ -23,7 +23,7 @@ import numpy as np
 import zarr
 
 from bbb.params import Params
-from bbb.surface import cell_of, depth
+from bbb.surface import cell_of, floor_depth
 
 from ..workflow.observables.counters import COUNTERS
 from ..workflow.study import Study
@@ -167,7 +167,7 @@ def _collision_problems(rows: np.ndarray, nrec: np.ndarray, p, study: Study, fir
         yield "collisions", (f"{int(bad.sum())} floor phases outside [0, 1] "
                              f"(first: {first_of(bad)})")
     _, d = cell_of(np.where(ok, x, 0.0), p.S)
-    surface = -p.A * np.sin(2 * np.pi * np.where(ok, ph, 0.0)) - depth(d, p.R)
+    surface = -p.A * np.sin(2 * np.pi * np.where(ok, ph, 0.0)) - floor_depth(p, d)
     gap = np.where(ok, y - surface, 0.0)
     bad = np.abs(gap) > ON_SURFACE_MM
     if bad.any():

@@ -128,7 +128,8 @@ def diffusion_table(store: StudyStore, done: np.ndarray) -> pd.DataFrame:
     fit = dict(fit_from=fit_from, fit_to=fit_to, discard=an.discard)
     stops = store.stops()
     rows = []
-    conveyor = bool({"tilt", "throw"} & (study.overrides.keys() | {a for a, _ in study.grid}))
+    conveyor = bool({"tilt", "throw"} & (study.overrides.keys() | {a for a, _ in study.grid})) \
+        or not study.mirror_symmetric
     for fi, point in enumerate(study.points):
         f = point.f
         parts = {mi: (store.read_done("positions", fi, mi, done[fi, mi]),  # (particle, time)

@@ -32,7 +32,7 @@ from pathlib import Path
 from typing import Any
 
 from bbb.numerics import NUMERICS_RANGES, Numerics
-from bbb.params import CONTACT_MODELS, GAMMA_MAX, PARAM_RANGES
+from bbb.params import CONTACT_MODELS, FLOORS, GAMMA_MAX, PARAM_RANGES
 from bbb.params import PRESETS as PARAM_PRESETS
 
 from .accuracy import ACCURACY_PRESETS, DEFAULT_ACCURACY, NUMERICS_KNOBS
@@ -113,6 +113,18 @@ class ParamsTable:
                        choices=CONTACT_MODELS)
     mu: float | None = key(None, "Coulomb friction coefficient", allowed=_allowed("mu"),
                            when=("contact", "coulomb"), default_doc="0")
+    # the floor's shape (docs/physics.md, "Floors"); omit_default and left out of
+    # Params.as_dict at their defaults, so every arc scene keeps its fingerprint
+    floor: str = key("arc", "floor shape: the paper's arcs (R, S), flat (R = inf), a sine or a "
+                     "sawtooth (depth, S; sawtooth also peak), level and stick only for sine and "
+                     "sawtooth", choices=FLOORS, omit_default=True)
+    depth: float | None = key(None, "top-to-valley depth of a sine or sawtooth floor (the "
+                              "sine's amplitude is depth/2; S is its wavelength or period)",
+                              allowed=_allowed("depth") + ", > 0 on a sine or sawtooth, else 0",
+                              omit_default=True, default_doc="0")
+    peak: float | None = key(None, "where a sawtooth's peak sits, as a fraction of S from its "
+                             "left valley (0.5: symmetric teeth)", allowed=_allowed("peak"),
+                             omit_default=True, default_doc="0.5")
 
 
 INVALID_POLICIES = ("refuse", "skip")
@@ -400,7 +412,7 @@ GRID_AXES = tuple(k.name for k in declared(ParamsTable) if k.name != "preset")
 #: store's axis coordinates and the tables' axis columns (pipeline.tables.units) read it here
 PARAM_UNITS: dict[str, str] = {"g": "mm/s^2", "A": "mm", "Gamma": "1", "R": "mm", "S": "mm",
                                "alpha": "1", "beta": "1", "tilt": "degree", "throw": "degree",
-                               "contact": "", "mu": "1"}
+                               "contact": "", "mu": "1", "floor": "", "depth": "mm", "peak": "1"}
 #: the long name of every [params] key: its one-line doc in the declaration
 PARAM_LONG_NAMES: dict[str, str] = {k.name: k.doc for k in declared(ParamsTable)
                                     if k.name != "preset"}

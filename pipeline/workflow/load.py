@@ -149,7 +149,7 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
                "[grid.refine] with a resolution f = ... (it refines along f at every grid "
                "line, and along the grid's axes)")
     if grid_refine is not None and grid_refine.quantity == "v" and not {"tilt", "throw"} & (
-            set(overrides) | {a for a, _ in grid}):
+            set(overrides) | {a for a, _ in grid}) and study.mirror_symmetric:
         r.fail(("grid", "refine", "quantity"), "v on a level floor vibrated vertically (v = 0 "
                "by symmetry)", 'quantity = "D", or a tilt or throw in [params] or [grid]')
     if grid_refine is not None and not obs.positions:
@@ -182,6 +182,8 @@ def _params(r: Reader, doc: dict, grid: Grid = ()) -> tuple[str, dict[str, float
     if tbl["contact"] != "stick":
         # only a non-default model is an override: stick scenes keep their fingerprints
         overrides["contact"] = tbl["contact"]
+    if tbl["floor"] != "arc":  # likewise the floor's shape
+        overrides["floor"] = tbl["floor"]
     if tbl["Gamma"] is not None:  # the amplitude in g: A at each point's f (resolve_params)
         if tbl["A"] is not None:
             r.fail(("params", "Gamma"), "given with A (the amplitude twice)",

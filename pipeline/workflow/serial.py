@@ -61,7 +61,7 @@ def study_from_dict(cls: type, d: dict[str, Any], text: str = ""):
         source=d["source"],
         seed=int(d["seed"]),
         preset=preset,
-        overrides={k: v if k == "contact" else float(v) for k, v in params.items()},
+        overrides={k: v if k in ("contact", "floor") else float(v) for k, v in params.items()},
         frequencies=tuple(float(f) for f in d["frequencies"]),
         families=fams,
         accuracy=Accuracy(**d["accuracy"]),

@@ -162,7 +162,7 @@ class Study:
             if v not in axis and v != elsewhere(a, {**self.overrides, **values}):
                 raise ValueError(f"{a} = {fmt_value(v)} is not on the grid; allowed: "
                                  + ", ".join(fmt_value(x) for x in axis))
-            if a == "contact" and v == "stick":
+            if (a, v) in (("contact", "stick"), ("floor", "arc")):
                 overrides.pop(a, None)
             else:
                 overrides[a] = v
@@ -236,9 +236,9 @@ class Study:
         """Whether the floor is mirror-symmetric (level, vibrated vertically: no tilt, throw
         90°) at every point, under any contact model: a particle's mirror image then moves as
         its reflection."""
-        if self.grid:  # every point's floor (tilt and throw may be axes)
-            return not any(p.params.transport for p in self.points)
-        return not resolve_params(self.preset, 1.0, self.overrides).transport
+        if self.grid:  # every point's floor (tilt, throw, the floor's shape may be axes)
+            return all(p.params.mirror_symmetric for p in self.points)
+        return resolve_params(self.preset, 1.0, self.overrides).mirror_symmetric
 
     def pairing(self, family: Family, point: Point | None = None) -> str:
         """How ``family``'s particles enter the estimates (bbb.analysis.transport.PAIRING) at
@@ -249,7 +249,7 @@ class Study:
         from bbb.analysis.transport import INDEPENDENT, PAIRS, SYMMETRY
 
         # the floor (tilt, throw) is the same along f: a point pairs as its grid line's scene
-        symmetric = self.mirror_symmetric if point is None else not point.params.transport
+        symmetric = self.mirror_symmetric if point is None else point.params.mirror_symmetric
         mirror = symmetric if family.mirror is None else family.mirror
         return INDEPENDENT if not mirror else SYMMETRY if symmetric else PAIRS
 

@@ -8,7 +8,7 @@ import math
 import numpy as np
 
 from bbb import Params
-from bbb.surface import cell_of, depth
+from bbb.surface import cell_of, floor_depth
 
 ON_SURFACE_MM = 1e-9
 #: At the vertical cusps of R = S/2 the height is only defined to sqrt(2 R δx) for a rounding
@@ -55,7 +55,7 @@ def gap_along_flights(p: Params, rows: np.ndarray, n_grid: int = 400,
         tau = np.linspace(0.0, duration, n + 2)[1:-1]
         s = ph / p.f + tau
         _, dd = cell_of(x0 + vx * tau - 0.5 * gx * tau * tau + ax * np.sin(w * s), p.S)
-        surface = -ay * np.sin(w * s) - depth(dd, p.R)
+        surface = -ay * np.sin(w * s) - floor_depth(p, dd)
         yp = y0 + vy * tau - 0.5 * gy * tau * tau
         if tau.size:
             worst = min(worst, float(np.min(yp - surface)))

@@ -51,15 +51,16 @@ t_max = 30.0
 
 @pytest.mark.parametrize("workflow", WORKFLOWS, ids=[w.stem for w in WORKFLOWS])
 def test_plan_prints_a_table_for_every_workflow(workflow, tmp_path, monkeypatch, capsys):
-    """Every workflow in workflows/ gets a table whose total row counts all its frequencies and
-    chunks, and a predicted wall time (pilot of 2 particles, cached under tmp_path)."""
+    """Every workflow in workflows/ gets a table whose total row counts all its points (its
+    frequencies, times its grid's lines) and chunks, and a predicted wall time (pilot of 2
+    particles, cached under tmp_path)."""
     monkeypatch.chdir(tmp_path)
     assert main(["plan", str(workflow), "--workers", "2", "--pilot-particles", "2"]) == 0
     out = capsys.readouterr().out
     study = load_workflow(workflow)
     total = next(line for line in out.splitlines() if line.startswith("total"))
-    units = len(study.frequencies) * len(study.families)
-    assert total.split()[1] == str(len(study.frequencies))
+    units = len(study.points) * len(study.families)
+    assert total.split()[1] == str(len(study.points))
     if study.accuracy.adaptive:  # a target-driven scene: at least one chunk each, at most the cap
         assert units <= int(total.split()[2]) <= units * study.accuracy.n_chunks
     else:

@@ -86,7 +86,7 @@ def test_dimensionless_is_1_and_nothing_reads_as_dimensionless_by_a_blank():
                             "eb_ok", "rule", "level_ok", "decay_ok", "spread_ok", "verdict",
                             "stop", "stationary", "v_by", "D_drift_status", "steady",
                             "diffusive", "v_status", "converged", "converged_coll", "still",
-                            "contact"]
+                            "contact", "floor"]
                            # the observables' own texts, as each declares them
                            + [c for o in own_tables() for c, _, u, _ in o.columns if u == ""])
 

@@ -98,7 +98,7 @@ BAD = {
                            "or in [grid] (an axis), not both"),
     "unknown axis": (with_grid("omega = [1.0, 2.0]"), "wf.toml:32: grid.omega: unknown key",
                      "allowed: an axis named by a [params] key (g, A, Gamma, R, S, alpha, beta, "
-                     "tilt, throw, contact, mu), or invalid"),
+                     "tilt, throw, contact, mu, floor, depth, peak), or invalid"),
     "preset as an axis": (with_grid('preset = ["klages2004"]'), "wf.toml:32: grid.preset: "
                           "unknown key", "allowed: an axis named by a [params] key"),
     "empty list": (with_grid("alpha = []"), "wf.toml:32: grid.alpha: must be a non-empty list, "

@@ -1,0 +1,110 @@
+"""The paper's floor shape: circular arcs of radius R (mm) centred at the cell centres, cusps
+at the cell edges (Fig. 1); R = inf is the flat floor.  The kernel carries the arc as its
+radius, a float, so that the paper's floor compiles to exactly the expressions it always had
+(the arc_* functions here, which the conveyor's modules call directly).  Offsets d (mm) are
+from the arc's centre, |d| ≤ S/2."""
+
+from __future__ import annotations
+
+import math
+
+from numba import njit
+
+
+@njit(cache=True, inline="always")
+def root_r2_d2(d, R):
+    # (R-|d|)(R+|d|) instead of R²-d²: exact to rounding at the cusps when R = S/2
+    ad = abs(d)
+    return math.sqrt(max(0.0, (R - ad) * (R + ad)))
+
+
+@njit(cache=True, inline="always")
+def arc_depth(d, R):
+    # Fig. 1 geometry: R - sqrt(R²-d²) written as d²/(R+sqrt(R²-d²)), free of cancellation
+    if math.isinf(R):
+        return 0.0
+    return d * d / (R + root_r2_d2(d, R))
+
+
+@njit(cache=True, inline="always")
+def arc_slope(d, R):
+    # dc/dd; infinite at a vertical cusp (R = S/2, |d| = R)
+    if math.isinf(R):
+        return 0.0
+    q = root_r2_d2(d, R)
+    if q == 0.0:
+        return math.copysign(math.inf, d)
+    return d / q
+
+
+@njit(cache=True, inline="always")
+def arc_curvature(d, R):
+    # d²c/dd² = R²/(R²-d²)^(3/2), increasing in |d|
+    if math.isinf(R):
+        return 0.0
+    q = root_r2_d2(d, R)
+    if q == 0.0:
+        return math.inf
+    return R * R / (q * q * q)
+
+
+@njit(cache=True, inline="always")
+def arc_normal(d, R):
+    # outward unit normal of the arc at offset d (Fig. 1's v_perp direction)
+    if math.isinf(R):
+        return 0.0, 1.0
+    return d / R, root_r2_d2(d, R) / R
+
+
+# ---- the shape interface (bbb.dynamics.floors) on the arc's radius ----------------------
+
+#: the record type of an arc: its radius R (mm), a float (``sh`` below)
+RECORD = float
+
+
+@njit(cache=True, inline="always")
+def depth(sh, d):
+    return arc_depth(d, sh)
+
+
+@njit(cache=True, inline="always")
+def slope(sh, d):
+    return arc_slope(d, sh)
+
+
+@njit(cache=True, inline="always")
+def curvature(sh, d):
+    return arc_curvature(d, sh)
+
+
+@njit(cache=True, inline="always")
+def normal(sh, d):
+    return arc_normal(d, sh)
+
+
+@njit(cache=True, inline="always")
+def curvature_max(sh, da, db):
+    # c'' grows with |d| within a cell
+    return arc_curvature(max(abs(da), abs(db)), sh)
+
+
+@njit(cache=True, inline="always")
+def concavity(sh):
+    # c'' ≥ 0 everywhere: never concave
+    return 0.0
+
+
+@njit(cache=True, inline="always")
+def depth_min(sh, da, db, ca, cb):
+    # c grows with |d| within a cell: 0 over an interval holding the top, else at an end
+    return 0.0 if da * db <= 0.0 else min(ca, cb)
+
+
+@njit(cache=True, inline="always")
+def valley_depth(sh, S):
+    return arc_depth(0.5 * S, sh)
+
+
+@njit(cache=True, inline="always")
+def is_flat(sh):
+    return math.isinf(sh)
