@@ -162,7 +162,7 @@ def warm_numba(study: Study) -> float:
     """Compile (or load from numba's on-disk cache) everything a task runs; returns seconds.
 
     One tiny simulate call per family with the study's observables, at one point of each
-    kernel variant the points use (contact model, level floor or conveyor), so that no task
+    kernel variant the points use (contact model, level floor or conveyor, floor shape), so that no task
     compiles and no two processes write the same cache entry at once (numba issue #4807).
     """
     import numpy as np
@@ -176,7 +176,7 @@ def warm_numba(study: Study) -> float:
     t = min(0.05, study.accuracy.t_max)
     variants = {}
     for p in study.points:
-        variants.setdefault((p.params.contact, p.params.transport), p)
+        variants.setdefault((p.params.contact, p.params.transport, p.params.floor), p)
     for point in variants.values():
         for fam in study.families:
             simulate(point.params, 2, t, 0,
