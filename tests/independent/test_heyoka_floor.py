@@ -80,7 +80,7 @@ APEX_TAU = 0.01
 def apex_flight(delta: float):
     """Launched so that the apex (τ = APEX_TAU) is δ above the crest at u = 0."""
     vy = G * APEX_TAU
-    return -VX * APEX_TAU, SINE.amplitude + delta - 0.5 * G * APEX_TAU**2, VX, vy, 0.0
+    return -VX * APEX_TAU, SINE.top + delta - 0.5 * G * APEX_TAU**2, VX, vy, 0.0
 
 
 def test_a_flight_grazing_one_nanometre_above_a_crest_is_not_a_contact():
@@ -105,8 +105,8 @@ def drop_time(height: float, y0: float = 1.0, vy: float = 0.0) -> float:
 @pytest.mark.parametrize("shape,u", [
     (Arc(15.0, 2.0), 1.0),  # a cusp between two arcs
     (Arc(1.0, 2.0), 3.0),  # a vertical cusp (R = S/2)
-    (Sawtooth(2.0, 0.3, 0.5), 4.0),  # a valley
-    (Sawtooth(2.0, 0.3, 0.5), 2.6),  # a peak
+    (Sawtooth(2.0, 0.3, 0.5), 3.0),  # a valley (the cell edges (k + ½)P)
+    (Sawtooth(2.0, 0.3, 0.5), 3.6),  # a peak ((k − ½ + ξ)P)
 ], ids=["arc_cusp", "vertical_cusp", "sawtooth_valley", "sawtooth_peak"])
 def test_a_drop_onto_a_cusp_or_kink_lands_at_the_closed_form_time(shape, u):
     c = next_contact(shape, STILL, u, 1.0, 0.0, 0.0, 0.0)
@@ -115,12 +115,12 @@ def test_a_drop_onto_a_cusp_or_kink_lands_at_the_closed_form_time(shape, u):
 
 
 def test_a_flight_skimming_a_sawtooth_peak_passes_over_the_faces_extension():
-    # a level flight from 1 µm above the peak (u = 0.6, height 0.5): it crosses the rising
+    # a level flight from 1 µm above the peak (u = 1.6, height 0): it crosses the rising
     # face's line beyond the peak (an event off the face, passed over) and lands further on
     saw = Sawtooth(2.0, 0.3, 0.5)
-    flight = (0.595, saw.height_mm + 1e-3, 200.0, 0.0, 0.0)
+    flight = (1.595, saw.top + 1e-3, 200.0, 0.0, 0.0)
     c = next_contact(saw, STILL, *flight)
-    assert c.x > 0.6
+    assert c.x > 1.6
     assert abs(c.tau - first_contact(saw, STILL, *flight)) <= TOL_TAU
 
 
