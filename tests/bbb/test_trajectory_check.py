@@ -657,3 +657,25 @@ def test_a_bounce_off_the_flat_floors_normal_on_a_flank_is_flagged(name):
     ev = ev.copy()
     ev[j, 3:5] = p.beta * ux, vf - p.alpha * uy
     assert check_particle(p, ev).failures["velocity"] >= 1
+
+
+@pytest.mark.parametrize("name,top", [("sine", 0.0), ("sawtooth", -0.4)], ids=["sine crest", "sawtooth peak"])
+def test_a_dip_below_a_sine_crest_or_a_sawtooth_peak_between_samples_is_flagged(name, top):
+    # a fast level flight (2000 mm/s) passing 1 nm below the top of cell 3 (a sine's crest at
+    # its centre, a sawtooth's peak (ξ − ½)S off it), when the floor falls faster than g: the
+    # dip (~3e-8 s over the crest, ~2e-12 s at the kink) lies off the dense samples, and only
+    # the bisection with the shape's bounds (a sine's least curvature, a sawtooth's peak) finds it
+    p = Params.preset("klages2004", f=55.0, **SHAPES[name])
+    fl = Floor(p)
+    s_top, tau, u = 0.9e-3, 2.5e-3, 2000.0
+    th = 1.5 * math.pi
+    x0, vy = 3 * p.S + top - u * s_top, float(fl.v(th)) + p.g * s_top
+    y0 = float(fl.y(th)) - 1e-9 - vy * s_top + 0.5 * p.g * s_top**2
+    ph0 = 0.75 - p.f * s_top
+    ev = np.array([[0.0, x0, y0, u, vy, ph0, 0.0],
+                   [tau, x0 + u * tau, y0 + vy * tau - 0.5 * p.g * tau**2, u, vy - p.g * tau,
+                    (ph0 + tau * p.f) % 1.0, 0.0]])
+    s = np.linspace(0.0, tau, 250_001)
+    gap = ev[0, 2] + vy * s - 0.5 * p.g * s * s - fl.surface(x0 + u * s, 2 * math.pi * ph0 + fl.w * s)
+    assert gap[1:].min() > -1e-9 and np.all(gap[np.abs(s - s_top) > 1e-6] > 0)  # only the dip
+    assert check_particle(p, ev).failures["below"] == 1
