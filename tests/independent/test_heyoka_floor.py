@@ -145,3 +145,40 @@ def test_a_lift_off_from_a_flat_floor_lands_where_the_brute_force_scan_does():
     c = next_contact(Flat(), drive, *flight)
     assert c.tau > 1e-3  # a real flight, not the start
     assert abs(c.tau - first_contact(Flat(), drive, *flight)) <= TOL_TAU
+
+
+# ---- far from the origin: a periodic floor's flight is flown within one period of it
+LD = np.longdouble
+
+
+def sine_root_extended(sine: Sine, drive: Drive, flight, lo: float, hi: float) -> float:
+    """The first root in (lo, hi] of the level sine's gap for ``flight``, bisected in extended
+    precision (x87 long double: 64-bit mantissa) from a sign change on a grid."""
+    x0, y0, vx, vy, th0 = (LD(v) for v in flight)
+    pi = LD("3.141592653589793238462643383279502884")
+    w, k, a = 2 * pi * LD(drive.f), 2 * pi / LD(sine.wavelength), LD(sine.amplitude)
+
+    def gap_ld(t):
+        return y0 + vy * t - LD(drive.g) * t * t / 2 + LD(drive.A) * np.sin(th0 + w * t) \
+            - a * (np.cos(k * (x0 + vx * t)) - 1)
+
+    ts = np.linspace(LD(lo), LD(hi), 4001)
+    i = int(np.nonzero(np.array([gap_ld(t) for t in ts[1:]]) <= 0)[0][0]) + 1
+    a_, b_ = ts[i - 1], ts[i]
+    for _ in range(100):
+        m = (a_ + b_) / 2
+        a_, b_ = (m, b_) if gap_ld(m) > 0 else (a_, m)
+    return float(b_)
+
+
+@pytest.mark.skipif(np.finfo(np.longdouble).eps > 1e-18, reason="needs an extended long double")
+def test_a_grazing_hop_far_from_the_origin_lands_at_the_extended_precision_root():
+    # a hop of 1.3e-7 s recorded by bbb on a sine (depth 0.3 mm, 60 Hz) at x ≈ 24 mm that
+    # meets the floor at a relative speed of 1.6e-3 mm/s: flown at x ≈ 24 mm, an ulp of x
+    # (3.6e-15 mm) moves the floor's height by ~1e-15 mm and the contact by ~1.5e-12 s
+    sine, drive = Sine(0.15, 2.0), Drive(9800.0, 0.1, 60.0)
+    flight = (24.424306257624202, -0.212090998587658, -1.7644358878299167, 9.308704281965207,
+              2.0 * math.pi * 0.2861916867276019)
+    c = next_contact(sine, drive, *flight)
+    assert abs(c.tau - sine_root_extended(sine, drive, flight, 1e-9, 1.338e-7)) <= TOL_TAU
+    assert abs(c.x - (flight[0] + flight[2] * c.tau)) <= 4.0 * np.spacing(flight[0])
