@@ -13,11 +13,13 @@ from tests.bbb.trajectory_check import (
     CONTACT_LIFT,
     STOP,
     Floor,
+    Report,
     _contact_rates,
     _contact_state,
     _rest_loads,
     _slip,
     check_particle,
+    check_run,
     start_event,
 )
 
@@ -573,3 +575,107 @@ def test_the_calibrations_worst_input_passes_at_the_tolerance_and_fails_below_it
     assert rep.ok and rep.contact_need == pytest.approx(tc.CALIBRATION["contact_rtol_needed"], rel=1e-6)
     monkeypatch.setattr(tc, "CONTACT_RTOL", 0.5 * rep.contact_need)
     assert check().failures["contact_path"] >= 1
+
+
+# ---- the sine and the sawtooth (level, vertically vibrated, stick: where the kernel runs them)
+#: the scenes the checker runs over, a user's depths and a steep case of each (flanks near 60°
+#: and 80°, the sine's curvature to ±5 /mm)
+SHAPES = {
+    "sine": dict(floor="sine", depth=0.3),
+    "sine_steep": dict(floor="sine", depth=1.0, A=0.1),
+    "sawtooth": dict(floor="sawtooth", depth=0.3, peak=0.3),
+    "sawtooth_steep": dict(floor="sawtooth", depth=1.0, peak=0.1, A=0.1),
+}
+_SHAPE_RUNS: dict = {}
+
+
+def shape_run(name: str):
+    """A 60 Hz ensemble of 12 launched particles over 1 s on scene ``name`` (cached)."""
+    if name not in _SHAPE_RUNS:
+        p = Params.preset("klages2004", f=60.0, **SHAPES[name])
+        _SHAPE_RUNS[name] = simulate(p, 12, 1.0, seed=5, initial="launched", record_collisions=200,
+                                     record_liftoffs=True)
+    return _SHAPE_RUNS[name]
+
+
+def shape_events(name: str) -> tuple[Params, np.ndarray, int]:
+    """One particle's events on scene ``name`` and a collision J on a flank (|c'| > 0.1, after a
+    flight of ≥ 1 ms from a collision, followed by a collision)."""
+    run = shape_run(name)
+    fl = Floor(run.params)
+    for i in range(run.n_particles):
+        ev = run.collisions_dense[i, : run.n_recorded[i]].copy()
+        for j in range(10, ev.shape[0] - 1):
+            d = fl.offset(ev[j, 1], 2 * math.pi * ev[j, 5])
+            if ev[j - 1, 6] == ev[j, 6] == ev[j + 1, 6] == 0.0 and ev[j, 0] - ev[j - 1, 0] > 1e-3 \
+                    and abs(float(fl.slope(d))) > 0.1:
+                return run.params, ev, j
+    raise AssertionError(f"no collision on a flank after a long flight on {name}")
+
+
+@pytest.mark.parametrize("name", SHAPES)
+def test_sine_and_sawtooth_ensembles_pass_the_checker(name):
+    rep = check_run(shape_run(name))
+    assert rep.flights >= 500 and rep.carried >= 1  # bounces, and carried stretches with lift-offs
+    assert rep.ok, rep.messages
+
+
+@pytest.mark.parametrize("name", SHAPES)
+def test_a_checker_told_a_depth_a_millionth_off_flags_the_collision_points(name):
+    run = shape_run(name)
+    wrong = dataclasses.replace(run.params, depth=run.params.depth * (1 + 1e-6))
+    rep = Report()
+    for i in range(run.n_particles):
+        rep.add(check_particle(wrong, run.collisions_dense[i, : run.n_recorded[i]]))
+    assert rep.failures["off_surface"] > 0
+
+
+def test_a_checker_told_a_sawtooth_peak_a_millionth_off_flags_the_collision_points():
+    run = shape_run("sawtooth")
+    wrong = dataclasses.replace(run.params, peak=run.params.peak * (1 + 1e-6))
+    rep = Report()
+    for i in range(run.n_particles):
+        rep.add(check_particle(wrong, run.collisions_dense[i, : run.n_recorded[i]]))
+    assert rep.failures["off_surface"] > 0
+
+
+@pytest.mark.parametrize("name", SHAPES)
+def test_a_missed_collision_on_a_sine_or_sawtooth_is_flagged(name):
+    p, ev, j = shape_events(name)
+    assert check_particle(p, ev).ok
+    assert "below" in {k for k, v in check_particle(p, np.delete(ev, j, axis=0)).failures.items() if v}
+
+
+@pytest.mark.parametrize("name", SHAPES)
+def test_a_bounce_off_the_flat_floors_normal_on_a_flank_is_flagged(name):
+    # Eqs. (5)-(6) with the normal (0, 1) where the floor slopes: the shape's normal is checked
+    p, ev, j = shape_events(name)
+    a = ev[j - 1]
+    tau = ev[j, 0] - a[0]
+    vf = -p.A * p.omega * math.cos(2 * math.pi * ev[j, 5])
+    ux, uy = a[3], a[4] - p.g * tau - vf
+    ev = ev.copy()
+    ev[j, 3:5] = p.beta * ux, vf - p.alpha * uy
+    assert check_particle(p, ev).failures["velocity"] >= 1
+
+
+@pytest.mark.parametrize("name,top", [("sine", 0.0), ("sawtooth", -0.4)], ids=["sine crest", "sawtooth peak"])
+def test_a_dip_below_a_sine_crest_or_a_sawtooth_peak_between_samples_is_flagged(name, top):
+    # a fast level flight (2000 mm/s) passing 1 nm below the top of cell 3 (a sine's crest at
+    # its centre, a sawtooth's peak (ξ − ½)S off it), when the floor falls faster than g: the
+    # dip (~3e-8 s over the crest, ~2e-12 s at the kink) lies off the dense samples, and only
+    # the bisection with the shape's bounds (a sine's least curvature, a sawtooth's peak) finds it
+    p = Params.preset("klages2004", f=55.0, **SHAPES[name])
+    fl = Floor(p)
+    s_top, tau, u = 0.9e-3, 2.5e-3, 2000.0
+    th = 1.5 * math.pi
+    x0, vy = 3 * p.S + top - u * s_top, float(fl.v(th)) + p.g * s_top
+    y0 = float(fl.y(th)) - 1e-9 - vy * s_top + 0.5 * p.g * s_top**2
+    ph0 = 0.75 - p.f * s_top
+    ev = np.array([[0.0, x0, y0, u, vy, ph0, 0.0],
+                   [tau, x0 + u * tau, y0 + vy * tau - 0.5 * p.g * tau**2, u, vy - p.g * tau,
+                    (ph0 + tau * p.f) % 1.0, 0.0]])
+    s = np.linspace(0.0, tau, 250_001)
+    gap = ev[0, 2] + vy * s - 0.5 * p.g * s * s - fl.surface(x0 + u * s, 2 * math.pi * ph0 + fl.w * s)
+    assert gap[1:].min() > -1e-9 and np.all(gap[np.abs(s - s_top) > 1e-6] > 0)  # only the dip
+    assert check_particle(p, ev).failures["below"] == 1

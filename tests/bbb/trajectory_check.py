@@ -44,12 +44,16 @@ slides on that wall; a wall with N ≤ 0 does not touch the particle, and the fl
 only when both walls do), by its own sampling and bisection; and a held particle's lift-off
 must not come after that slip.
 
-Other floor shapes.  The floor's profile within a cell (depth, slope, curvature, normal and
-their sensitivity to a rounding of the offset) is a small class, ArcProfile or FlatProfile.
-The rest still assumes arcs: cells of width S with cusps (concave kinks of the gap) at their
-edges and nowhere else; a depth that is convex and grows with |d|, so its minimum over an
-offset range and its curvature's extremes sit at the range's ends (the gap bounds); R as the
-length scale of roundings; and sliding stretches integrated as an angle on a circle.
+Other floor shapes.  The floor's profile within a cell (depth, slope, curvature, normal,
+their sensitivity to a rounding of the offset, and the bounds the level gap check takes over
+an offset range: the least depth, the least curvature, the largest pull n_y² c'') is a small
+class of tests/bbb/checker_profiles.py: ArcProfile, FlatProfile, SineProfile or SawtoothProfile
+(the sine and the sawtooth of docs/physics.md, "Floors", written there on their own).
+Common to all: cells of width S with any concave kink of the gap (an arc's cusp, a sawtooth's
+valley) at their edges.  The sine and the sawtooth are checked on the level, vertically
+vibrated floor under the stick model (the flights, the collision rule, sticking and lift-off),
+which is where the kernel runs them; the conveyor's bounds (circles through the cusps, R as
+the length scale) and the sliding stretches (an angle on a circle) remain written for arcs.
 
 Tolerances are the checker's own, never read from the run under test (its bbb.Numerics): a run
 made with a coarser root tolerance fails the checker.  Event times are asked to TOL_T = 1e-12 s,
@@ -76,6 +80,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+
+from tests.bbb.checker_profiles import ArcProfile, FlatProfile, SawtoothProfile, SineProfile
 
 EPS = float(np.finfo(np.float64).eps)
 CHECKS = ("clock", "carried", "liftoff_state", "liftoff_time", "stuck_flight", "off_parabola",
@@ -138,71 +144,6 @@ class Report:
         self.contact_need = max(self.contact_need, other.contact_need)
 
 
-class ArcProfile:
-    """The paper's arcs of radius R (mm): offset d from an arc's centre lies c(d) = R − √(R² − d²)
-    below its top.  A floor shape gives the checker its depth, slope, curvature, normal and how
-    far they move with a rounding of d; a new shape is a class like this one plus the parts of
-    the checker that still assume arcs (module doc, "Other floor shapes")."""
-
-    def __init__(self, R: float) -> None:
-        self.R = R
-
-    def q(self, d):
-        # √(R² − d²) as √((R−|d|)(R+|d|)): no cancellation at the cusps of R = S/2
-        ad = np.abs(d)
-        return np.sqrt(np.maximum((self.R - ad) * (self.R + ad), 0.0))
-
-    def depth(self, d):
-        """c(d) = R − √(R² − d²) (mm), written d²/(R + √(R² − d²))."""
-        return d * d / (self.R + self.q(d))
-
-    def slope(self, d):
-        """c'(d) = d/√(R² − d²); ±inf at a vertical cusp."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            return np.where(self.q(d) > 0, d / self.q(d), np.copysign(np.inf, d))
-
-    def curvature(self, d):
-        """c''(d) = R²/(R² − d²)^{3/2}, increasing in |d|."""
-        with np.errstate(divide="ignore"):
-            return self.R**2 / self.q(d) ** 3
-
-    def normal(self, d):
-        """Outward unit normal (nₓ, n_y) of the arc at offset d."""
-        return d / self.R, self.q(d) / self.R
-
-    def height_error(self, d, dx):
-        """Largest change of c when d moves by dx: min(c'·dx, √(2R dx)) (mm)."""
-        far = np.minimum(np.abs(d) + dx, self.R)
-        with np.errstate(invalid="ignore"):
-            lip = np.where(far < self.R, self.slope(far) * dx, np.inf)
-        return np.minimum(lip, np.sqrt(2.0 * self.R * dx))
-
-    def normal_error(self, dx):
-        """δn ≤ δd/R + √(2R δd)/R (the √ at a vertical cusp)."""
-        return dx / self.R + np.sqrt(2.0 * self.R * dx) / self.R
-
-
-class FlatProfile:
-    """A flat floor (R = inf): no depth, the normal straight up."""
-
-    def q(self, d):
-        return np.full_like(np.asarray(d, float), np.inf)
-
-    def depth(self, d):
-        return np.zeros_like(d)
-
-    slope = curvature = depth
-
-    def normal(self, d):
-        return np.zeros_like(d), np.ones_like(d)
-
-    def height_error(self, d, dx):
-        return np.zeros_like(d)
-
-    def normal_error(self, dx):
-        return 0.0 * dx
-
-
 class Floor:
     """The moving corrugated floor of the paper, in its own numpy code."""
 
@@ -211,11 +152,22 @@ class Floor:
         self.alpha, self.beta = p.alpha, p.beta
         self.mu = getattr(p, "mu", 0.0)
         self.w = 2.0 * math.pi * p.f
-        self.flat = math.isinf(p.R)
+        self.shape = getattr(p, "floor", "arc")
+        self.flat = self.shape == "flat" or (self.shape == "arc" and math.isinf(p.R))
         # what depends on the floor's shape (its height profile within a cell) lives there
-        self.profile = FlatProfile() if self.flat else ArcProfile(p.R)
+        if self.shape == "sine":
+            self.profile = SineProfile(p.depth, p.S)
+        elif self.shape == "sawtooth":
+            self.profile = SawtoothProfile(p.depth, p.peak, p.S)
+        else:
+            self.profile = FlatProfile() if self.flat else ArcProfile(p.R)
         phi, psi = math.radians(getattr(p, "tilt", 0.0)), math.radians(getattr(p, "throw", 90.0))
         self.conveyor = phi != 0.0 or psi != math.pi / 2
+        sliding = getattr(p, "contact", "stick") != "stick"
+        if self.shape in ("sine", "sawtooth") and (self.conveyor or sliding):
+            # the conveyor's bounds and the sliding checks here are written for arcs (module doc)
+            raise ValueError(f"the trajectory checker checks a {self.shape} floor level, vertically "
+                             "vibrated and under contact = 'stick' only")
         # gravity's magnitudes along −x and −y, the floor's amplitudes along x and y
         self.gx, self.gy = (p.g * math.sin(phi), p.g * math.cos(phi)) if self.conveyor else (0.0, p.g)
         self.Ax, self.Ay = (p.A * math.cos(psi), p.A * math.sin(psi)) if self.conveyor else (0.0, p.A)
@@ -264,9 +216,9 @@ class Floor:
         """Largest change of the depth when d moves by dx (mm)."""
         return self.profile.height_error(d, dx)
 
-    def normal_error(self, dx):
-        """Largest change of the normal (either component) when d moves by dx."""
-        return self.profile.normal_error(dx)
+    def normal_error(self, dx, d=None):
+        """Largest change of the normal (either component) when d (if given) moves by dx."""
+        return self.profile.normal_error(dx, d)
 
     def y(self, th):
         return -self.Ay * np.sin(th)
@@ -492,7 +444,7 @@ def _check_velocity(fl: Floor, v_stick, rep: Report, index, vx_in, vy_in, xb, dx
     speed = np.hypot(ux, uy)
     d = fl.offset(xb, thb)
     # the normal from d is known to δn ≤ δd/R + √(2R δd)/R (the √ at a vertical cusp)
-    dn = fl.normal_error(dxb)
+    dn = fl.normal_error(dxb, d)
     tol = 32.0 * EPS * (speed + np.abs(vf) + np.hypot(ox, oy)) + 2.0 * speed * dn \
         + (fl.g + fl.A * fl.w**2) * dtau
     vs = v_stick
@@ -512,10 +464,11 @@ def _check_velocity(fl: Floor, v_stick, rep: Report, index, vx_in, vy_in, xb, dx
         # a contact model: the cascade ends in sliding, relative normal speed 0, β u∥ kept
         slides = (kind_b == CONTACT) & (np.abs(on) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) \
             & (out <= vs + tol)
-        # the arc's pull (β u∥ n_y)² c'' = (β u∥)²/√(R² − d²), at its largest within δd of d
-        q_min = fl.q(np.minimum(np.abs(dd) + dxb, fl.R)) if not fl.flat else np.inf
+        # the floor's pull (β u∥ n_y)² c'' (on an arc (β u∥)²/√(R² − d²)), at its largest
+        # within δd of d
+        pull_c = fl.profile.pull(dd, dxb)
         with np.errstate(divide="ignore", invalid="ignore"):
-            pull = np.where(fl.beta * ut != 0.0, (fl.beta * ut) ** 2 / q_min, 0.0)
+            pull = np.where(fl.beta * ut != 0.0, (fl.beta * ut) ** 2 * pull_c, 0.0)
         g2 = -fl.gy - fl.Ay * fl.w**2 * np.sin(thb) + pull
         slope_term = np.zeros_like(g2)
         sw = np.zeros_like(g2)
@@ -525,7 +478,7 @@ def _check_velocity(fl: Floor, v_stick, rep: Report, index, vx_in, vy_in, xb, dx
             with np.errstate(invalid="ignore"):
                 slope_term = np.where(sw != 0.0, fl.slope(dd) * sw, 0.0)
             g2 = g2 + slope_term
-        g2_tol = _kick_tolerance(fl, dd, dxb, dtau, ut, tol, q_min, pull, slope_term, sw)
+        g2_tol = _kick_tolerance(fl, dd, dxb, dtau, ut, tol, pull_c, pull, slope_term, sw)
         flies = (np.abs(on - vs) <= tol) & (np.abs(ot - fl.beta * ut) <= tol) & (out <= vs + tol) \
             & (np.abs(fl.beta * ut) >= vs - tol) & (g2 > -g2_tol)
         ok |= near & approach & ((bounce | stuck | flies) & (kind_b != CONTACT) | slides)
@@ -535,18 +488,19 @@ def _check_velocity(fl: Floor, v_stick, rep: Report, index, vx_in, vy_in, xb, dx
     rep.flag("velocity", ~ok | twice, index, np.zeros_like(tol), tol)
 
 
-def _kick_tolerance(fl: Floor, dd, dxb, dtau, ut, tol, q_min, pull, slope_term, sw):
+def _kick_tolerance(fl: Floor, dd, dxb, dtau, ut, tol, pull_c, pull, slope_term, sw):
     """How far (mm/s²) this checker's G'' of a fly-off (the kick of the sticking rule, which
     the kernel takes where its own G'' > 0) may lie from the kernel's: the rounding of its
     terms (16 ε each); the phase known to ω·dtau, in the floor's accelerations A_y ω² sin θ and
     A_x ω² sin θ (times the slope); u∥ known to ±tol (the velocity check's own bound), in the
-    arc's pull (β u∥)²/√(R² − d²) — already taken at its largest within δd —; and d known to
+    floor's pull (β u∥)² pull_c (pull_c = n_y² c'', 1/√(R² − d²) on an arc) — already taken at
+    its largest within δd —; and d known to
     ±dxb, in the slope c'(d), by c''(|d| + dxb)·dxb."""
     w3 = fl.w**3
     with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
         t = 16.0 * EPS * (fl.gy + abs(fl.Ay) * fl.w**2 + pull + np.abs(slope_term)) \
             + (abs(fl.Ay) + np.abs(slope_term / np.where(sw != 0.0, sw, 1.0)) * abs(fl.Ax)) * w3 * dtau \
-            + fl.beta**2 * tol * (2.0 * np.abs(ut) + tol) / q_min
+            + fl.beta**2 * tol * (2.0 * np.abs(ut) + tol) * np.abs(pull_c)
         if fl.conveyor and not fl.flat:
             c2 = fl.curvature(np.minimum(np.abs(dd) + dxb, fl.R))
             t = t + np.where(sw != 0.0, c2 * dxb * np.abs(sw), 0.0)
@@ -563,7 +517,7 @@ def _check_gap(fl: Floor, rep: Report, index, x0, y0, vx, vy0, th0, tau, dx, sam
     gx, Ax = fl.gx, fl.Ax
     n = tau.size
     # start offset (the start point's own rounding) is part of every flight's tolerance
-    base = 16.0 * EPS * (np.abs(y0) + np.abs(vy0 * tau) + 0.5 * g * tau**2 + A + (0 if fl.flat else fl.R))
+    base = 16.0 * EPS * (np.abs(y0) + np.abs(vy0 * tau) + 0.5 * g * tau**2 + A + fl.profile.scale)
     g0 = y0 - fl.surface(x0, th0)
     base = base + np.maximum(-g0, 0.0) + (g + A * w * w) * TOL_T**2 / 8
 
@@ -623,7 +577,7 @@ def _check_gap(fl: Floor, rep: Report, index, x0, y0, vx, vy0, th0, tau, dx, sam
         gu, du = gap(fi, u, k)
         gv, dv = gap(fi, v, k)
         cu, cv = fl.depth(du), fl.depth(dv)
-        cmin = np.where(du * dv <= 0, 0.0, np.minimum(cu, cv))
+        cmin = fl.profile.depth_min(du, dv, cu, cv)
         smin, smax = sin_range(th0[fi] + w * u, th0[fi] + w * v)
         if fl.conveyor:
             # the nearest arc's depth, at least its minimum over the offset's range: the
@@ -674,10 +628,12 @@ def _check_gap(fl: Floor, rep: Report, index, x0, y0, vx, vy0, th0, tau, dx, sam
                     taylor = np.minimum(taylor, np.where(np.isfinite(K), np.fmax(t_u, t_v), -np.inf))
             lb = np.where(k_hi - k_lo <= 1, np.fmax(lb, taylor), lb)
         if not fl.conveyor:
-            # bounds 3, 4: Taylor from either end with −G'' ≤ K = g + Aω² smax − vₓ² c''(min |d|)
-            dmin = np.where(du * dv <= 0, 0.0, np.minimum(np.abs(du), np.abs(dv)))
+            # bounds 3, 4: Taylor from either end with −G'' ≤ K = g + Aω² smax − vₓ² min c''
+            # (an arc's c'' is least at the smallest |d|, a sine's at the largest; a sawtooth's
+            # flanks have none and its peak is a convex kink, which only turns G' upward)
             with np.errstate(invalid="ignore"):
-                arc = np.where(vx[fi] != 0.0, vx[fi] ** 2 * fl.curvature(dmin), 0.0) if not fl.flat else 0.0
+                arc = np.where(vx[fi] != 0.0, vx[fi] ** 2 * fl.profile.curvature_min(du, dv), 0.0) \
+                    if not fl.flat else 0.0
             K = np.maximum(g + A * w * w * smax - arc, 0.0)
             with np.errstate(invalid="ignore"):
                 t_u = np.minimum(gu, gu + dgap(fi, u, du) * h - 0.5 * K * h * h)

@@ -8,9 +8,10 @@ the floor's frame has x along its mean plane and y normal to it; gravity there i
 θ = 2πf·(floor time), ψ the throw (90°: the paper's vertical vibration).  A point of the floor
 at offset u from the floor's origin (u = x − X_f) sits at height h(u) above Y_f.  The paper's
 arcs have their tops at h = 0, h(u) = −(R − √(R² − d²)) with d the offset from the nearest
-arc centre kS.  The other shapes' conventions are stated on each class; each is one small
-``height`` function (numpy) and one ``pieces`` function (heyoka), to be adapted together if
-bbb's kernel states another.
+arc centre kS.  Every shape follows the same frame (docs/physics.md, "Floors"): cells
+[kS − S/2, kS + S/2], the tops (a sine's crests, a sawtooth's peaks) at height 0, the
+valleys below, at the cell edges for the arcs, the sine and the sawtooth.  Each shape is one
+small ``height`` function (numpy) and one ``pieces`` function (heyoka), adapted together.
 """
 
 from __future__ import annotations
@@ -118,7 +119,8 @@ class Flat:
 
 @dataclass(frozen=True)
 class Sine:
-    """h(u) = a cos(2πu/λ): amplitude a (mm), wavelength λ (mm); tops at u = kλ."""
+    """h(u) = a (cos(2πu/λ) − 1): amplitude a (mm, top to valley 2a), wavelength λ (mm); tops
+    at u = kλ at height 0 (like the arcs' tops), valleys at u = (k + ½)λ at height −2a."""
 
     amplitude: float
     wavelength: float
@@ -130,14 +132,15 @@ class Sine:
 
     @property
     def top(self) -> float:
-        return abs(self.amplitude)
+        return 0.0
 
     @property
     def bottom(self) -> float:
-        return -abs(self.amplitude)
+        return -2.0 * abs(self.amplitude)
 
     def height(self, u: np.ndarray) -> np.ndarray:
-        return self.amplitude * np.cos(2.0 * math.pi * np.asarray(u, float) / self.wavelength)
+        w = 2.0 * math.pi * np.asarray(u, float) / self.wavelength
+        return self.amplitude * (np.cos(w) - 1.0)
 
     def cells(self, u_lo: float, u_hi: float) -> range:
         return range(0, 1)
@@ -145,7 +148,7 @@ class Sine:
     def pieces(self, U, V, k):
         import heyoka as hy
 
-        return [V - self.amplitude * hy.cos((2.0 * math.pi / self.wavelength) * U)]
+        return [V - self.amplitude * (hy.cos((2.0 * math.pi / self.wavelength) * U) - 1.0)]
 
     def on_piece(self, j: int, k: float, u: float, v: float) -> bool:
         return True
@@ -153,8 +156,10 @@ class Sine:
 
 @dataclass(frozen=True)
 class Sawtooth:
-    """Teeth of period P (mm) and height H (mm): valleys at u = kP (height 0), the peak at
-    u = kP + ξP (height H), ξ = ``peak`` in (0, 1) the asymmetry (½: symmetric); straight faces."""
+    """Teeth of period P (mm) and height H (mm) with straight faces: the peaks at height 0 (like
+    the arcs' tops), the valleys at height −H at the cell edges u = (k + ½)P, each peak a
+    fraction ξ = ``peak`` in (0, 1) of P right of its left valley, at u = (k − ½ + ξ)P
+    (½: symmetric teeth, peaks at kP).  Tooth k spans [(k − ½)P, (k + ½)P]."""
 
     period: float
     peak: float
@@ -163,30 +168,31 @@ class Sawtooth:
 
     @property
     def top(self) -> float:
-        return self.height_mm
+        return 0.0
 
     @property
     def bottom(self) -> float:
-        return 0.0
+        return -self.height_mm
 
     def height(self, u: np.ndarray) -> np.ndarray:
-        r = np.asarray(u, float) / self.period
-        s = r - np.floor(r)  # position in the tooth, [0, 1)
-        return self.height_mm * np.where(s <= self.peak, s / self.peak, (1.0 - s) / (1.0 - self.peak))
+        r = np.asarray(u, float) / self.period + 0.5
+        s = r - np.floor(r)  # position in the tooth from its left valley, [0, 1)
+        up = np.where(s <= self.peak, s / self.peak, (1.0 - s) / (1.0 - self.peak))
+        return self.height_mm * (up - 1.0)
 
     def cells(self, u_lo: float, u_hi: float) -> range:
-        """The teeth [kP, (k+1)P] that meet [u_lo, u_hi]."""
-        return range(math.floor(u_lo / self.period), math.floor(u_hi / self.period) + 1)
+        """The teeth [(k − ½)P, (k + ½)P] that meet [u_lo, u_hi]."""
+        return range(math.floor(u_lo / self.period + 0.5), math.floor(u_hi / self.period + 0.5) + 1)
 
     def pieces(self, U, V, k):
         """Tooth k's two faces as lines (above the line: > 0); each line reaches beyond its
         face, so an event is kept only when it lies on the face (:meth:`on_piece`)."""
         P, xi, H = self.period, self.peak, self.height_mm
-        s = U - k * P
-        return [V - (H / (xi * P)) * s, V - (H / ((1.0 - xi) * P)) * (P - s)]
+        s = U - (k - 0.5) * P  # from the tooth's left valley
+        return [V + H - (H / (xi * P)) * s, V + H - (H / ((1.0 - xi) * P)) * (P - s)]
 
     def on_piece(self, j: int, k: float, u: float, v: float) -> bool:
-        s = u / self.period - k
+        s = u / self.period - k + 0.5
         lo, hi = (0.0, self.peak) if j == 0 else (self.peak, 1.0)
         return lo - ON_PIECE <= s <= hi + ON_PIECE
 

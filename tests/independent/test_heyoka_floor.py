@@ -80,7 +80,7 @@ APEX_TAU = 0.01
 def apex_flight(delta: float):
     """Launched so that the apex (τ = APEX_TAU) is δ above the crest at u = 0."""
     vy = G * APEX_TAU
-    return -VX * APEX_TAU, SINE.amplitude + delta - 0.5 * G * APEX_TAU**2, VX, vy, 0.0
+    return -VX * APEX_TAU, SINE.top + delta - 0.5 * G * APEX_TAU**2, VX, vy, 0.0
 
 
 def test_a_flight_grazing_one_nanometre_above_a_crest_is_not_a_contact():
@@ -105,8 +105,8 @@ def drop_time(height: float, y0: float = 1.0, vy: float = 0.0) -> float:
 @pytest.mark.parametrize("shape,u", [
     (Arc(15.0, 2.0), 1.0),  # a cusp between two arcs
     (Arc(1.0, 2.0), 3.0),  # a vertical cusp (R = S/2)
-    (Sawtooth(2.0, 0.3, 0.5), 4.0),  # a valley
-    (Sawtooth(2.0, 0.3, 0.5), 2.6),  # a peak
+    (Sawtooth(2.0, 0.3, 0.5), 3.0),  # a valley (the cell edges (k + ½)P)
+    (Sawtooth(2.0, 0.3, 0.5), 3.6),  # a peak ((k − ½ + ξ)P)
 ], ids=["arc_cusp", "vertical_cusp", "sawtooth_valley", "sawtooth_peak"])
 def test_a_drop_onto_a_cusp_or_kink_lands_at_the_closed_form_time(shape, u):
     c = next_contact(shape, STILL, u, 1.0, 0.0, 0.0, 0.0)
@@ -115,12 +115,12 @@ def test_a_drop_onto_a_cusp_or_kink_lands_at_the_closed_form_time(shape, u):
 
 
 def test_a_flight_skimming_a_sawtooth_peak_passes_over_the_faces_extension():
-    # a level flight from 1 µm above the peak (u = 0.6, height 0.5): it crosses the rising
+    # a level flight from 1 µm above the peak (u = 1.6, height 0): it crosses the rising
     # face's line beyond the peak (an event off the face, passed over) and lands further on
     saw = Sawtooth(2.0, 0.3, 0.5)
-    flight = (0.595, saw.height_mm + 1e-3, 200.0, 0.0, 0.0)
+    flight = (1.595, saw.top + 1e-3, 200.0, 0.0, 0.0)
     c = next_contact(saw, STILL, *flight)
-    assert c.x > 0.6
+    assert c.x > 1.6
     assert abs(c.tau - first_contact(saw, STILL, *flight)) <= TOL_TAU
 
 
@@ -145,3 +145,40 @@ def test_a_lift_off_from_a_flat_floor_lands_where_the_brute_force_scan_does():
     c = next_contact(Flat(), drive, *flight)
     assert c.tau > 1e-3  # a real flight, not the start
     assert abs(c.tau - first_contact(Flat(), drive, *flight)) <= TOL_TAU
+
+
+# ---- far from the origin: a periodic floor's flight is flown within one period of it
+LD = np.longdouble
+
+
+def sine_root_extended(sine: Sine, drive: Drive, flight, lo: float, hi: float) -> float:
+    """The first root in (lo, hi] of the level sine's gap for ``flight``, bisected in extended
+    precision (x87 long double: 64-bit mantissa) from a sign change on a grid."""
+    x0, y0, vx, vy, th0 = (LD(v) for v in flight)
+    pi = LD("3.141592653589793238462643383279502884")
+    w, k, a = 2 * pi * LD(drive.f), 2 * pi / LD(sine.wavelength), LD(sine.amplitude)
+
+    def gap_ld(t):
+        return y0 + vy * t - LD(drive.g) * t * t / 2 + LD(drive.A) * np.sin(th0 + w * t) \
+            - a * (np.cos(k * (x0 + vx * t)) - 1)
+
+    ts = np.linspace(LD(lo), LD(hi), 4001)
+    i = int(np.nonzero(np.array([gap_ld(t) for t in ts[1:]]) <= 0)[0][0]) + 1
+    a_, b_ = ts[i - 1], ts[i]
+    for _ in range(100):
+        m = (a_ + b_) / 2
+        a_, b_ = (m, b_) if gap_ld(m) > 0 else (a_, m)
+    return float(b_)
+
+
+@pytest.mark.skipif(np.finfo(np.longdouble).eps > 1e-18, reason="needs an extended long double")
+def test_a_grazing_hop_far_from_the_origin_lands_at_the_extended_precision_root():
+    # a hop of 1.3e-7 s recorded by bbb on a sine (depth 0.3 mm, 60 Hz) at x ≈ 24 mm that
+    # meets the floor at a relative speed of 1.6e-3 mm/s: flown at x ≈ 24 mm, an ulp of x
+    # (3.6e-15 mm) moves the floor's height by ~1e-15 mm and the contact by ~1.5e-12 s
+    sine, drive = Sine(0.15, 2.0), Drive(9800.0, 0.1, 60.0)
+    flight = (24.424306257624202, -0.212090998587658, -1.7644358878299167, 9.308704281965207,
+              2.0 * math.pi * 0.2861916867276019)
+    c = next_contact(sine, drive, *flight)
+    assert abs(c.tau - sine_root_extended(sine, drive, flight, 1e-9, 1.338e-7)) <= TOL_TAU
+    assert abs(c.x - (flight[0] + flight[2] * c.tau)) <= 4.0 * np.spacing(flight[0])
