@@ -148,9 +148,11 @@ def spiral_store(on_curve: bool, n: int = 256) -> str:
     a flight t_c ∈ [0.03, 0.12] s (state 2) on the spiral of Eqs. (8)–(9) at that t_c
     (``on_curve``), or at a point drawn uniformly over the same box; the creeping state sits
     where the flight from it lands exactly there (the flights are consistent).  Its path."""
-    from pipeline.store.layout import COUNTERS
     from pipeline.store.study_store import StudyStore
     from pipeline.workflow.load import parse_workflow
+    from pipeline.workflow.observables.contract import Chunk
+    from pipeline.workflow.observables.counters import COUNTERS
+    from pipeline.workflow.observables.registry import selected
 
     study = parse_workflow(_SPIRAL_SCENE.format(n=n), source="spiral_cases.toml")
     path = _stores_dir() / f"spiral_{'on' if on_curve else 'off'}.zarr"
@@ -171,7 +173,10 @@ def spiral_store(on_curve: bool, n: int = 256) -> str:
         run = SimpleNamespace(positions=None, collisions_dense=rec,
                               n_recorded=np.full(n, 2, np.int64),
                               counters={c: np.zeros(n, np.int64) for c in COUNTERS})
-        store.write_chunk(fi, 0, 0, run, seconds=0.0)
+        chunk = Chunk(study=study, point=study.points[fi], family=study.families[0], index=0,
+                      run=run)
+        values = {name: v for o in selected(study) for name, v in o.compute(chunk).items()}
+        store.write_chunk(fi, 0, 0, values, seconds=0.0)
     return store.path
 
 
