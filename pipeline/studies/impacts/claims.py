@@ -77,7 +77,7 @@ def column_by_f(claim: Claim, ctx) -> Measured:
 
 _SCOPE = {"scenes": [SCENE], "families": ["rest", "launched"],
           "frequencies": f"the scene's f ≥ {F_FROM:g} Hz"}
-_REG = "2026-11-28 pending"
+_REG = "2026-11-28 5aa025c"
 CLAIMS = [
     Claim("Impacts cluster in the floor's upward phase: more than half of the collisions "
           "while the floor moves up, at each f where particles diffuse", column_by_f, SCENE,
