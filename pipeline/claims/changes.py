@@ -68,15 +68,20 @@ def _git(root: Path, *args: str) -> str | None:
 def previous_report(out_dir: str | os.PathLike, root: str | os.PathLike,
                     headings: Sequence[str]) -> tuple[str | None, str]:
     """(text, where from) of the report a new ``<out_dir>/REPORT.md`` is compared with: for
-    the repository's ``figures/``, the newest committed version that :func:`is_complete`;
-    else (or without git) the REPORT.md in ``out_dir``."""
+    the repository's ``figures/``, the newest committed version that :func:`is_complete` over
+    the sections some committed report holds (a study whose section no committed report has yet
+    is new, and does not make every older report partial); else (or without git) the
+    REPORT.md in ``out_dir``."""
     out, root = Path(out_dir).resolve(), Path(root).resolve()
     if out == root / "figures":
         log = _git(root, "log", "--format=%H %h", "--", "figures/REPORT.md")
-        for line in (log or "").splitlines():
-            full, short = line.split()
-            text = _git(root, "show", f"{full}:figures/REPORT.md")
-            if text and is_complete(text, headings):
+        texts = [(short, _git(root, "show", f"{full}:figures/REPORT.md"))
+                 for full, short in (line.split() for line in (log or "").splitlines())]
+        texts = [(short, text) for short, text in texts if text]
+        # a section no committed report holds is a new study's: not required of the old ones
+        required = [h for h in headings if any(is_complete(t, [h]) for _, t in texts)]
+        for short, text in texts:
+            if is_complete(text, required):
                 return text, f"the last complete committed report, commit {short}"
     path = out / "REPORT.md"
     if path.is_file():
