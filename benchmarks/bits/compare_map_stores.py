@@ -1,7 +1,7 @@
 """Compare, at full precision, each line of a map store's tables with the tables of the store
 of the scene without a grid that the line replaces.
 
-    python benchmarks/compare_map_stores.py [--runs runs]
+    python -m benchmarks.bits.compare_map_stores [--runs runs]
 
 For the transport and contact studies' map scenes (``transport``, ``transport_sliding``,
 ``contact``, ``contact_proj``): every table ``bbb reduce`` makes of the map store (and the

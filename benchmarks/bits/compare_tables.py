@@ -1,6 +1,6 @@
 """Compare the committed tables (figures/*.csv) of the working tree with those of a git revision.
 
-    python benchmarks/compare_tables.py --base REV [--dir figures] [--lines]
+    python -m benchmarks.bits.compare_tables --base REV [--dir figures] [--lines]
 
 Prints one line per table: identical, or which columns were added / removed and, for the
 columns both hold, how many cells differ and the largest relative difference.  Timing columns

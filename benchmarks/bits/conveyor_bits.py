@@ -1,8 +1,8 @@
 """Does the conveyor floor (tilted and thrown, bbb's conveyor kernel) give the same bits as another bbb?
 
-    .venv/bin/python benchmarks/conveyor_bits.py --baseline main [--particles 8] [--t-max 4]
+    .venv/bin/python -m benchmarks.bits.conveyor_bits --baseline main [--particles 8] [--t-max 4]
 
-The twin of benchmarks/paper_floor_bits.py for the conveyor: the bbb package of git revision
+The twin of benchmarks/bits/paper_floor_bits.py for the conveyor: the bbb package of git revision
 REF (``git archive``) and this checkout, in fresh processes with their own numba caches, run
 the same seeded ensembles under stick, slide and Coulomb contact on tilted, thrown, tilted-and-
 thrown and flat conveyors (and the paper's floor forced through the conveyor kernel), and hash

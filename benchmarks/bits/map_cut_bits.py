@@ -1,7 +1,7 @@
 """Bit-for-bit check of a map line against the scene without a grid that shares its seed,
 family and chunking: every chunk both stores computed holds the same positions.
 
-    python benchmarks/map_cut_bits.py [--runs runs]
+    python -m benchmarks.bits.map_cut_bits [--runs runs]
 
 Pairs: the α = 0.7 line of ``dissipation`` with ``figure2``, the α = 0.5 line of
 ``dissipation_r25`` with ``figure2_matyas2004``, the α = 0.7 line of ``dissipation_locking``

@@ -1,6 +1,6 @@
 """Does the paper's floor (tilt 0, throw 90°: bbb.kernel) give the same bits as another bbb?
 
-    .venv/bin/python benchmarks/paper_floor_bits.py --baseline REF [--particles 16] [--t-max 10]
+    .venv/bin/python -m benchmarks.bits.paper_floor_bits --baseline REF [--particles 16] [--t-max 10]
 
 Runs the same seeded ensembles — stick, slide, Coulomb 0.05 and 0.3 at 48-99 Hz, from rest
 and launched — in a fresh process of this checkout and one of the bbb of git revision REF

@@ -1,7 +1,7 @@
 """Calibration of the trajectory checker's one measured tolerance: CONTACT_RTOL, how far a
 sliding stretch's path (θ, v) may part from the checker's own integration, per period.
 
-    .venv/bin/python benchmarks/checker_calibration.py [--random 400] [--write]
+    .venv/bin/python -m benchmarks.calibrations.checker_calibration [--random 400] [--write]
 
 Every sliding stretch of these runs goes through tests/bbb/trajectory_check.py, which reports
 the least CONTACT_RTOL at which each stretch's path passes (Report.contact_need: |Δθ| in rad

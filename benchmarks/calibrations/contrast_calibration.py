@@ -1,7 +1,7 @@
 """Calibration of the contrast rule (``bbb.analysis.gk_contrast.carrier``) on jump sequences with a
 known split of the log contrast into random walk and memory.
 
-    .venv/bin/python benchmarks/contrast_calibration.py [--replicates 100] [--particles 1024]
+    .venv/bin/python -m benchmarks.calibrations.contrast_calibration [--replicates 100] [--particles 1024]
         [--steps 3000] [--write]
 
 Prints a table; with ``--write`` also writes it to benchmarks/results/contrast-calibration-

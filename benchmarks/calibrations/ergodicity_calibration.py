@@ -1,6 +1,6 @@
 """Calibration of the ergodicity rule on synthetic populations with a known D spread.
 
-    .venv/bin/python benchmarks/ergodicity_calibration.py [--seeds 100] [--sizes 64x3,1024x3]
+    .venv/bin/python -m benchmarks.calibrations.ergodicity_calibration [--seeds 100] [--sizes 64x3,1024x3]
         [--json bbb/analysis/stats/ergodicity_calibration.json]
 
 Prints a table; commit the output as benchmarks/results/ergodicity-calibration-<date>.txt
@@ -161,7 +161,7 @@ def main(argv: list[str] | None = None) -> int:
             for r in RULES:
                 rates[r].setdefault(f"{n}x{n_fam}", {})[kind] = round(float(worst[f"R:{r}"]), 2)
     if args.json:
-        out = {"benchmark": "benchmarks/ergodicity_calibration.py",
+        out = {"benchmark": "benchmarks/calibrations/ergodicity_calibration.py",
                "date": f"{datetime.date.today()}", "seeds": args.seeds,
                "worst_error_rates": rates, "cv2_ci_coverage": coverage}
         with open(args.json, "w") as fh:

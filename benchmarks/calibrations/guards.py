@@ -1,6 +1,6 @@
 """The kernel's guards against endless loops, measured: how close real inputs come to them.
 
-    .venv/bin/python benchmarks/guards.py [--particles 8] [--t-max 10] [--random 300]
+    .venv/bin/python -m benchmarks.calibrations.guards [--particles 8] [--t-max 10] [--random 300]
 
 bbb.contact.slide stops a contact stretch whose step debt (tried RK4 steps beyond PAYBACK per
 nominal step of the time covered) exceeds STRETCH_BUDGET, bbb.kernel stops a particle with

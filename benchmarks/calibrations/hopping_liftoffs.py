@@ -1,7 +1,7 @@
 """The lift-off rule of claim T6b checked on floors with a known answer, before the map's
 counters are judged by it.
 
-    .venv/bin/python benchmarks/hopping_liftoffs.py [--write]
+    .venv/bin/python -m benchmarks.calibrations.hopping_liftoffs [--write]
 
 Rule (fixed before this script ran and before the map's lift-off counts were read): a
 frequency *hops* when its lift-offs per floor period (lift-offs that start a flight from

@@ -1,7 +1,7 @@
 """Coverage of D's 95 % CI when only a few particles move: the bootstrap alone vs the rare-mover
 rule (bbb/analysis/stats/rare.py).  Prints the calibration table of docs/statistics.md.
 
-    python benchmarks/rare_movers.py [--reps 200] [--reps-4096 100] [--json PATH]
+    python -m benchmarks.calibrations.rare_movers [--reps 200] [--reps-4096 100] [--json PATH]
 
 With --json the calibration is also written as JSON (the coverage by the sample's n_eff that
 `bbb reduce` puts in its D_cover column reads bbb/analysis/stats/rare_movers_calibration.json, made so).
@@ -79,8 +79,9 @@ def main(argv: list[str] | None = None) -> int:
           "# of the sample's; boot/rule: coverage of the nominal 95 % CI; lo/hi: share with the\n"
           "# truth below lo / above hi; hw×: median widening of the CI by the rule")
     print("# where the rule is on (n_eff < threshold) its CI is the hull of bootstrap and gamma CI")
-    print(f"# benchmarks/rare_movers.py, {date.today()}, {platform.processor() or platform.machine()}"
-          f", {os.cpu_count()} CPUs; reps {a.reps} (N = 4096: {a.reps_4096}), {N_BOOT} resamples")
+    print(f"# benchmarks/calibrations/rare_movers.py, {date.today()}, "
+          f"{platform.processor() or platform.machine()}, {os.cpu_count()} CPUs; reps {a.reps} "
+          f"(N = 4096: {a.reps_4096}), {N_BOOT} resamples")
     print(f"# rule: hull with the Fay-Feuer gamma interval when n_eff < min({RARE_N_EFF:g}, "
           f"{RARE_SHARE:g} N) (columns 'rule'); cov@t: the same with t in place of {RARE_N_EFF:g}")
     head = (f"{'tails':>5} {'N':>5} {'m':>5} {'m_eff':>6} {'k':>5} {'n_eff':>6} {'boot':>5} {'lo/hi':>9}"
@@ -137,7 +138,7 @@ def main(argv: list[str] | None = None) -> int:
     print(f"{'no mover':>11} {np.sum(~seen):7d} {none[0]:5.2f} {none[1]:5.2f}")
     print(f"\n# {time.perf_counter() - t0:.0f} s")
     if a.json:
-        out = {"benchmark": "benchmarks/rare_movers.py", "date": str(date.today()), "ci": CI,
+        out = {"benchmark": "benchmarks/calibrations/rare_movers.py", "date": str(date.today()), "ci": CI,
                "n_resamples": N_BOOT, "reps": a.reps, "reps_4096": a.reps_4096, "seed": a.seed,
                "rule": {"n_eff": RARE_N_EFF, "share": RARE_SHARE},
                "mover_ratio": {k: round(v, 3) for k, v in ratio.items()},

@@ -1,7 +1,7 @@
 """Mirror pairs on the transport scenes: the variance of v they save, and T1's false alarms
 without them.
 
-    .venv/bin/python benchmarks/transport_mirror.py [--pairs 256] [--pool 1024] [--curves 2000]
+    .venv/bin/python -m benchmarks.calibrations.transport_mirror [--pairs 256] [--pool 1024] [--curves 2000]
                                                     [--scenes a,b] [--write]
 
 Prints the tables (commit them as benchmarks/results/transport-mirror-<date>.txt); with

@@ -1,6 +1,6 @@
 """Calibration of bbb.analysis.transport's two checks on synthetic ensembles with known answers.
 
-    .venv/bin/python benchmarks/transport_rules.py [--seeds 1000] [--write]
+    .venv/bin/python -m benchmarks.calibrations.transport_rules [--seeds 1000] [--write]
 
 Prints the tables (commit them as benchmarks/results/transport-rules-<date>.txt); with
 ``--write`` also writes the chosen numbers and their error rates to bbb/analysis/transport_rules.json,

@@ -1,12 +1,12 @@
 """Calibration of v_status "accelerating" and of the acceleration a's CI (bbb.analysis.transport)
 on synthetic ensembles with known answers, at the small ensembles a conveyor row may hold.
 
-    .venv/bin/python benchmarks/v_status_calibration.py [--seeds 1000]
+    .venv/bin/python -m benchmarks.calibrations.v_status_calibration [--seeds 1000]
 
 Prints a table (commit it as benchmarks/results/v-status-calibration-<date>.txt).  The rule
 itself -- "accelerating" where the CI of dv = v(2nd half) − v(1st half) lies beyond ±(5 % |v| +
 k SE(v) + 1e-6 mm/s), k from bbb/analysis/transport_rules.json -- was fixed by
-benchmarks/transport_rules.py on ensembles of 128 and 256 particles; this script runs the very
+benchmarks/calibrations/transport_rules.py on ensembles of 128 and 256 particles; this script runs the very
 functions ``transport`` runs (drift_velocity, drift_change, steady_tolerance, v_status, a =
 2 dv / T_a) and measures, before the rule is applied to a table:
 

@@ -1,6 +1,6 @@
 """Do two D(f) tables agree?  Prints one row per frequency and the share that agree.
 
-    python benchmarks/agreement.py OLD.csv NEW.csv [--workflow NEW.toml | --d-resolved D]
+    python -m benchmarks.checks.agreement OLD.csv NEW.csv [--workflow NEW.toml | --d-resolved D]
                                    [--min-share 0.95]
 
 Both tables are `bbb reduce` CSVs (columns f, D, D_lo, D_hi, mm²/s; optionally stop).  At each

@@ -2,7 +2,7 @@
 (tests/bbb/dynamics/test_contact_level.py, the independent trajectory checker and the
 brute-force gap grid) over many random scenes where the cusp walls are nearly vertical.
 
-    nice .venv/bin/python benchmarks/cusp_contact_property.py [--examples 2000] [--seed 0] [--jobs 2]
+    nice .venv/bin/python -m benchmarks.checks.cusp_contact_property [--examples 2000] [--seed 0] [--jobs 2]
         [--baseline REF]
 
 Draws R in [1.05, 1.3] mm (S = 2 mm: cusp walls 17.8°-40° from vertical), f in [100, 200] Hz,

@@ -1,7 +1,7 @@
 """What should a cascade that ends in a cusp lead to?  An independent reference for the
 level kernel's Coulomb contact start at steep cusps, against the kernel and the checker.
 
-    nice .venv/bin/python benchmarks/cusp_contact_reference.py [--baseline 717f991]
+    nice .venv/bin/python -m benchmarks.checks.cusp_contact_reference [--baseline 717f991]
 
 Runs the examples the focused property run found (Coulomb, R 1.05-1.2 mm, f 111-154 Hz,
 plus the strict xfail's) in this checkout's bbb and in the bbb of revision REF (``git

@@ -1,8 +1,8 @@
 """How much does the spread estimate CV² = 2 EB(T) − EB(T/2) scatter at a given ensemble size?
 Disjoint subsets of one large run, each with its bootstrap CI (bbb.analysis.stats.ergodic_verdict).
 
-    bbb run benchmarks/cv2_scatter.toml --store runs/cv2_scatter.zarr
-    python benchmarks/cv2_scatter.py runs/cv2_scatter.zarr [--sizes 256,640,1024,3072]
+    bbb run benchmarks/checks/cv2_scatter.toml --store runs/cv2_scatter.zarr
+    python -m benchmarks.checks.cv2_scatter runs/cv2_scatter.zarr [--sizes 256,640,1024,3072]
 
 At 58 Hz the committed tables showed CV(D_i) = 0 % (ergodicity scene, 3 × 1024 particles),
 23 % (Fig. 2, 640) and 39 % (transport_t0, 256) for the same physics: this prints the
@@ -37,7 +37,7 @@ def main(argv: list[str] | None = None) -> int:
     times = study.sample_times()
     kw = dict(lag=an.eb_lag * T, n_resamples=a.resamples, fit_from=an.fit_from * T,
               fit_to=an.fit_to * T, discard=an.discard)
-    print(f"# benchmarks/cv2_scatter.py, {date.today()}, {platform.machine()}, "
+    print(f"# benchmarks/checks/cv2_scatter.py, {date.today()}, {platform.machine()}, "
           f"{os.cpu_count()} CPUs; store {study.name}, {a.resamples} resamples, 95 % CIs")
     for fi, f in enumerate(study.frequencies):
         x = store.read_done("positions", fi, 0, store.done()[fi, 0])

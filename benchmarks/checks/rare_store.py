@@ -1,7 +1,7 @@
 """D(f) of a stored study with and without the rare-mover rule, and the adaptive stopping
 decisions the rule would take on it.  Reads the store only (never writes into it).
 
-    python benchmarks/rare_store.py STORE OUT.csv [--no-rare]
+    python -m benchmarks.checks.rare_store STORE OUT.csv [--no-rare]
 
 OUT.csv holds f, D, D_lo, D_hi (mm²/s), n_particles, n_eff and rare (whether the rule widened
 the CI), computed exactly as `bbb reduce`'s diffusion table computes D and its CI (same

@@ -1,8 +1,8 @@
 """Soak: the invariant budget of issue 6 — ≥ 10⁹ collisions across the extreme-parameter table
 of tests/bbb/dynamics/test_extremes.py, with zero particles below the surface and zero non-finite values.
 
-    .venv/bin/python benchmarks/soak.py [--target 1e9] [--workers 2] [--sample 1000] [--check 4]
-    .venv/bin/python benchmarks/soak.py --mix transport [--case KEY=VAL[,KEY=VAL...]] ...
+    .venv/bin/python -m benchmarks.checks.soak [--target 1e9] [--workers 2] [--sample 1000] [--check 4]
+    .venv/bin/python -m benchmarks.checks.soak --mix transport [--case KEY=VAL[,KEY=VAL...]] ...
 
 Not part of CI (10–20 min on 2 cores).  Commit the output under benchmarks/results/.
 

@@ -1,7 +1,7 @@
 """Conveyor contact-model benchmark: CPU seconds of an ensemble on a tilted and thrown floor
 under ``stick``, ``slide`` and ``coulomb``, this checkout beside another bbb.
 
-    .venv/bin/python benchmarks/conveyor_contact.py [--baseline REF] [--particles 32] [--t-max 2]
+    .venv/bin/python -m benchmarks.perf.conveyor_contact [--baseline REF] [--particles 32] [--t-max 2]
 
 klages2004 geometry (R = 15, S = 2: shallow cusps, θ_c = 3.8°), A = 0.1 mm, tilt 3°, throw
 60°, from rest (seed 1), f = 40 and 55 Hz.  Each row runs in a fresh process with its own

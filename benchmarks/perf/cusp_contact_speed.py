@@ -1,7 +1,7 @@
 """Speed of this checkout's paper-floor kernel against another bbb, in alternating pairs of
 fresh processes, with the pairwise ratios: the default (stick) path and the Coulomb contact path.
 
-    nice .venv/bin/python benchmarks/cusp_contact_speed.py --baseline 717f991 [--pairs 7]
+    nice .venv/bin/python -m benchmarks.perf.cusp_contact_speed --baseline 717f991 [--pairs 7]
 
 Each scene runs ``--pairs`` times in a fresh process of the bbb of revision REF (``git
 archive``) and of this checkout, alternating ref/this (own numba caches, compiled before the

@@ -1,8 +1,8 @@
 """Kernel benchmark: collisions per second per core and numba compile time (cold, warm).
 
-    .venv/bin/python benchmarks/kernel.py [--particles 400] [--t-max 20]
-    .venv/bin/python benchmarks/kernel.py --baseline REF [--repeats 3]
-    .venv/bin/python benchmarks/kernel.py --reference DIR [--repeats 3]
+    .venv/bin/python -m benchmarks.perf.kernel [--particles 400] [--t-max 20]
+    .venv/bin/python -m benchmarks.perf.kernel --baseline REF [--repeats 3]
+    .venv/bin/python -m benchmarks.perf.kernel --reference DIR [--repeats 3]
 
 Prints a table; commit the output under benchmarks/results/ with the date and CPU.
 Single-threaded: one process runs the ensemble serially, so the rate is per core.

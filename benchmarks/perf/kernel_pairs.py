@@ -1,12 +1,13 @@
 """The default kernel (paper's floor, stick) against another bbb in many short alternating pairs.
 
-    .venv/bin/python benchmarks/kernel_pairs.py --baseline REF [--pairs 12] [--particles 100] [--t-max 10]
+    .venv/bin/python -m benchmarks.perf.kernel_pairs --baseline REF [--pairs 12] [--particles 100]
+                                                     [--t-max 10]
 
 For a machine shared with other work: each pair runs the same seeded ensemble in a fresh
 process of the reference (``git archive REF bbb``, own numba cache) and one of this checkout,
 in alternating order (ref first in even pairs, this first in odd ones), at f = 60 and 80 Hz
 from rest and launched; the rate is collisions per CPU second of the process
-(benchmarks/kernel.py's rate_in), the collision counts must agree.  Prints each row's median
+(benchmarks/perf/kernel.py's rate_in), the collision counts must agree.  Prints each row's median
 rates, the median of the pairwise ratios this/ref and their spread (quartiles); commit the
 output under benchmarks/results/.
 """

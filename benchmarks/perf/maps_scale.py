@@ -2,7 +2,7 @@
 back into xarray, and what a map costs per point over the same points run as separate 1-D
 scenes.
 
-    python benchmarks/maps_scale.py [--alphas 100 --freqs 100] [--lines 8 --line-freqs 8]
+    python -m benchmarks.perf.maps_scale [--alphas 100 --freqs 100] [--lines 8 --line-freqs 8]
 
 Section 1 (the big map; tiny tasks, so the run measures the engine, not the kernel): parse
 the workflow (every point's bbb.Params checked), lay out the store, run it on a LocalCluster

@@ -1,6 +1,6 @@
 """Pipeline benchmark (issue 5): presets, worker scaling, per-task overhead, worker memory.
 
-    .venv/bin/python benchmarks/pipeline.py [--skip-scaling] [--skip-memory]
+    .venv/bin/python -m benchmarks.perf.pipeline [--skip-scaling] [--skip-memory]
 
 Prints (commit the output under benchmarks/results/ with the date and CPU):
 

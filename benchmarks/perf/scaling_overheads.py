@@ -2,7 +2,7 @@
 holds (issue 27).  Run it on a quiet machine (it refuses a 1-minute load average above
 --max-load, default 1.5):
 
-    python benchmarks/scaling_overheads.py [--tasks 10000] [--map 100]
+    python -m benchmarks.perf.scaling_overheads [--tasks 10000] [--map 100]
 
 1. A fresh worker's first task: a LocalCluster of one worker started, a chunk of a tiny scene
    submitted at once, its result back -- with numba's cache as bbb keeps it (beside the
@@ -203,7 +203,7 @@ def main() -> int:
     lines = [f"# scaling overheads, {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC, "
              f"{cpu_name()}, {os.cpu_count()} cores, Python {platform.python_version()}, "
              f"load average {before:.2f} at start",
-             f"# command: python benchmarks/scaling_overheads.py --tasks {args.tasks} "
+             f"# command: python -m benchmarks.perf.scaling_overheads --tasks {args.tasks} "
              f"--map {args.map}", ""]
     with tempfile.TemporaryDirectory(prefix="bbb-overheads-") as tmp:
         work = Path(tmp)

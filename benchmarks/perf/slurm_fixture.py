@@ -4,7 +4,7 @@ batch job from `sbatch` to its output file: the first job after `up` and the one
 right after the previous one's output appeared (slurmctld schedules batch jobs at most every
 batch_sched_delay = 3 s, SLURM's default, which the cluster keeps).
 
-    python3 benchmarks/slurm_fixture.py [--repeats 5] [--jobs 5]
+    python3 -m benchmarks.perf.slurm_fixture [--repeats 5] [--jobs 5]
 
 Needs root and slurm-wlm + munge (`slurm.sh up` installs them).  Runs its own cluster in
 bbb-slurm-bench in the temporary directory on ports 16837-16839; leaves nothing running.

@@ -1,7 +1,7 @@
 """What the store's checks cost -- the CRC-32C codec on every chunk file and the digest of each
 done chunk's values -- in size and in read time, on stores made by `bbb run`.
 
-    python benchmarks/store_checks.py STORE [STORE ...]
+    python -m benchmarks.perf.store_checks STORE [STORE ...]
 
 Size: the store's chunk files (count, bytes, disk blocks of 4 KiB), the 4 bytes of CRC-32C
 each carries, and the ``digest`` array's files.  The alternative to the digest for telling a

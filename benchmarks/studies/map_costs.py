@@ -1,7 +1,7 @@
 """What each map cost against what ``bbb plan`` predicted: chunks and collisions (independent of
 the machine's load) from the store, CPU time from the run's own measurement.
 
-    python benchmarks/map_costs.py [--runs runs] [--cpu NAME=SECONDS ...]
+    python -m benchmarks.studies.map_costs [--runs runs] [--cpu NAME=SECONDS ...]
 
 For every map scene below with a plan in ``benchmarks/results/plan-<name>-*.txt`` (the output of
 ``bbb plan``) and a store ``<runs>/<name>.zarr``: the plan's chunks, collisions and CPU-s in

@@ -3,7 +3,7 @@ corners and the centre of its numeric axes) and prices every other line as the n
 one; then the map runs on a LocalCluster of 2 workers and the predicted CPU (in tasks) and wall
 time are compared with the measured ones.
 
-    python benchmarks/maps_plan.py [--alphas 0.5,0.6,0.7,0.8,0.9] [--particles 128] [--t-max 50]
+    python -m benchmarks.studies.maps_plan [--alphas 0.5,0.6,0.7,0.8,0.9] [--particles 128] [--t-max 50]
 
 Run it on a quiet machine (the pilot reads CPU time, the run wall time).  Prints a table;
 commit the output under benchmarks/results/ with the date and the CPU."""

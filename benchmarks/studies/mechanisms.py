@@ -2,7 +2,7 @@
 collision in mm and in cells) and the largest Lyapunov exponent λ at the paper's extrema,
 beside the MSD-based D; and where particles do not move, the cusp rattling.
 
-    .venv/bin/python benchmarks/mechanisms.py [--particles 256] [--t-max 50] [--f 54,58,60,62,80]
+    .venv/bin/python -m benchmarks.studies.mechanisms [--particles 256] [--t-max 50] [--f 54,58,60,62,80]
 
 Prints a table (and the cost of each part); commit the output under benchmarks/results/.
 Preset klages2004, family "rest", seed 1; the first 10 % of the run is the transient.

@@ -1,7 +1,7 @@
 """`bbb plan` against measured runs: every workflow in workflows/ and every scene in
 pipeline/studies/*/scenes/ (issue 12, item 4).
 
-    .venv/bin/python benchmarks/plan.py > benchmarks/results/plan-DATE.txt
+    .venv/bin/python -m benchmarks.studies.plan > benchmarks/results/plan-DATE.txt
 
 For each scene: the prediction on 2 workers with the kernel rate of today's pilot (the
 default of `bbb plan`) and with the rate of the committed kernel benchmark of the day the

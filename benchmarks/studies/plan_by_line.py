@@ -1,6 +1,6 @@
 """A map's plan against its store, line by line: which grid lines does `bbb plan` price well?
 
-    python benchmarks/plan_by_line.py WORKFLOW STORE [--pilot-lines probes|all]
+    python -m benchmarks.studies.plan_by_line WORKFLOW STORE [--pilot-lines probes|all]
 
 For every grid value of the map's first axis, the collisions the plan predicts at the listed
 points against those the store holds there (measured / planned), and the same per frequency

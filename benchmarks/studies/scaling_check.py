@@ -2,9 +2,9 @@
 and its predictions for the D(f, alpha) map (issue 27).  On a quiet machine only (refuses a
 1-minute load average above --max-load, default 1.5):
 
-    python benchmarks/scaling_check.py local [--workers 1,2,8]   # LocalCluster runs
-    python benchmarks/scaling_check.py slurm [--jobs 1,2]        # real SLURM (root; slurm.sh)
-    python benchmarks/scaling_check.py predict                   # the dissipation map
+    python -m benchmarks.studies.scaling_check local [--workers 1,2,8]   # LocalCluster runs
+    python -m benchmarks.studies.scaling_check slurm [--jobs 1,2]        # real SLURM (root; slurm.sh)
+    python -m benchmarks.studies.scaling_check predict                   # the dissipation map
 
 ``local`` and ``slurm`` run the same small adaptive map (MAP: 24 points, waves of 32-particle
 chunks, ~45 CPU-s) from an empty store at each worker count and compare the measured wall
@@ -88,7 +88,7 @@ distributed:
 def header(what: str, command: str) -> list[str]:
     return [f"# {what}, {datetime.datetime.now(datetime.UTC):%Y-%m-%d %H:%M} UTC, {cpu_name()}, "
             f"{os.cpu_count()} cores, Python {platform.python_version()}, load average "
-            f"{os.getloadavg()[0]:.2f} at start", f"# command: python benchmarks/scaling_check.py "
+            f"{os.getloadavg()[0]:.2f} at start", f"# command: python -m benchmarks.studies.scaling_check "
             f"{command}"]
 
 

@@ -1,17 +1,15 @@
-"""benchmarks/agreement.py: two D(f) tables agree within their combined CIs, or, where a
+"""benchmarks/checks/agreement.py: two D(f) tables agree within their combined CIs, or, where a
 target-driven scene stopped as "resolved zero", at that scene's resolution d_resolved."""
 
 from __future__ import annotations
 
-import importlib.util
 from pathlib import Path
 
 import pandas as pd
 
-ROOT = Path(__file__).resolve().parents[2]
-_spec = importlib.util.spec_from_file_location("agreement", ROOT / "benchmarks" / "agreement.py")
-agreement = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(agreement)
+from benchmarks.checks import agreement
+
+ROOT = Path(__file__).resolve().parents[3]
 
 NAN = float("nan")
 OLD = pd.DataFrame({"f": [50.0, 54.0, 58.0, 60.0, 62.0],
