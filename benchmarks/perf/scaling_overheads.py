@@ -147,7 +147,7 @@ def no_op_tasks(n: int) -> tuple[float, float]:
 
 
 def map_first_wave(side: int, work: Path):
-    from benchmarks.maps_scale import scene
+    from benchmarks.perf.maps_scale import scene
     from pipeline.execute.run import run_study
     from pipeline.workflow.load import parse_workflow
 

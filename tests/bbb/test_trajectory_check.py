@@ -537,7 +537,7 @@ def tc_module():
 
 def calibration_input(k: int):
     """The k-th random input of benchmarks/calibrations/checker_calibration.py (stick draws skipped)."""
-    from benchmarks.guards import random_params
+    from benchmarks.calibrations.guards import random_params
 
     rng = np.random.default_rng(20261126)
     j = 0
