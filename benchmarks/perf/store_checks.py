@@ -18,6 +18,7 @@ of decoded values per s.
 
 from __future__ import annotations
 
+import argparse
 import os
 import platform
 import shutil
@@ -29,7 +30,7 @@ import numpy as np
 import zarr
 from zarr.codecs import ZstdCodec
 
-from pipeline.store.study_store import StudyStore
+from pipeline.store.study_store import StoreError, StudyStore
 
 BLOCK = 4096
 
@@ -141,4 +142,10 @@ def main(paths: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("stores", nargs="+", metavar="STORE", help="stores made by bbb run")
+    try:
+        main(ap.parse_args().stores)
+    except StoreError as exc:
+        print(f"store_checks: {exc}", file=sys.stderr)
+        sys.exit(2)
