@@ -13,6 +13,7 @@ runs/plan-cache, so a re-run only re-reads them.
 
 from __future__ import annotations
 
+import argparse
 import datetime
 import json
 import os
@@ -49,6 +50,7 @@ def scenes():
 
 
 def main() -> None:
+    argparse.ArgumentParser(description=__doc__.splitlines()[0]).parse_args()  # no options: --help only
     os.chdir(ROOT)
     bench = benchmark_rate(KERNEL_TABLE)
     print(f"# bbb plan vs measured runs  {datetime.datetime.now():%Y-%m-%dT%H:%M:%S}")
