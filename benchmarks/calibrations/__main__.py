@@ -4,7 +4,9 @@
 
 Runs each maker of :data:`benchmarks.calibrations.CALIBRATIONS` as ``python -m <module> <args>
 --json <file>`` from the checkout's root, adds the ``maker`` record to what it wrote and puts
-the JSON where the rule reads it (or under ``--out DIR``, at the same path from there).
+the JSON where the rule reads it (or under ``--out DIR``, at the same path from there); what
+the maker prints (its table) goes to the terminal and to benchmarks/results/<maker>-<date>.txt
+(under ``--out DIR``: to DIR), the name the makers' tables are committed under.
 ``--check`` remakes into a scratch folder and compares with the committed JSONs instead
 (:func:`benchmarks.calibrations.compare.differences`: provenance keys aside, equal within the
 stated tolerance); it exits 1 when one differs.  Prints each maker's wall time: a full remake
@@ -14,6 +16,7 @@ takes hours on 2 cores (the contrast rule and the mirror pairs ~45 min each on a
 from __future__ import annotations
 
 import argparse
+import datetime
 import json
 import subprocess
 import sys
@@ -23,21 +26,35 @@ from pathlib import Path
 
 from benchmarks.calibrations import CALIBRATIONS, Calibration
 from benchmarks.calibrations.compare import differences, dump
-from benchmarks.common import ROOT
+from benchmarks.common import RESULTS, ROOT
 
 
-def remake(cal: Calibration, dest: Path) -> float:
-    """Run ``cal``'s maker, write its JSON with the maker record to ``dest``; wall seconds.
-    Raises RuntimeError naming the maker when it fails or writes nothing."""
+def log_name(cal: Calibration) -> str:
+    """benchmarks/results/ name of the maker's printed table: contrast-calibration-<date>.txt."""
+    return f"{cal.module.rsplit('.', 1)[1].replace('_', '-')}-{datetime.date.today()}.txt"
+
+
+def remake(cal: Calibration, dest: Path, log: Path | None = None) -> float:
+    """Run ``cal``'s maker, write its JSON with the maker record to ``dest`` (and what it
+    prints to ``log`` as well as to stdout); wall seconds.  Raises RuntimeError naming the
+    maker when it fails or writes nothing."""
     dest.parent.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
         out = Path(tmp) / Path(cal.json).name
         t0 = time.perf_counter()
-        res = subprocess.run([sys.executable, "-m", cal.module, *cal.args, "--json", str(out)], cwd=ROOT)
+        argv = [sys.executable, "-m", cal.module, *cal.args, "--json", str(out)]
+        with subprocess.Popen(argv, cwd=ROOT, stdout=subprocess.PIPE, text=True) as proc:
+            lines = []
+            for line in proc.stdout:
+                sys.stdout.write(line)
+                lines.append(line)
         seconds = time.perf_counter() - t0
-        if res.returncode != 0 or not out.is_file():
-            raise RuntimeError(f"{cal.script} {' '.join(cal.args)}: exit {res.returncode}"
+        if proc.returncode != 0 or not out.is_file():
+            raise RuntimeError(f"{cal.script} {' '.join(cal.args)}: exit {proc.returncode}"
                                + ("" if out.is_file() else ", no JSON written"))
+        if log is not None:
+            log.parent.mkdir(parents=True, exist_ok=True)
+            log.write_text("".join(lines), encoding="utf-8")
         data = json.loads(out.read_text(encoding="utf-8"))
     data["maker"] = cal.maker()
     dest.write_text(dump(data), encoding="utf-8")
@@ -62,7 +79,8 @@ def main(argv: list[str] | None = None) -> int:
         total, bad = 0.0, 0
         for cal in todo:
             try:
-                s = remake(cal, base / cal.json)
+                log = None if a.check else (a.out or RESULTS) / log_name(cal)
+                s = remake(cal, base / cal.json, log)
             except RuntimeError as exc:
                 print(f"calibrate: {exc}", file=sys.stderr)
                 return 2
