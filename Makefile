@@ -50,7 +50,8 @@ bench: $(STAMP)
 	$(PY) -m benchmarks.perf.pipeline
 
 # remake every calibration JSON a rule reads, in place, from the maker and inputs each one names
-# (benchmarks/calibrations/__init__.py): hours on 2 cores; `git diff` then shows what moved.
+# (benchmarks/calibrations/__init__.py): ~2 h on 2 cores (benchmarks/results/calibrate-*.txt);
+# `git diff` then shows what moved; each maker's table lands in benchmarks/results/.
 # CHECK=1 remakes into a scratch folder and compares with the committed JSONs instead
 calibrate: $(STAMP)
 	$(PY) -m benchmarks.calibrations $(if $(CHECK),--check,)

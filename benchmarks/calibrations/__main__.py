@@ -10,7 +10,7 @@ the maker prints (its table) goes to the terminal and to benchmarks/results/<mak
 ``--check`` remakes into a scratch folder and compares with the committed JSONs instead
 (:func:`benchmarks.calibrations.compare.differences`: provenance keys aside, equal within the
 stated tolerance); it exits 1 when one differs.  Prints each maker's wall time: a full remake
-takes hours on 2 cores (the contrast rule and the mirror pairs ~45 min each on a quiet machine).
+takes about 2 h on 2 quiet cores (benchmarks/results/calibrate-2026-11-28.txt).
 """
 
 from __future__ import annotations
