@@ -35,7 +35,7 @@ FAMILIES = ("rest", "dropped", "launched")
 #: the speed cap of an initial state is this multiple of the floor's own speed scales
 #: (:func:`speed_cap`): far above any start the project uses (launches ≤ 400 mm/s, drops ≤
 #: 10 mm on the paper's floor), low enough that a flight's length in cells and periods stays
-#: bounded by the floor's parameters (benchmarks/guards.py runs starts at the caps)
+#: bounded by the floor's parameters (benchmarks/calibrations/guards.py runs starts at the caps)
 SPEED_CAP_FACTOR = 100.0
 #: the largest |cell| of an initial state: x = cell·S + d keeps d's precision (2⁴⁰ ≈ 1.1e12)
 CELL_MAX = 2**40

@@ -65,7 +65,7 @@ def simulate(
     ``_force_conveyor`` runs that kernel on the paper's floor too (tests compare the two);
     ``_guards`` (an array (n_particles, 5)) receives the guards' status rows (bbb.dynamics.events:
     why each particle stopped, its peak step debt, its most events in one window, when, its
-    deepest draw on the search budget) — benchmarks/guards.py measures the budgets' margins
+    deepest draw on the search budget) — benchmarks/calibrations/guards.py measures the budgets' margins
     with it.
     Memory is O(n_particles × (n_samples + record_collisions)), never O(collisions).
 

@@ -23,9 +23,9 @@ pytestmark = pytest.mark.slow
 def test_a_soak_sample_of_3e7_collisions_has_no_particle_below_the_surface():
     # the soak's own verdict: the target reached, nothing below the surface or non-finite,
     # no repaired velocity, over every case of the extremes table (~1 min on 2 cores)
-    out = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "soak.py"), "--target", "3e7",
+    out = subprocess.run([sys.executable, "-m", "benchmarks.checks.soak", "--target", "3e7",
                           "--workers", "2", "--max-particles", "4000", "--sample", "200"],
-                         capture_output=True, text=True, timeout=1800)
+                         capture_output=True, text=True, timeout=1800, cwd=ROOT)
     assert out.returncode == 0, out.stdout[-3000:] + out.stderr[-3000:]
     lines = out.stdout.splitlines()
     assert "verdict                 PASS" in lines

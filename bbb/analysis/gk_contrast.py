@@ -30,9 +30,9 @@ undecided      the CI of s reaches across 1 − θ or θ
 =============  ===============================================================================
 
 θ and the CI level are arguments; :func:`calibrated_rule` reads the calibrated ones from
-:data:`RULE_FILE`, written with the measured error rates by ``benchmarks/contrast_calibration.py``
-(AR(1) sequences with a known split).  Against both neighbours, :func:`combine_sides` gives one
-verdict.
+:data:`RULE_FILE`, written with the measured error rates by
+``benchmarks/calibrations/contrast_calibration.py`` (AR(1) sequences with a known split).
+Against both neighbours, :func:`combine_sides` gives one verdict.
 """
 
 from __future__ import annotations

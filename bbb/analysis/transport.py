@@ -42,7 +42,7 @@ What v means on the row, ``v_status`` (:func:`v_status`, in this order):
 * "ok" -- a steady drift: v with its CI.
 
 Two checks say when the numbers are transport coefficients (rules calibrated on synthetic
-ensembles by benchmarks/transport_rules.py; their numbers are read from transport_rules.json):
+ensembles by benchmarks/calibrations/transport_rules.py; their numbers are read from transport_rules.json):
 
 * steady -- False when the paired CI of dv = v(second half) − v(first half) lies beyond
   ±(STEADY_REL |v| + k SE(v) + STEADY_ABS): a change of v larger than 5 % of it and than k
@@ -94,7 +94,7 @@ V_OK, ACCELERATING, BY_CONSTRUCTION, NOT_MEASURED = "ok", "accelerating", "by co
     "not measured"
 V_STATUSES = (V_OK, ACCELERATING, NO_MOVER, BY_CONSTRUCTION, NOT_MEASURED)
 
-#: the calibrated rules (benchmarks/transport_rules.py wrote them, with their error rates)
+#: the calibrated rules (benchmarks/calibrations/transport_rules.py wrote them, with their error rates)
 RULES: dict = json.loads(resources.files(__package__).joinpath("transport_rules.json")
                          .read_text(encoding="utf-8"))
 #: a drift is not steady when the CI of v(second half) − v(first half) lies beyond

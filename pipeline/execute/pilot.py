@@ -237,7 +237,7 @@ def plan_rates(study: Study, particles: int | None, lines: str, kernel_rate: str
 
 
 def benchmark_rate(path: str | os.PathLike) -> float:
-    """Collisions per second of one core from a ``benchmarks/kernel.py`` table
+    """Collisions per second of one core from a ``benchmarks/perf/kernel.py`` table
     (benchmarks/results/kernel-*.txt): summed collisions over summed wall time of its rows."""
     coll = wall = 0.0
     for line in Path(path).read_text(encoding="utf-8").splitlines():

@@ -4,7 +4,7 @@ The cost model, and where each number comes from:
 
 * Collisions per particle-second c(f, family) and the kernel rate r (collisions per
   CPU-second of one core): a :class:`Rates` table, measured by a pilot (pipeline/execute/pilot.py)
-  or with r from a ``benchmarks/kernel.py`` table.  The prediction is for the cores being
+  or with r from a ``benchmarks/perf/kernel.py`` table.  The prediction is for the cores being
   ours: on a shared machine the wall time grows by the load.
 * Task CPU = chunk_size x t_max x c / r; a task's wall adds the per-task overhead
   PER_TASK_S (store write + dispatch, measured) and the run adds START_UP_S (LocalCluster,
@@ -60,7 +60,7 @@ class Overheads:
                 particles (standard), 2.25 s over 124 chunks of 64 (draft)
     in_task  -- the kernel rate inside pipeline tasks (two workers at once, Dask and the store
                 in the same process) over a lone process's CPU-time rate, measured in one
-                session of benchmarks/pipeline.py: Fig. 2 at standard ran 1.55e6 collisions
+                session of benchmarks/perf/pipeline.py: Fig. 2 at standard ran 1.55e6 collisions
                 per task-second (1.44e9 in 934 s) where section 1 measured 1.885e6 per
                 CPU-second at Fig. 2's mix of frequencies (55, 60, 80 Hz weighted 76/7/17 %)
     """

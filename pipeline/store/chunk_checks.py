@@ -31,7 +31,7 @@ from ..workflow.study import Study
 __all__ = ["chunk_problems", "ON_SURFACE_MM"]
 
 #: A recorded collision further than this from the floor surface is an inconsistency, mm.
-#: Rounding puts a sound collision within ~1e-9 mm of it (benchmarks/soak.py: none beyond
+#: Rounding puts a sound collision within ~1e-9 mm of it (benchmarks/checks/soak.py: none beyond
 #: that in 5e8 checked rows); the faults looked for here (a value written below the surface,
 #: a chunk of another run or of garbage) are orders of magnitude larger.
 ON_SURFACE_MM = 1e-6

@@ -523,7 +523,7 @@ def test_the_fly_off_bound_is_what_accepts_a_kick_at_the_edge(monkeypatch):
 
 
 def test_contact_rtol_is_the_calibrated_need_times_its_stated_margin():
-    # read from tests/bbb/data/checker_calibration.json (benchmarks/checker_calibration.py):
+    # read from tests/bbb/data/checker_calibration.json (benchmarks/calibrations/checker_calibration.py):
     # the least rtol every calibration stretch passes at, times a margin fixed beforehand
     cal = tc_module().CALIBRATION
     assert cal["contact_rtol_needed"] > 0 and cal["stretches"] > 10_000
@@ -538,8 +538,8 @@ def tc_module():
 
 
 def calibration_input(k: int):
-    """The k-th random input of benchmarks/checker_calibration.py (stick draws skipped)."""
-    from benchmarks.guards import random_params
+    """The k-th random input of benchmarks/calibrations/checker_calibration.py (stick draws skipped)."""
+    from benchmarks.calibrations.guards import random_params
 
     rng = np.random.default_rng(20261126)
     j = 0

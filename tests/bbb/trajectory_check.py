@@ -93,7 +93,7 @@ CONTACT, CONTACT_LIFT, STOP, CUSP = 4.0, 5.0, 6.0, 7.0
 #: accuracy asked of the kernel's contact integration (RK4, ≤ T/256 per step) per stretch,
 #: relative to the scales sqrt(g R) (speed) and 1 rad (angle), per period of the stretch (the
 #: floor's or the arc's pendulum period, the shorter): the largest discrepancy measured on
-#: the calibration runs times the margin stated there (benchmarks/checker_calibration.py,
+#: the calibration runs times the margin stated there (benchmarks/calibrations/checker_calibration.py,
 #: stored beside this module in data/checker_calibration.json)
 CALIBRATION = json.loads((Path(__file__).parent / "data" / "checker_calibration.json").read_text())
 CONTACT_RTOL = CALIBRATION["contact_rtol_needed"] * CALIBRATION["margin"]

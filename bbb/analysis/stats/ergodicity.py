@@ -55,7 +55,7 @@ DEFAULT_RULE = "spread"
 #: families): "fp" = fraction declared ergodic of the non-ergodic populations (CV 50 %,
 #: bouncing/creeping mixtures, families' D differing by 10 %), "fn" = fraction declared
 #: non-ergodic at CV 0, worst over Brownian, persistent and jumpy motion; 100 seeds each.
-#: Read from CALIBRATION, written by ``benchmarks/ergodicity_calibration.py --json``
+#: Read from CALIBRATION, written by ``benchmarks/calibrations/ergodicity_calibration.py --json``
 #: (its table: benchmarks/results/ergodicity-calibration-*.txt; docs/statistics.md).
 CALIBRATION = Path(__file__).with_name("ergodicity_calibration.json")
 

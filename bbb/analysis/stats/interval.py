@@ -11,7 +11,7 @@ status                the interval [lo, hi]
 ``rare movers``       widened by the rare-mover rule (:mod:`bbb.analysis.stats.rare`); coverage: the
                       rule's calibrated coverage at the sample's n_eff (below nominal where
                       few particles move; read from ``rare_movers_calibration.json``, made by
-                      ``benchmarks/rare_movers.py --json``)
+                      ``benchmarks/calibrations/rare_movers.py --json``)
 ``no mover``          no D_i > 0: the data bound the share of movers (< ``mover_share_hi``
                       at level ci, :func:`bbb.analysis.stats.rare.mover_share_bound`), not D: hi is
                       NaN (no upper bound), lo the sample's D; coverage NaN.  Also (set by
@@ -49,7 +49,7 @@ __all__ = ["OK", "RARE", "NO_MOVER", "FAILED", "NO_SPREAD", "STATUSES", "DInterv
 OK, RARE, NO_MOVER, FAILED, NO_SPREAD = ("ok", "rare movers", "no mover", "estimator failed",
                                          "no spread")
 STATUSES = (OK, RARE, NO_MOVER, FAILED, NO_SPREAD)
-#: the rare-mover rule's calibration (benchmarks/rare_movers.py --json), read by rare_coverage
+#: the rare-mover rule's calibration (benchmarks/calibrations/rare_movers.py --json), read by rare_coverage
 CALIBRATION = Path(__file__).with_name("rare_movers_calibration.json")
 
 

@@ -3,7 +3,7 @@
 When almost no particle moves (creeping frequencies), D = mean(D_i) is a sum over a handful
 of movers, and the bootstrap over particles is anti-conservative: resampling k movers gives
 a Poisson(k)-like spread that ignores the uncertainty of k itself (k = 0 gives a CI of zero
-width).  The rule (calibrated in docs/statistics.md, ``benchmarks/rare_movers.py``):
+width).  The rule (calibrated in docs/statistics.md, ``benchmarks/calibrations/rare_movers.py``):
 
 * ``n_eff = (Σ c_i)² / Σ c_i²`` over the positive contributions c_i = max(D_i, 0) — the
   number of equal movers that would give the same relative spread (k equal movers: k);

@@ -1,6 +1,6 @@
 """Synthetic trajectory populations with a known per-particle D spread, mm and s.
 
-They calibrate the ergodicity rule (``benchmarks/ergodicity_calibration.py``,
+They calibrate the ergodicity rule (``benchmarks/calibrations/ergodicity_calibration.py``,
 docs/statistics.md) and its tests.  Each particle i gets its own D_i (mm²/s) drawn from a
 Gamma distribution of mean ``D`` and coefficient of variation ``cv`` (cv = 0: all equal),
 and moves by one of three ergodic laws, so that the only non-ergodicity is the spread of

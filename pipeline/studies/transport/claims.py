@@ -47,7 +47,7 @@ no current      at φ = 0, ψ = 90° (mirror symmetric): no frequency with a sig
                 exactly: the claim then holds by construction, a property of the design, not
                 a measurement, and the row says so.  With independent particles the rule fails
                 by chance on a measured fraction of current-free curves (its design
-                false-alarm rate, benchmarks/transport_mirror.py -> mirror.json).
+                false-alarm rate, benchmarks/calibrations/transport_mirror.py -> mirror.json).
 sliding         on the sliding scenes' floor (φ = 0°, ψ = 30°), below its lift-off frequency
                 (bbb.analysis.liftoff: no particle at rest anywhere on the floor can lift off there),
                 the frequencies with a significant v: 0 under stick (a stuck particle rides
@@ -65,7 +65,7 @@ T3              restored to the rule and scope it was registered and first judge
 T6b             the sliding/hopping boundary by lift-offs per floor period (a lift-off starts a
                 flight from contact; a chatter of bounces that never rest counts none): the
                 first frequency whose lift-offs per period reach L, L read from liftoffs.json
-                (benchmarks/hopping_liftoffs.py checks it on flat floors, where the answer is
+                (benchmarks/calibrations/hopping_liftoffs.py checks it on flat floors, where the answer is
                 Γ_v = 1), and the frequency before it bound the boundary; judged as T6 (± one
                 frequency step), on every line of transport_reversal (a line without counters:
                 not measured).
@@ -156,7 +156,7 @@ D_MIN = 1e-6  # mm²/s
 #: the mirror-pair benchmark: variance saved per scene, T1's false alarms without pairs
 MIRROR: dict = json.loads(resources.files(__package__).joinpath("mirror.json")
                           .read_text(encoding="utf-8"))
-#: T6b's threshold: lift-offs per floor period (benchmarks/hopping_liftoffs.py, flat floors)
+#: T6b's threshold: lift-offs per floor period (benchmarks/calibrations/hopping_liftoffs.py, flat floors)
 LIFTOFFS: dict = json.loads(resources.files(__package__).joinpath("liftoffs.json")
                             .read_text(encoding="utf-8"))
 LIFTOFF_MIN = float(LIFTOFFS["threshold"])
@@ -196,7 +196,7 @@ def _design_false_alarms() -> str:
     return (f"With independent particles this rule fails by chance on {100 * fa['rate']:.1f} % "
             f"[{100 * fa['lo']:.1f}, {100 * fa['hi']:.1f}] % of current-free curves "
             f"({fa['n_frequencies']} frequencies x {fa['n_particles']} particles; "
-            f"{fa['curves']} null curves, benchmarks/transport_mirror.py).")
+            f"{fa['curves']} null curves, benchmarks/calibrations/transport_mirror.py).")
 
 
 @measure("transport_no_current")

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -74,8 +75,13 @@ def calibrate() -> dict:
             "seed": SEED, "floors": floors}
 
 
-def main() -> int:
-    out = Path(__file__).with_name("hopping.json")
+def main(argv: list[str] | None = None) -> int:
+    """Writes hopping.json beside this module, or where ``--json PATH`` says (make calibrate)."""
+    args = sys.argv[1:] if argv is None else argv
+    if args and (len(args) != 2 or args[0] != "--json"):
+        print(f"hopping_calibration: {' '.join(args)}: the only argument is --json PATH", file=sys.stderr)
+        return 2
+    out = Path(args[1]) if args else Path(__file__).with_name("hopping.json")
     out.write_text(json.dumps(calibrate(), indent=1, ensure_ascii=False) + "\n",
                    encoding="utf-8")
     print(f"wrote {out}")

@@ -104,7 +104,7 @@ def test_pair_labels_go_with_pairs_only():
         transport(x, TIMES, 2.0, n_resamples=50, seed=0, units=units)
 
 
-# -- the calibrated checks (benchmarks/transport_rules.py, bbb/analysis/transport_rules.json) -------
+# -- the calibrated checks (benchmarks/calibrations/transport_rules.py, bbb/analysis/transport_rules.json) --
 SCENE_TIMES = np.arange(101) * 0.5  # the transport scenes: 50 s every 0.5 s
 SCENE_FIT = dict(fit_from=2.25, fit_to=11.25, discard=0.1)
 

@@ -181,7 +181,7 @@ def test_a_coulomb_stretch_that_ends_at_a_cusp_follows_the_checkers_path(A, radi
 ])
 def test_a_cascade_that_ends_in_a_steep_cusp_passes_the_checker(kw):
     """A rattle in a steep cusp ends with a collision whose tangential speed up a wall is below
-    v_stick.  The kernel slid up that wall: ~5e-15 mm (benchmarks/cusp_contact_reference.py),
+    v_stick.  The kernel slid up that wall: ~5e-15 mm (benchmarks/checks/cusp_contact_reference.py),
     below x's resolution of the cusp, stopped, slid back and was held; the checker reads that
     stop as rest in the cusp, where both walls hold it, and flagged the slide (contact_start).
     By the model's cusp rule the cascade's end is rest in the cusp: now held at once."""

@@ -8,7 +8,7 @@ trajectory checker (tests/bbb/trajectory_check.py) passes every recorded flight 
 (each collision where the previous flight's parabola meets the moving surface, Eqs. (5)-(6),
 the gap ≥ 0 in between, lift-off at the first moment the floor lets go), and a brute-force
 fine-grid search finds no point of any recorded flight below the surface.
-``benchmarks/soak.py`` drives the same table to ≥ 10⁹ collisions, so a row must make sense for
+``benchmarks/checks/soak.py`` drives the same table to ≥ 10⁹ collisions, so a row must make sense for
 any number of particles and any seed.
 """
 

@@ -1,6 +1,6 @@
 """The kernel's guards against endless loops (bbb.kernel's event budget, bbb.contact's step
 budget of a contact stretch): an input that would loop stops with an error naming it, and the
-budgets lie far above what the project's inputs need (benchmarks/guards.py, committed)."""
+budgets lie far above what the project's inputs need (benchmarks/calibrations/guards.py, committed)."""
 
 from __future__ import annotations
 
@@ -20,7 +20,7 @@ from bbb.dynamics.slide import BUDGET, PAYBACK, STRETCH_BUDGET, slide
 from bbb.ensemble import InitialState, initial_state
 from bbb.simulate import _raise_on_guard
 
-#: the measured worst cases (benchmarks/guards.py --json), and how far above them a budget
+#: the measured worst cases (benchmarks/calibrations/guards.py --json), and how far above them a budget
 #: must lie: two orders of magnitude, so that no input of the project comes near a guard
 MEASURED = Path(__file__).resolve().parents[3] / "benchmarks" / "results" / "guards-2026-11-28-search.json"
 MARGIN = 100.0

@@ -97,7 +97,7 @@ def test_a_contact_model_on_the_conveyor_runs_and_near_vertical_cusps_are_one_li
 # -- mirror pairs ([families.NAME] mirror) ------------------------------------------------
 #: fingerprints of the transport scenes on main before the mirror key: a scene that keeps
 #: mirror at its default (or counts images by symmetry) stores exactly what it stored
-TRANSPORT_BEFORE = {  # transport_t5 uses pairs (benchmarks/transport_mirror.py): new data
+TRANSPORT_BEFORE = {  # transport_t5 uses pairs (benchmarks/calibrations/transport_mirror.py): new data
     "transport_t0": "d29bf86c5ec522246c2568ba735018d228d8e8f87a3550cea362069a038ca875",
     "transport_t2": "dde996d3bb705442da2e8715a778c0b01d7c49cdc1f8ba79d628d21cd398a9f7",
     "transport_p60": "873d6e45b890d5a630bb4301499bd8e0564896c18d299fa18bc2d66ffe7d1d81",

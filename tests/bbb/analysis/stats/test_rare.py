@@ -42,7 +42,7 @@ def test_effective_movers_counts_equal_movers():
 
 
 def test_rule_restores_coverage_where_few_particles_move():
-    # 128 particles, 5 expected light-tailed movers (n_eff ~ 2.5): benchmarks/rare_movers.py
+    # 128 particles, 5 expected light-tailed movers (n_eff ~ 2.5): benchmarks/calibrations/rare_movers.py
     # measures coverage 0.83 without the rule and 0.91 with it (200 samples).
     rng = np.random.default_rng(2026)
     hits = np.zeros(2)
