@@ -21,6 +21,8 @@ MAP_SCENES = (
     "pipeline/studies/transport/scenes/transport.toml",
     "pipeline/studies/transport/scenes/transport_reversal.toml",
     "pipeline/studies/transport/scenes/transport_sliding.toml",
+    "workflows/sawtooth.toml",
+    "workflows/sine.toml",
 )
 
 TINY_ACCURACY = {"preset": "draft", "n_particles": 4, "chunk_size": 4, "t_max": 8.0,
