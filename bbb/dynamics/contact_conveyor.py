@@ -27,7 +27,7 @@ import math
 from numba import njit
 
 from .bounds_conveyor import cusp_side
-from .collide import collide_c
+from .collide import collide
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row, wrap_period
 from .floors.arc import arc_depth, arc_normal
 from .slide import BUDGET, CUSP, END, LIFT, normal_force, slide, tangential_force
@@ -190,7 +190,7 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, m
     step budget of bbb.dynamics.slide ran out); for the rest of the time the call moved the
     clock the particle was held.  ``fl``, ``run``, ``frame``: bbb.dynamics.options' records."""
     gx, gy, Ax, Ay = frame
-    w, R, S, alpha, beta = fl.w, fl.R, fl.S, fl.alpha, fl.beta
+    w, R, S = fl.w, fl.R, fl.S
     t_max, rec_from, tol_t, v_stick = run.t_max, run.rec_from, run.tol_t, run.v_stick
     ns = sample_times.shape[0]
     t_now = tp * T + (s - s0)
@@ -265,8 +265,7 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, m
         kicked = False
         sliding = False
         if not held:
-            vx, vy, un_out, kicked = collide_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, alpha, beta,
-                                               v_stick, True)
+            vx, vy, un_out, kicked = collide(vx, vy, d, s, fl, frame, v_stick, True)
             n_coll = 1
             if un_out < v_stick:
                 vt, q, sliding = enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, mu, flat,

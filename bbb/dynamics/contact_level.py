@@ -131,7 +131,7 @@ def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, fl
                         EV_COLLISION, False)
         return NEXT, cell, d, y, 0.0, vf, s, tp, isamp, True, False, q, vt, kicked, n_rec, 0, \
             1, 0, el, worst
-    vx, vy, un_out, kicked = collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, True)
+    vx, vy, un_out, kicked = collide(vx, vy, d, s, fl, None, v_stick, True)
     code = EV_COLLISION
     stuck = False
     sliding = False

@@ -19,7 +19,7 @@ import math
 import numpy as np
 from numba import njit
 
-from .collide import collision, wall_met
+from .collide import collide, wall_met
 from .contact_conveyor import DONE, HELD, STALLED, contact_c, enter_contact_c
 from .contact_level import contact_level, enter_contact
 from .events import (
@@ -213,8 +213,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
             from_surface = True
             lifting = False
             continue
-        vx, vy, un_out, kicked = collision(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick,
-                                           not kicked, frame)
+        vx, vy, un_out, kicked = collide(vx, vy, d, s, fl, frame, v_stick, not kicked)
         n_coll += 1
         if not (math.isfinite(vx) and math.isfinite(vy)):
             n_anom += 1
