@@ -38,7 +38,7 @@ from .events import (
     write_row,
 )
 from .floors import is_flat, normal
-from .liftoff import liftoff_wait_c, rest_wait
+from .liftoff import liftoff_wait
 from .motion import fill_carried, fill_flight, floor_velocity, fly, lab_x, on_arc_velocity, surface_y
 from .search import SEARCH_SPENT, STACK_DEPTH, next_collision
 
@@ -54,8 +54,7 @@ def contact_step(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt,
                              kicked, fl, run, mu, flat, sample_times, pos, rec, n_rec)
     # held at rest until the lift-off the stuck branch would take (in a cusp: both arcs let
     # go), unless static friction lets go first
-    t_n = liftoff_wait_c(s, d, frame.gx, frame.gy, frame.Ax, frame.Ay, fl.w, fl.R, fl.S,
-                         retry) if stuck else 0.0
+    t_n = liftoff_wait(s, d, fl, frame, retry) if stuck else 0.0
     return contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, mu, flat,
                      sample_times, pos, rec, n_rec)
 
@@ -156,7 +155,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
                     lifting = False
                     continue
         if stuck:
-            wait = rest_wait(s, d, g, A, w, R, S, retry, frame)
+            wait = liftoff_wait(s, d, fl, frame, retry)
             t_lift = t_now + wait
             t_held += min(wait, t_max - t_now)
             isamp = fill_carried(pos, isamp, sample_times, t_lift, cell * S + d, s, t_now, w,
