@@ -27,8 +27,9 @@ import math
 from numba import njit
 
 from .bounds_conveyor import cusp_side
-from .collide import collide
+from .collide import collide, floor_velocity_at
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row, wrap_period
+from .floors import is_flat, normal
 from .floors.arc import arc_depth, arc_normal
 from .slide import BUDGET, CUSP, END, LIFT, normal_force, slide, tangential_force
 
@@ -158,21 +159,66 @@ def slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat):
 
 
 @njit(cache=True)
-def enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, mu, flat, v_stick):
-    """After a collision that ended a bouncing cascade: the tangential speed v (mm/s)
-    relative to the floor, the angle θ (d on a flat floor), and whether it slides (else it is
-    held: N ≤ 0, left to the lift-off, or at rest where friction holds it).  In a cusp a
-    speed below v_stick is rest there (as after a cusp event): held, and the cusp's rule
-    (slip_wait_c) decides which wall it may slide up — not the arc it last hit."""
+def holds_at_rest(d, R, S, mu, flat):
+    """Whether a particle at rest at offset d stays at rest while g_eff > 0: on a flat
+    floor, in a cusp (held by both walls), at an arc's top, or where static friction
+    holds it, |g_eff sin θ| ≤ μ N = μ g_eff cos θ, i.e. |tan θ| ≤ μ."""
+    if flat or d == 0.0 or abs(d) >= 0.5 * S:
+        return True
     nx, ny = arc_normal(d, R)
-    cw = w * math.cos(w * s)
-    v = (vx + Ax * cw) * ny - (vy + Ay * cw) * nx
+    return abs(nx) <= mu * ny
+
+
+@njit(cache=True, inline="always")
+def held_at_rest(d, s, fl, frame, mu, flat):
+    # whether a particle at rest relative to the floor at offset d stays at rest now: on the
+    # paper's floor holds_at_rest, on the conveyor until static friction lets go (slip_wait_c)
+    if frame is None:
+        return holds_at_rest(d, fl.R, fl.S, mu, flat)
+    return slip_wait_c(d, s, frame.gx, frame.gy, frame.Ax, frame.Ay, fl.w, fl.R, fl.S, mu,
+                       flat)[0] > 0.0
+
+
+@njit(cache=True, inline="always")
+def load(q, v, s, fl, frame, flat):
+    # the normal force N (mm/s²) per unit mass on the floor ``frame`` selects (slide's side)
+    if frame is None:
+        return normal_force(q, v, s, fl.g, fl.A, fl.w, fl.R, flat, None)
+    return normal_force(q, v, s, frame.gy, frame.Ay, fl.w, fl.R, flat, (frame.gx, frame.Ax))
+
+
+@njit(cache=True, inline="always")
+def in_cusp(d, R, S, frame):
+    # at a cusp, where both walls hold a particle: exactly there on the paper's floor,
+    # within CUSP_REACH on the conveyor (bbb.dynamics.bounds_conveyor.cusp_side)
+    if frame is None:
+        return abs(d) >= 0.5 * S
+    return cusp_side(d, R, S) != 0
+
+
+@njit(cache=True)
+def enter_contact(vx, vy, d, s, fl, frame, mu, v_stick):
+    """After a collision that ended a bouncing cascade (outgoing normal speed < v_stick), on
+    the floor ``frame`` selects (None: the paper's): the tangential speed v (mm/s) relative to
+    the floor, the contact angle θ (d on a flat floor), and whether the particle slides (else
+    it is held at rest: N ≤ 0, i.e. it can only leave when the floor lets go, or at rest
+    where static friction holds it).  In a cusp a tangential speed below v_stick (mm/s) is
+    rest there, held by both walls, whichever wall the collision met: the exact model
+    rattles up a wall between the two walls, ever closer to the cusp (an inelastic collapse,
+    ~1e-14 mm, ~1e-9 s: below what x resolves); its limit is rest in the cusp, as after a
+    cusp event (on the conveyor the cusp's rule, slip_wait_c, then decides which wall it may
+    slide up — not the arc it last hit)."""
+    R = fl.R
+    flat = is_flat(R)
+    nx, ny = normal(R, d)
+    vfx, vfy = floor_velocity_at(s, fl.w, fl, frame)
+    v = (vx - vfx) * ny - (vy - vfy) * nx
     q = d if flat else math.asin(nx)
-    if normal_force(q, v, s, gy, Ay, w, R, flat, (gx, Ax)) <= 0.0:
+    if load(q, v, s, fl, frame, flat) <= 0.0:
         return v, q, False
-    if not flat and abs(v) < v_stick and cusp_side(d, R, S) != 0:
+    if not flat and abs(v) < v_stick and in_cusp(d, R, fl.S, frame):
         return 0.0, q, False
-    if v == 0.0 and slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)[0] > 0.0:
+    if v == 0.0 and held_at_rest(d, s, fl, frame, mu, flat):
         return v, q, False
     return v, q, True
 
@@ -268,8 +314,7 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, m
             vx, vy, un_out, kicked = collide(vx, vy, d, s, fl, frame, v_stick, True)
             n_coll = 1
             if un_out < v_stick:
-                vt, q, sliding = enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, mu, flat,
-                                                 v_stick)
+                vt, q, sliding = enter_contact(vx, vy, d, s, fl, frame, mu, v_stick)
                 held = not sliding or abs(vt) < v_stick
                 sliding = not held
         code = EV_COLLISION

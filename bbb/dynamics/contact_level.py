@@ -12,48 +12,13 @@ from numba import njit
 
 from ..surface import floor_v
 from .collide import collide
-from .contact_conveyor import DONE, HELD, NEXT, STALLED
+from .contact_conveyor import DONE, HELD, NEXT, STALLED, enter_contact, holds_at_rest
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row
 from .floors.arc import arc_normal
 from .motion import surface_y
-from .slide import BUDGET, CUSP, END, LIFT, g_eff, normal_force, slide
+from .slide import BUDGET, CUSP, END, LIFT, g_eff, slide
 
-__all__ = ["contact_level", "enter_contact", "holds_at_rest"]
-
-
-@njit(cache=True)
-def holds_at_rest(d, R, S, mu, flat):
-    """Whether a particle at rest at offset d stays at rest while g_eff > 0: on a flat
-    floor, in a cusp (held by both walls), at an arc's top, or where static friction
-    holds it, |g_eff sin θ| ≤ μ N = μ g_eff cos θ, i.e. |tan θ| ≤ μ."""
-    if flat or d == 0.0 or abs(d) >= 0.5 * S:
-        return True
-    nx, ny = arc_normal(d, R)
-    return abs(nx) <= mu * ny
-
-
-@njit(cache=True)
-def enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat, v_stick):
-    """After a collision that ended a bouncing cascade (outgoing normal speed < v_stick):
-    the tangential speed v (mm/s) relative to the floor, the contact angle θ (or d on a
-    flat floor), and whether the particle slides (else it is held at rest: N ≤ 0, i.e. it
-    can only leave when the floor lets go, or at rest where it stays at rest).  In a cusp
-    (|d| = S/2) a tangential speed below v_stick (mm/s) is rest there, held by both walls,
-    whichever wall the collision met (as bbb.dynamics.contact_conveyor.enter_contact_c)."""
-    nx, ny = arc_normal(d, R)
-    v = vx * ny - (vy - floor_v(s, A, w)) * nx
-    q = d if flat else math.asin(nx)
-    n = normal_force(q, v, s, g, A, w, R, flat, None)
-    if n <= 0.0:
-        return v, q, False
-    if not flat and abs(v) < v_stick and abs(d) >= 0.5 * S:
-        # up a wall at below v_stick the exact model rattles between the two walls, ever
-        # closer to the cusp (an inelastic collapse, ~1e-14 mm, ~1e-9 s: below what x
-        # resolves); its limit is rest in the cusp, as after a cusp event
-        return 0.0, q, False
-    if v == 0.0 and holds_at_rest(d, R, S, mu, flat):
-        return v, q, False
-    return v, q, True
+__all__ = ["contact_level"]
 
 
 @njit(cache=True)
@@ -137,7 +102,7 @@ def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, fl
     sliding = False
     if un_out < v_stick:
         # at rest in the cusp below v_stick: held by both walls (enter_contact)
-        vt, q, sliding = enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat, v_stick)
+        vt, q, sliding = enter_contact(vx, vy, d, s, fl, None, mu, v_stick)
         stuck = not sliding
         if sliding:
             nx, ny = arc_normal(d, R)

@@ -20,8 +20,8 @@ import numpy as np
 from numba import njit
 
 from .collide import collide, wall_met
-from .contact_conveyor import DONE, HELD, STALLED, contact_c, enter_contact_c
-from .contact_level import contact_level, enter_contact
+from .contact_conveyor import DONE, HELD, STALLED, contact_c, enter_contact
+from .contact_level import contact_level
 from .events import (
     EV_COLLISION,
     EV_CONTACT,
@@ -57,15 +57,6 @@ def contact_step(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt,
     t_n = liftoff_wait(s, d, fl, frame, retry) if stuck else 0.0
     return contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, mu, flat,
                      sample_times, pos, rec, n_rec)
-
-
-@njit(cache=True, inline="always")
-def start_contact(vx, vy, d, s, fl, frame, mu, flat, v_stick):
-    # after a collision that ended a cascade: (vt, q, sliding) on the floor ``frame`` selects
-    if frame is None:
-        return enter_contact(vx, vy, d, s, fl.g, fl.A, fl.w, fl.R, fl.S, mu, flat, v_stick)
-    return enter_contact_c(vx, vy, d, s, frame.gx, frame.gy, frame.Ax, frame.Ay, fl.w, fl.R,
-                           fl.S, mu, flat, v_stick)
 
 
 @njit(cache=True)
@@ -223,7 +214,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
             # the cascade ends: held with the floor (stick), or sustained contact
             stuck = True
             if friction is not None:
-                vt, q, sliding = start_contact(vx, vy, d, s, fl, frame, friction, flat, v_stick)
+                vt, q, sliding = enter_contact(vx, vy, d, s, fl, frame, friction, v_stick)
                 stuck = not sliding
             vfx, vfy = floor_velocity(s, A, w, frame)
             if stuck:
