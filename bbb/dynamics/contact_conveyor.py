@@ -31,6 +31,7 @@ from .collide import collide, floor_velocity_at
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row, wrap_period
 from .floors import is_flat, normal
 from .floors.arc import arc_depth, arc_normal
+from .options import Contact, Tally
 from .slide import BUDGET, CUSP, END, LIFT, normal_force, slide, tangential_force
 
 # a contact step's verdicts for bbb.dynamics.evolve's loop (contact_c, bbb.dynamics.contact_level)
@@ -224,19 +225,22 @@ def enter_contact(vx, vy, d, s, fl, frame, mu, v_stick):
 
 
 @njit(cache=True)
-def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, mu, flat,
-              sample_times, pos, rec, n_rec):
+def contact_c(st, s0, t_n, fl, run, frame, mu, io):
     """One step of sustained contact on the conveyor (module doc) for a particle held at rest
     (``stuck``; the floor lets go of it after t_n s, bbb.dynamics.liftoff.liftoff_wait_c: in a cusp
     when both arcs do) or sliding (angle q, tangential speed vt relative to the floor): a
     slip, a stretch of sliding to its event, or what that event leads to.  Returns (verdict,
-    cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, collisions,
-    sticking episodes, lift-offs, time slid in s, the stretch's longest run of steps without
-    progress) with the verdict NEXT, DONE, HELD (lift-off first: not moved) or STALLED (the
-    step budget of bbb.dynamics.slide ran out); for the rest of the time the call moved the
-    clock the particle was held.  ``fl``, ``run``, ``frame``: bbb.dynamics.options' records."""
+    Contact, Tally) with the verdict NEXT, DONE, HELD (lift-off first: not moved) or STALLED
+    (the step budget of bbb.dynamics.slide ran out); for the rest of the time the call moved
+    the clock the particle was held.  ``st`` (a Contact; its y, vx, vy, sliding and kicked are
+    not read), ``fl``, ``run``, ``frame``: bbb.dynamics.options' records; s0 (s) the
+    particle's start in its floor period; io = (sample_times, pos, rec)."""
+    cell, d, _, _, _, s, tp, isamp, stuck, _, q, vt, _, n_rec = st
+    sample_times, pos, rec = io
     gx, gy, Ax, Ay = frame
     w, R, S = fl.w, fl.R, fl.S
+    T = 2.0 * math.pi / w
+    flat = is_flat(R)
     t_max, rec_from, tol_t, v_stick = run.t_max, run.rec_from, run.tol_t, run.v_stick
     ns = sample_times.shape[0]
     t_now = tp * T + (s - s0)
@@ -249,8 +253,8 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, m
         # load reaches 0 at once and the two waits differ by rounding)
         t_f = max(t_f, tol_t)
         if not t_f < t_n - tol_t or t_f >= t_max - t_now:
-            return HELD, cell, d, 0.0, 0.0, 0.0, s, tp, isamp, True, False, q, vt, False, \
-                n_rec, 0, 0, 0, 0.0, 0.0
+            return HELD, Contact(cell, d, 0.0, 0.0, 0.0, s, tp, isamp, True, False, q, vt, False, n_rec), \
+                Tally(0, 0, 0, 0.0, 0.0)
         # carried with the floor until static friction lets go
         base = cell * S + d
         while isamp < ns and sample_times[isamp] < t_now + t_f:
@@ -288,8 +292,9 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, m
     vy = -Ay * cw - vt * nx
     y = -Ay * math.sin(w * s) - arc_depth(d, R)
     if ev == END or ev == BUDGET:
-        return DONE if ev == END else STALLED, cell, d, y, vx, vy, s, tp, isamp, False, True, q, \
-            vt, False, n_rec, 0, 0, 0, el, worst
+        return DONE if ev == END else STALLED, Contact(cell, d, y, vx, vy, s, tp, isamp, False, True, q, vt,
+                                                       False, n_rec), \
+            Tally(0, 0, 0, el, worst)
     t_c = tp * T + (s - s0)
     xl = cell * S + d - Ax * math.sin(w * s)
     if ev == LIFT:
@@ -298,8 +303,8 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, m
         vy += v_stick * ny
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T,
                         EV_CONTACT_LIFT, True)
-        return NEXT, cell, d, y, vx, vy, s, tp, isamp, False, False, q, vt, False, n_rec, 0, 0, 1, \
-            el, worst
+        return NEXT, Contact(cell, d, y, vx, vy, s, tp, isamp, False, False, q, vt, False, n_rec), \
+            Tally(0, 0, 1, el, worst)
     if ev == CUSP:
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T, EV_CUSP, True)
         # the neighbouring arc's wall: Eqs. (5)-(6) with its normal
@@ -328,12 +333,12 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, m
             vy = -Ay * cw
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d - Ax * math.sin(w * s), y,
                         vx, vy, s / T, code, False)
-        return NEXT, cell, d, y, vx, vy, s, tp, isamp, held, sliding, q, vt, kicked, n_rec, \
-            n_coll, 1 if held else 0, 0, el, worst
+        return NEXT, Contact(cell, d, y, vx, vy, s, tp, isamp, held, sliding, q, vt, kicked, n_rec), \
+            Tally(n_coll, 1 if held else 0, 0, el, worst)
     # STOP (Coulomb): at rest relative to the floor; static friction holds it or it slides on
     vx = -Ax * cw
     vy = -Ay * cw
     held = slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)[0] > 0.0
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T, EV_STOP, True)
-    return NEXT, cell, d, y, vx, vy, s, tp, isamp, held, not held, q, 0.0, False, n_rec, 0, \
-        1 if held else 0, 0, el, worst
+    return NEXT, Contact(cell, d, y, vx, vy, s, tp, isamp, held, not held, q, 0.0, False, n_rec), \
+        Tally(0, 1 if held else 0, 0, el, worst)

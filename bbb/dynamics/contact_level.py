@@ -14,23 +14,27 @@ from ..surface import floor_v
 from .collide import collide
 from .contact_conveyor import DONE, HELD, NEXT, STALLED, enter_contact, holds_at_rest
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row
+from .floors import is_flat
 from .floors.arc import arc_normal
 from .motion import surface_y
+from .options import Contact, Tally
 from .slide import BUDGET, CUSP, END, LIFT, g_eff, slide
 
 __all__ = ["contact_level"]
 
 
 @njit(cache=True)
-def contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt, kicked, fl,
-                  run, mu, flat, sample_times, pos, rec, n_rec):
+def contact_level(st, s0, fl, run, mu, io):
     """One contact step on the paper's floor for a particle held at rest (``stuck``) or
     sliding (angle q, tangential speed vt): a slide to its event and what that leads to.
-    Returns (verdict, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec,
-    collisions, sticking episodes, lift-offs, time slid in s, the stretch's peak step debt)
-    as bbb.dynamics.contact_conveyor.contact_c; HELD: held at rest, left to the lift-off.
-    ``fl``, ``run``: bbb.dynamics.options' records."""
+    Returns (verdict, Contact, Tally) as bbb.dynamics.contact_conveyor.contact_c; HELD: held
+    at rest, left to the lift-off.  ``st`` (a Contact), ``fl``, ``run``: bbb.dynamics.options'
+    records; s0 (s) the particle's start in its floor period; io = (sample_times, pos, rec)."""
+    cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec = st
+    sample_times, pos, rec = io
     g, A, w, R, S = fl.g, fl.A, fl.w, fl.R, fl.S
+    T = 2.0 * math.pi / w
+    flat = is_flat(R)
     t_max, rec_from, tol_t, v_stick = run.t_max, run.rec_from, run.tol_t, run.v_stick
     if stuck and not holds_at_rest(d, R, S, mu, flat) and g_eff(s, g, A, w) > 0.0:
         # at rest where the contact model cannot hold it (an initial state, or held
@@ -40,15 +44,16 @@ def contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt
         q = d if flat else math.asin(max(-1.0, min(1.0, d / R)))
         vt = 0.0
     if not sliding:
-        return HELD, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, \
-            0, 0, 0, 0.0, 0.0
+        return HELD, Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec), \
+            Tally(0, 0, 0, 0.0, 0.0)
     q, vt, s, tp, cell, isamp, ev, el, worst = slide(q, vt, s, tp, s0, T, g, A, w, R, S, mu,
                                                      flat, t_max, sample_times, pos, isamp, cell,
                                                      tol_t, None)
     if ev == END or ev == BUDGET:
         d = q if flat else R * math.sin(q)
-        return DONE if ev == END else STALLED, cell, d, y, vx, vy, s, tp, isamp, stuck, \
-            sliding, q, vt, kicked, n_rec, 0, 0, 0, el, worst
+        return DONE if ev == END else STALLED, Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q,
+                                                       vt, kicked, n_rec), \
+            Tally(0, 0, 0, el, worst)
     if ev == CUSP:
         d = math.copysign(0.5 * S, q)
     else:
@@ -66,24 +71,28 @@ def contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt
         vy += v_stick * ny
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy, s / T,
                         EV_CONTACT_LIFT, True)
-        return NEXT, cell, d, y, vx, vy, s, tp, isamp, stuck, False, q, vt, False, n_rec, \
-            0, 0, 1, el, worst
+        return NEXT, Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, False, q, vt, False, n_rec), \
+            Tally(0, 0, 1, el, worst)
     if ev == CUSP:
-        return cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, flat,
-                          rec, n_rec, isamp, tp, el, worst)
+        return cusp_level(Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked,
+                                  n_rec), vf, t_c, fl, run, mu, rec, (el, worst))
     # STOP (Coulomb): v = 0; static friction holds it or it slides back
     held = holds_at_rest(d, R, S, mu, flat)
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, 0.0, vf, s / T, EV_STOP,
                     True)
-    return NEXT, cell, d, y, 0.0, vf, s, tp, isamp, held, not held, q, vt, kicked, n_rec, 0, \
-        1 if held else 0, 0, el, worst
+    return NEXT, Contact(cell, d, y, 0.0, vf, s, tp, isamp, held, not held, q, vt, kicked, n_rec), \
+        Tally(0, 1 if held else 0, 0, el, worst)
 
 
 @njit(cache=True, inline="always")
-def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, flat, rec, n_rec,
-               isamp, tp, el, worst):
-    # a slide reached a cusp: the neighbouring arc's wall, Eqs. (5)-(6) with its normal
-    g, A, w, R, S, alpha, beta = fl
+def cusp_level(st, vf, t_c, fl, run, mu, rec, spent):
+    # a slide reached a cusp (st: a Contact at it, at time t_c; vf: the floor's velocity;
+    # spent: the slide's (time slid, peak step debt)): the neighbouring arc's wall,
+    # Eqs. (5)-(6) with its normal
+    cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec = st
+    el, worst = spent
+    w, R, S = fl.w, fl.R, fl.S
+    T = 2.0 * math.pi / w
     t_max, rec_from, v_stick = run.t_max, run.rec_from, run.v_stick
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy, s / T, EV_CUSP,
                     True)
@@ -94,8 +103,8 @@ def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, fl
         # straight back into the cusp: held there by both walls
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, 0.0, vf, s / T,
                         EV_COLLISION, False)
-        return NEXT, cell, d, y, 0.0, vf, s, tp, isamp, True, False, q, vt, kicked, n_rec, 0, \
-            1, 0, el, worst
+        return NEXT, Contact(cell, d, y, 0.0, vf, s, tp, isamp, True, False, q, vt, kicked, n_rec), \
+            Tally(0, 1, 0, el, worst)
     vx, vy, un_out, kicked = collide(vx, vy, d, s, fl, None, v_stick, True)
     code = EV_COLLISION
     stuck = False
@@ -114,5 +123,5 @@ def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, fl
             vy = vf
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy, s / T, code,
                     False)
-    return NEXT, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, 1, \
-        1 if stuck else 0, 0, el, worst
+    return NEXT, Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec), \
+        Tally(1, 1 if stuck else 0, 0, el, worst)

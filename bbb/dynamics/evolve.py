@@ -37,26 +37,25 @@ from .events import (
     write_counters,
     write_row,
 )
-from .floors import is_flat, normal
+from .floors import normal
 from .liftoff import liftoff_wait
 from .motion import fill_carried, fill_flight, floor_velocity, fly, lab_x, on_arc_velocity, surface_y
+from .options import Contact
 from .search import SEARCH_SPENT, STACK_DEPTH, next_collision
 
 __all__ = ["evolve", "evolve_ensemble"]
 
 
 @njit(cache=True, inline="always")
-def contact_step(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt, kicked, fl, run,
-                 frame, mu, flat, retry, sample_times, pos, rec, n_rec):
-    # one step of sustained contact on the floor ``frame`` selects
+def contact_step(st, s0, fl, run, frame, mu, retry, io):
+    # one step of sustained contact (st: a Contact) on the floor ``frame`` selects; io =
+    # (sample_times, pos, rec); returns (verdict, Contact, Tally)
     if frame is None:
-        return contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt,
-                             kicked, fl, run, mu, flat, sample_times, pos, rec, n_rec)
+        return contact_level(st, s0, fl, run, mu, io)
     # held at rest until the lift-off the stuck branch would take (in a cusp: both arcs let
     # go), unless static friction lets go first
-    t_n = liftoff_wait(s, d, fl, frame, retry) if stuck else 0.0
-    return contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, mu, flat,
-                     sample_times, pos, rec, n_rec)
+    t_n = liftoff_wait(st.s, st.d, fl, frame, retry) if st.stuck else 0.0
+    return contact_c(st, s0, t_n, fl, run, frame, mu, io)
 
 
 @njit(cache=True)
@@ -94,7 +93,6 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
     lifting = False
     retry = False
     kicked = False
-    flat = is_flat(R)
     t_held = 0.0
     t_slid = 0.0
     sliding = False
@@ -120,11 +118,11 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
         if friction is not None:
             if stuck or sliding:
                 was_held = stuck
-                verdict, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, \
-                    dc, ds, dl, el, worst = contact_step(cell, d, y, vx, vy, s, tp, s0, T, isamp,
-                                                         stuck, sliding, q, vt, kicked, fl, run,
-                                                         frame, friction, flat, retry,
-                                                         sample_times, pos, rec, n_rec)
+                verdict, st, tally = contact_step(
+                    Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec),
+                    s0, fl, run, frame, friction, retry, (sample_times, pos, rec))
+                cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec = st
+                dc, ds, dl, el, worst = tally
                 status[1] = max(status[1], worst)
                 n_coll += dc
                 n_stick += ds
