@@ -9,7 +9,7 @@ its arc, at angle θ from the top (normal n = (sin θ, cos θ), tangent (cos θ,
     R θ̈ = Gy sin θ − Gx cos θ − μ N sgn(v),     N = Gx sin θ + Gy cos θ − v²/R
 
 (flat floor: d̈ = −Gx − μ Gy sgn(v), N = Gy).  :func:`bbb.dynamics.slide.slide` integrates it with
-its certified event location, given ``side`` = (gx, Ax).  At rest, friction holds the particle
+its certified event location, given the frame.  At rest, friction holds the particle
 while |F_t| ≤ μN with F_t = Gy sin θ − Gx cos θ.  In a cusp (within CUSP_REACH of it, where the
 floor lets go only when both arcs do) it slides up a wall only where that wall presses, N > 0,
 and pulls it up the wall by more than μN; a wall with N ≤ 0 does not touch it (before
@@ -185,7 +185,7 @@ def load(q, v, s, fl, frame, flat):
     # the normal force N (mm/s²) per unit mass on the floor ``frame`` selects (slide's side)
     if frame is None:
         return normal_force(q, v, s, fl.g, fl.A, fl.w, fl.R, flat, None)
-    return normal_force(q, v, s, frame.gy, frame.Ay, fl.w, fl.R, flat, (frame.gx, frame.Ax))
+    return normal_force(q, v, s, frame.gy, frame.Ay, fl.w, fl.R, flat, frame)
 
 
 @njit(cache=True, inline="always")
@@ -276,12 +276,12 @@ def contact_c(st, s0, t_n, fl, run, frame, mu, io):
         if side == 0:
             # the way the pull points just after the slip: at it |F_t| = μN, ~0 for a tiny μN,
             # where rounding would pick the sign (T·2⁻²⁰ on, the pull's sign is its own)
-            ft = tangential_force(q, s + T * 2.0**-20, gy, Ay, w, flat, (gx, Ax))
+            ft = tangential_force(q, s + T * 2.0**-20, gy, Ay, w, flat, frame)
             start_dir = 1.0 if ft > 0.0 else -1.0
         vt = 0.0
-    q, vt, s, tp, cell, isamp, ev, el, worst = slide(q, vt, s, tp, s0, T, gy, Ay, w, R, S, mu,
-                                                     flat, t_max, sample_times, pos, isamp, cell,
-                                                     tol_t, (gx, Ax), start_dir)
+    (q, vt, s, tp, cell, isamp), ev, (el, worst) = slide((q, vt, s, tp, cell, isamp), s0, fl,
+                                                         frame, mu, run, (sample_times, pos),
+                                                         start_dir)
     if ev == CUSP:
         d = math.copysign(0.5 * S, q)
     else:

@@ -35,7 +35,7 @@ def contact_level(st, s0, fl, run, mu, io):
     g, A, w, R, S = fl.g, fl.A, fl.w, fl.R, fl.S
     T = 2.0 * math.pi / w
     flat = is_flat(R)
-    t_max, rec_from, tol_t, v_stick = run.t_max, run.rec_from, run.tol_t, run.v_stick
+    t_max, rec_from, v_stick = run.t_max, run.rec_from, run.v_stick
     if stuck and not holds_at_rest(d, R, S, mu, flat) and g_eff(s, g, A, w) > 0.0:
         # at rest where the contact model cannot hold it (an initial state, or held
         # by N ≤ 0): slide; with g_eff ≤ 0 the floor lets go first (lift-off)
@@ -46,9 +46,8 @@ def contact_level(st, s0, fl, run, mu, io):
     if not sliding:
         return HELD, Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec), \
             Tally(0, 0, 0, 0.0, 0.0)
-    q, vt, s, tp, cell, isamp, ev, el, worst = slide(q, vt, s, tp, s0, T, g, A, w, R, S, mu,
-                                                     flat, t_max, sample_times, pos, isamp, cell,
-                                                     tol_t, None)
+    (q, vt, s, tp, cell, isamp), ev, (el, worst) = slide((q, vt, s, tp, cell, isamp), s0, fl,
+                                                         None, mu, run, (sample_times, pos))
     if ev == END or ev == BUDGET:
         d = q if flat else R * math.sin(q)
         return DONE if ev == END else STALLED, Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q,
