@@ -165,8 +165,8 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
             else:
                 credit = min(SEARCH_BURST, credit + SEARCH_RATE * (tp - tp_paid))
             tp_paid = tp
-        tau, j, credit = next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S,
-                                        frame, t_max - t_now, tol_t, h_max, stack, credit)
+        tau, j, credit = next_collision((y, vy, vx, d, s), from_surface, lifting, fl, frame,
+                                        t_max - t_now, (tol_t, h_max, stack), credit)
         low = min(low, credit)
         x0 = lab_x(cell, d, s, S, w, frame)
         if tau < 0.0:
