@@ -59,9 +59,9 @@ def contact_step(st, s0, fl, run, frame, mu, retry, io):
 
 
 @njit(cache=True)
-def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction, sample_times,
-           out, stack):
-    """Run one particle from its initial state to run.t_max (s, from its own start).
+def evolve(init, fl, run, frame, friction, sample_times, out, stack):
+    """Run one particle from its initial state ``init`` = (cell, d, y, vx, vy, s, stuck,
+    from_surface) (module doc) to run.t_max (s, from its own start).
 
     ``out`` = (pos, rec, counters, times, status).  Writes x at ``sample_times`` into ``pos``
     (the lab's x along the floor's plane on the conveyor, cell·S + d + X_f) and
@@ -77,6 +77,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
     paper's floor, else the conveyor's Frame; ``fl.R`` is the floor's shape
     (bbb.dynamics.floors: the arc's radius, or a sine's or sawtooth's record, level floor and
     stick model only): their types select the compiled kernel."""
+    cell, d, y, vx, vy, s, stuck, from_surface = init
     pos, rec, counters, times, status = out
     g, A, w, R, S, alpha, beta = fl
     t_max, rec_from, tol_t, v_stick, h_max_periods = run
@@ -236,12 +237,13 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
 
 
 @njit(cache=True)
-def evolve_ensemble(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
-                    sample_times, out):
-    """Run every particle of an ensemble (arrays of initial states) independently; ``out`` =
-    (pos, rec, counters, times, status) with one row per particle, see :func:`evolve`."""
+def evolve_ensemble(init, fl, run, frame, friction, sample_times, out):
+    """Run every particle of an ensemble independently: ``init`` = arrays (cell, d, y, vx, vy,
+    s, stuck, from_surface) of initial states, ``out`` = (pos, rec, counters, times, status)
+    with one row per particle, see :func:`evolve`."""
+    cell, d, y, vx, vy, s, stuck, from_surface = init
     pos, rec, counters, times, status = out
     stack = np.empty(STACK_DEPTH)
     for i in range(cell.shape[0]):
-        evolve(cell[i], d[i], y[i], vx[i], vy[i], s[i], stuck[i], from_surface[i], fl, run, frame,
+        evolve((cell[i], d[i], y[i], vx[i], vy[i], s[i], stuck[i], from_surface[i]), fl, run, frame,
                friction, sample_times, (pos[i], rec[i], counters[i], times[i], status[i]), stack)

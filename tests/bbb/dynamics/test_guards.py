@@ -101,7 +101,7 @@ def raw_run(p: Params, st: InitialState, t_max: float) -> np.ndarray:
     """The kernel on states that bbb.simulate would refuse (no validation): the status rows."""
     n = st.cell.shape[0]
     status = np.zeros((n, 5))
-    evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
+    evolve_ensemble((st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface),
                     Floor(p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta),
                     Run(t_max, 0.0, 1e-12, 1e-3, 0.25), None, None, np.zeros(0),
                     (np.zeros((n, 0)), np.zeros((n, 0, 6)), np.zeros((n, 5), np.int64),
