@@ -30,7 +30,8 @@ from .bounds_conveyor import cusp_side
 from .collide import collide, floor_velocity_at
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row, wrap_period
 from .floors import is_flat, normal
-from .floors.arc import arc_depth, arc_normal
+from .floors.arc import arc_normal
+from .motion import on_arc_velocity, surface_y
 from .options import Contact, Tally
 from .slide import BUDGET, CUSP, END, LIFT, normal_force, slide, tangential_force
 
@@ -224,6 +225,23 @@ def enter_contact(vx, vy, d, s, fl, frame, mu, v_stick):
     return v, q, True
 
 
+@njit(cache=True, inline="always")
+def stretch_end(q, vt, s, ev, fl, frame, flat):
+    # the state at the end of a slide (bbb.dynamics.slide: angle q, tangential speed vt, at
+    # floor time s, event ev) on the floor ``frame`` selects: (d, (nx, ny), y, (vx, vy)), the
+    # offset d (mm; the cusp point at a CUSP event), the normal, the height (mm) and the
+    # velocity (mm/s), carried along the floor's motion
+    R = fl.R
+    if ev == CUSP:
+        d = math.copysign(0.5 * fl.S, q)
+    else:
+        d = q if flat else R * math.sin(q)
+    nx, ny = normal(R, d)
+    vfx, vfy = floor_velocity_at(s, fl.w, fl, frame)
+    return d, (nx, ny), surface_y(s, d, fl.A, fl.w, R, frame), on_arc_velocity(vt, nx, ny, vfx,
+                                                                                 vfy, frame)
+
+
 @njit(cache=True)
 def contact_c(st, s0, t_n, fl, run, frame, mu, io):
     """One step of sustained contact on the conveyor (module doc) for a particle held at rest
@@ -282,15 +300,8 @@ def contact_c(st, s0, t_n, fl, run, frame, mu, io):
     (q, vt, s, tp, cell, isamp), ev, (el, worst) = slide((q, vt, s, tp, cell, isamp), s0, fl,
                                                          frame, mu, run, (sample_times, pos),
                                                          start_dir)
-    if ev == CUSP:
-        d = math.copysign(0.5 * S, q)
-    else:
-        d = q if flat else R * math.sin(q)
-    nx, ny = arc_normal(d, R)
+    d, (nx, ny), y, (vx, vy) = stretch_end(q, vt, s, ev, fl, frame, flat)
     cw = w * math.cos(w * s)
-    vx = -Ax * cw + vt * ny
-    vy = -Ay * cw - vt * nx
-    y = -Ay * math.sin(w * s) - arc_depth(d, R)
     if ev == END or ev == BUDGET:
         return DONE if ev == END else STALLED, Contact(cell, d, y, vx, vy, s, tp, isamp, False, True, q, vt,
                                                        False, n_rec), \

@@ -12,11 +12,10 @@ from numba import njit
 
 from ..surface import floor_v
 from .collide import collide
-from .contact_conveyor import DONE, HELD, NEXT, STALLED, enter_contact, holds_at_rest
+from .contact_conveyor import DONE, HELD, NEXT, STALLED, enter_contact, holds_at_rest, stretch_end
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row
 from .floors import is_flat
 from .floors.arc import arc_normal
-from .motion import surface_y
 from .options import Contact, Tally
 from .slide import BUDGET, CUSP, END, LIFT, g_eff, slide
 
@@ -53,15 +52,8 @@ def contact_level(st, s0, fl, run, mu, io):
         return DONE if ev == END else STALLED, Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q,
                                                        vt, kicked, n_rec), \
             Tally(0, 0, 0, el, worst)
-    if ev == CUSP:
-        d = math.copysign(0.5 * S, q)
-    else:
-        d = q if flat else R * math.sin(q)
-    nx, ny = arc_normal(d, R)
+    d, (nx, ny), y, (vx, vy) = stretch_end(q, vt, s, ev, fl, None, flat)
     vf = floor_v(s, A, w)
-    y = surface_y(s, d, A, w, R, None)
-    vx = vt * ny
-    vy = vf - vt * nx
     t_c = tp * T + (s - s0)
     if ev == LIFT:
         # leave with the normal speed v_stick, as a fly-off in collide(): the
