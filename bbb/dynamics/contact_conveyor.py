@@ -245,7 +245,7 @@ def stretch_end(q, vt, s, ev, fl, frame, flat):
 @njit(cache=True)
 def contact_c(st, s0, t_n, fl, run, frame, mu, io):
     """One step of sustained contact on the conveyor (module doc) for a particle held at rest
-    (``stuck``; the floor lets go of it after t_n s, bbb.dynamics.liftoff.liftoff_wait_c: in a cusp
+    (``stuck``; the floor lets go of it after t_n s, bbb.dynamics.liftoff.liftoff_wait: in a cusp
     when both arcs do) or sliding (angle q, tangential speed vt relative to the floor): a
     slip, a stretch of sliding to its event, or what that event leads to.  Returns (verdict,
     Contact, Tally) with the verdict NEXT, DONE, HELD (lift-off first: not moved) or STALLED

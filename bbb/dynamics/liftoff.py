@@ -107,7 +107,7 @@ def liftoff_wait(s, d, fl, frame, retry):
 
 @njit(cache=True)
 def liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry):
-    """liftoff_wait_c in a cusp: the first time both arcs' normal loads are negative (the
+    """liftoff_wait on the conveyor in a cusp: the first time both arcs' normal loads are negative (the
     particle's free motion relative to the floor then leaves both), inf if never.  A vertical
     cusp (R = S/2: horizontal normals) lets go only of a load with no sideways part."""
     T = 2.0 * math.pi / w
