@@ -85,13 +85,15 @@ def collide(vx, vy, d, s, fl, frame, v_stick, allow_kick):
 
 
 @njit(cache=True, inline="always")
-def wall_met(cell, d, vx, vy, s, Ax, Ay, w, R, S):
+def wall_met(cell, d, vx, vy, s, fl, frame):
     """(cell, d, met) of the wall a collision at offset d meets: at a cusp (within CUSP_REACH)
     the one the particle approaches, relative normal speed < 0 — the nearest arc by rounding
     may be the one it leaves (a rattle down a steep cusp: Eq. (5) took |u⊥| on the wrong
     wall); met is False where it leaves both walls there: the root found was the gap's
     rounding at the cusp point (a bounce 4e-16 mm short of it 'hit' the neighbour 2e-16 s later,
-    again and again), not a collision."""
+    again and again), not a collision.  ``fl``, ``frame``: the conveyor's records."""
+    Ax, Ay = frame.Ax, frame.Ay
+    w, R, S = fl.w, fl.R, fl.S
     side = cusp_side(d, R, S)
     if side == 0:
         return cell, d, True

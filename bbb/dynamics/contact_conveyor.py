@@ -44,8 +44,9 @@ TWO_PI = 2.0 * math.pi
 
 
 @njit(cache=True, inline="always")
-def forces_at_rest(nx, ny, gx, gy, Ax, Ay, w):
+def forces_at_rest(nx, ny, frame, w):
     """(F_t, dF_t/du, N, dN/du) (mm/s²) at rest where the normal is (nx, ny), u = sin ωs."""
+    gx, gy, Ax, Ay = frame
     w2 = w * w
     return gy * nx - gx * ny, (Ay * nx - Ax * ny) * w2, gx * nx + gy * ny, (Ax * nx + Ay * ny) * w2
 
@@ -63,11 +64,11 @@ def cut(lo, hi, c, k):
 
 
 @njit(cache=True)
-def hold_interval(d, gx, gy, Ax, Ay, w, R, S, mu, flat):
+def hold_interval(d, fl, frame, mu):
     """The interval [lo, hi] of u = sin ωs in which static friction holds a particle at rest
     on one arc at offset d, |F_t| ≤ μN (empty: lo > hi; N ≥ |F_t|/μ ≥ 0 there)."""
-    nx, ny = arc_normal(d, R)
-    ft, ftu, n, nu = forces_at_rest(nx, ny, gx, gy, Ax, Ay, w)
+    nx, ny = arc_normal(d, fl.R)
+    ft, ftu, n, nu = forces_at_rest(nx, ny, frame, fl.w)
     lo, hi = cut(-math.inf, math.inf, ft - mu * n, ftu - mu * nu)
     return cut(lo, hi, -ft - mu * n, -ftu - mu * nu)
 
@@ -85,12 +86,12 @@ def above(lo, hi, c, k):
 
 
 @njit(cache=True)
-def wall_slip(nx, ny, up, gx, gy, Ax, Ay, w, mu):
+def wall_slip(nx, ny, up, frame, w, mu):
     """The open interval (lo, hi) of u = sin ωs in which a particle at rest in a cusp slides
     up the wall of normal (nx, ny) (``up`` = ±1: the x direction up that wall, away from the
     cusp): the wall presses, N > 0, and the pull up it beats friction, up·F_t > μN.  A wall
     with N ≤ 0 does not touch the particle: it cannot slide on it."""
-    ft, ftu, n, nu = forces_at_rest(nx, ny, gx, gy, Ax, Ay, w)
+    ft, ftu, n, nu = forces_at_rest(nx, ny, frame, w)
     lo, hi = above(-math.inf, math.inf, n, nu)
     return above(lo, hi, up * ft - mu * n, up * ftu - mu * nu)
 
@@ -135,7 +136,7 @@ def enter_wait(s, w, lo, hi):
 
 
 @njit(cache=True)
-def slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat):
+def slip_wait_c(d, s, fl, frame, mu, flat):
     """(time in s until static friction lets go of a particle at rest at offset d from floor
     time s, the wall it then slides on: 0 its own arc, ±1 the neighbour on that side).
 
@@ -144,16 +145,17 @@ def slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat):
     the floor lets go only when both arcs do) it slides up the wall whose pull beats friction
     while that wall presses (wall_slip); the two cannot hold at once (up both walls the pull
     would have to point into both, N < 0 on each)."""
+    w, R, S = fl.w, fl.R, fl.S
     side = 0 if flat else cusp_side(d, R, S)
     if side == 0:
-        lo, hi = hold_interval(d, gx, gy, Ax, Ay, w, R, S, mu, flat)
+        lo, hi = hold_interval(d, fl, frame, mu)
         return exit_wait(s, w, lo, hi), 0
     # up this arc is away from the cusp (−side), up the neighbour's is +side
     nx, ny = arc_normal(d, R)
-    lo, hi = wall_slip(nx, ny, -float(side), gx, gy, Ax, Ay, w, mu)
+    lo, hi = wall_slip(nx, ny, -float(side), frame, w, mu)
     t_own = enter_wait(s, w, lo, hi)
     nx, ny = arc_normal(d - side * S, R)
-    lo, hi = wall_slip(nx, ny, float(side), gx, gy, Ax, Ay, w, mu)
+    lo, hi = wall_slip(nx, ny, float(side), frame, w, mu)
     t_other = enter_wait(s, w, lo, hi)
     if t_other < t_own:
         return t_other, side
@@ -177,8 +179,7 @@ def held_at_rest(d, s, fl, frame, mu, flat):
     # paper's floor holds_at_rest, on the conveyor until static friction lets go (slip_wait_c)
     if frame is None:
         return holds_at_rest(d, fl.R, fl.S, mu, flat)
-    return slip_wait_c(d, s, frame.gx, frame.gy, frame.Ax, frame.Ay, fl.w, fl.R, fl.S, mu,
-                       flat)[0] > 0.0
+    return slip_wait_c(d, s, fl, frame, mu, flat)[0] > 0.0
 
 
 @njit(cache=True, inline="always")
@@ -264,7 +265,7 @@ def contact_c(st, s0, t_n, fl, run, frame, mu, io):
     t_now = tp * T + (s - s0)
     start_dir = 0.0
     if stuck:
-        t_f, wall = slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)
+        t_f, wall = slip_wait_c(d, s, fl, frame, mu, flat)
         # at least tol_t held: a particle sent straight back into a cusp (at a slip's edge)
         # must not loop without time passing; a slip within tol_t of the floor's letting go
         # is the lift-off (where the effective gravity vanishes, throw = 90° − tilt, every
@@ -349,7 +350,7 @@ def contact_c(st, s0, t_n, fl, run, frame, mu, io):
     # STOP (Coulomb): at rest relative to the floor; static friction holds it or it slides on
     vx = -Ax * cw
     vy = -Ay * cw
-    held = slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)[0] > 0.0
+    held = slip_wait_c(d, s, fl, frame, mu, flat)[0] > 0.0
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T, EV_STOP, True)
     return NEXT, Contact(cell, d, y, vx, vy, s, tp, isamp, held, not held, q, 0.0, False, n_rec), \
         Tally(0, 1 if held else 0, 0, el, worst)

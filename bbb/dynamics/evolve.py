@@ -194,7 +194,7 @@ def evolve(init, fl, run, frame, friction, sample_times, out, stack):
         s, tp = wrap_period(s + tau, tp, T)
         met = True
         if frame is not None:
-            cell, d, met = wall_met(cell, d, vx, vy, s, frame.Ax, frame.Ay, w, R, S)
+            cell, d, met = wall_met(cell, d, vx, vy, s, fl, frame)
         # on the surface exactly: the root is known to tol_t, the height to rounding
         y = surface_y(s, d, A, w, R, frame)
         if not met:

@@ -86,8 +86,7 @@ def liftoff_wait(s, d, fl, frame, retry):
     if frame is not None:
         side = cusp_side(d, fl.R, fl.S)
         if side != 0:
-            return liftoff_wait_cusp(s, d, side, frame.gx, frame.gy, frame.Ax, frame.Ay, w, fl.R,
-                                     fl.S, retry)
+            return liftoff_wait_cusp(s, d, side, fl, frame, retry)
     k, c, th = let_go(s, d, fl, frame)
     if frame is not None and k == 0.0:
         if c == math.inf:
@@ -106,10 +105,13 @@ def liftoff_wait(s, d, fl, frame, retry):
 
 
 @njit(cache=True)
-def liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry):
-    """liftoff_wait on the conveyor in a cusp: the first time both arcs' normal loads are negative (the
-    particle's free motion relative to the floor then leaves both), inf if never.  A vertical
-    cusp (R = S/2: horizontal normals) lets go only of a load with no sideways part."""
+def liftoff_wait_cusp(s, d, side, fl, frame, retry):
+    """liftoff_wait on the conveyor (``frame``) in a cusp: the first time both arcs' normal
+    loads are negative (the particle's free motion relative to the floor then leaves both),
+    inf if never.  A vertical cusp (R = S/2: horizontal normals) lets go only of a load with
+    no sideways part."""
+    gx, gy, Ax, Ay = frame
+    w, R, S = fl.w, fl.R, fl.S
     T = 2.0 * math.pi / w
     n1x, n1y = arc_normal(d, R)
     n2x, n2y = arc_normal(d - side * S, R)
