@@ -183,14 +183,6 @@ def held_at_rest(d, s, fl, frame, mu, flat):
 
 
 @njit(cache=True, inline="always")
-def load(q, v, s, fl, frame, flat):
-    # the normal force N (mm/s²) per unit mass on the floor ``frame`` selects (slide's side)
-    if frame is None:
-        return normal_force(q, v, s, fl.g, fl.A, fl.w, fl.R, flat, None)
-    return normal_force(q, v, s, frame.gy, frame.Ay, fl.w, fl.R, flat, frame)
-
-
-@njit(cache=True, inline="always")
 def in_cusp(d, R, S, frame):
     # at a cusp, where both walls hold a particle: exactly there on the paper's floor,
     # within CUSP_REACH on the conveyor (bbb.dynamics.bounds_conveyor.cusp_side)
@@ -217,7 +209,7 @@ def enter_contact(vx, vy, d, s, fl, frame, mu, v_stick):
     vfx, vfy = floor_velocity_at(s, fl.w, fl, frame)
     v = (vx - vfx) * ny - (vy - vfy) * nx
     q = d if flat else math.asin(nx)
-    if load(q, v, s, fl, frame, flat) <= 0.0:
+    if normal_force(q, v, s, fl, frame) <= 0.0:
         return v, q, False
     if not flat and abs(v) < v_stick and in_cusp(d, R, fl.S, frame):
         return 0.0, q, False
@@ -295,7 +287,7 @@ def contact_c(st, s0, t_n, fl, run, frame, mu, io):
         if side == 0:
             # the way the pull points just after the slip: at it |F_t| = μN, ~0 for a tiny μN,
             # where rounding would pick the sign (T·2⁻²⁰ on, the pull's sign is its own)
-            ft = tangential_force(q, s + T * 2.0**-20, gy, Ay, w, flat, frame)
+            ft = tangential_force(q, s + T * 2.0**-20, fl, frame)
             start_dir = 1.0 if ft > 0.0 else -1.0
         vt = 0.0
     (q, vt, s, tp, cell, isamp), ev, (el, worst) = slide((q, vt, s, tp, cell, isamp), s0, fl,

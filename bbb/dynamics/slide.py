@@ -68,10 +68,22 @@ def g_eff(s, g, A, w):
 
 
 @njit(cache=True, inline="always")
-def normal_force(q, v, s, g, A, w, R, flat, frame):
-    """N (mm/s²) per unit mass: g_eff cos θ − v²/R (g_eff on a flat floor); on a conveyor
-    (``frame`` a Frame: g, A are then its gy, Ay, see module doc) gx_eff sin θ + g_eff cos θ
-    − v²/R."""
+def frame_forces(fl, frame):
+    # (g, A) of the module doc's equations: the paper's; the conveyor's normal (gy, Ay)
+    # (its along-plane (gx, Ax) the functions here read from the frame)
+    if frame is None:
+        return fl.g, fl.A
+    return frame.gy, frame.Ay
+
+
+@njit(cache=True, inline="always")
+def normal_force(q, v, s, fl, frame):
+    """N (mm/s²) per unit mass on the floor fl (bbb.dynamics.options.Floor): g_eff cos θ − v²/R
+    (g_eff on a flat floor); on a conveyor (``frame`` a Frame, module doc) gx_eff sin θ +
+    g_eff cos θ − v²/R."""
+    g, A = frame_forces(fl, frame)
+    w, R = fl.w, fl.R
+    flat = is_flat(R)
     if frame is None:
         if flat:
             return g_eff(s, g, A, w)
@@ -83,9 +95,12 @@ def normal_force(q, v, s, g, A, w, R, flat, frame):
 
 
 @njit(cache=True, inline="always")
-def rates(q, v, s, g, A, w, R, mu, sgn, flat, frame):
+def rates(q, v, s, fl, frame, mu, sgn):
     # contact equation R θ̈ = g_eff sin θ − μ N sgn(v) (docs/physics.md, "Contact models");
     # on a conveyor R θ̈ = g_eff sin θ − gx_eff cos θ − μ N sgn(v) ("Transport")
+    g, A = frame_forces(fl, frame)
+    w, R = fl.w, fl.R
+    flat = is_flat(R)
     ge = g_eff(s, g, A, w)
     if frame is None:
         if flat:
@@ -102,9 +117,12 @@ def rates(q, v, s, g, A, w, R, mu, sgn, flat, frame):
 
 
 @njit(cache=True, inline="always")
-def tangential_force(q, s, g, A, w, flat, frame):
+def tangential_force(q, s, fl, frame):
     """The tangential force per unit mass at rest (mm/s², positive towards +x), friction
     aside: g_eff sin θ − gx_eff cos θ (−gx_eff on a flat floor)."""
+    g, A = frame_forces(fl, frame)
+    w = fl.w
+    flat = is_flat(fl.R)
     if frame is None:
         return 0.0 if flat else g_eff(s, g, A, w) * math.sin(q)
     gxe = g_eff(s, frame.gx, frame.Ax, w)
@@ -114,22 +132,23 @@ def tangential_force(q, s, g, A, w, flat, frame):
 
 
 @njit(cache=True)
-def rk4(q, v, s, h, g, A, w, R, mu, sgn, flat, frame):
+def rk4(q, v, s, h, fl, frame, mu, sgn):
     """One classic RK4 step of length h (s) from floor time s; returns the increments (δq, δv)
     (the caller adds them: q + δq is the same rounding as before the split)."""
-    k1q, k1v = rates(q, v, s, g, A, w, R, mu, sgn, flat, frame)
-    k2q, k2v = rates(q + 0.5 * h * k1q, v + 0.5 * h * k1v, s + 0.5 * h, g, A, w, R, mu, sgn, flat,
-                     frame)
-    k3q, k3v = rates(q + 0.5 * h * k2q, v + 0.5 * h * k2v, s + 0.5 * h, g, A, w, R, mu, sgn, flat,
-                     frame)
-    k4q, k4v = rates(q + h * k3q, v + h * k3v, s + h, g, A, w, R, mu, sgn, flat, frame)
+    k1q, k1v = rates(q, v, s, fl, frame, mu, sgn)
+    k2q, k2v = rates(q + 0.5 * h * k1q, v + 0.5 * h * k1v, s + 0.5 * h, fl, frame, mu, sgn)
+    k3q, k3v = rates(q + 0.5 * h * k2q, v + 0.5 * h * k2v, s + 0.5 * h, fl, frame, mu, sgn)
+    k4q, k4v = rates(q + h * k3q, v + h * k3v, s + h, fl, frame, mu, sgn)
     return h * (k1q + 2.0 * k2q + 2.0 * k3q + k4q) / 6.0, h * (k1v + 2.0 * k2v + 2.0 * k3v + k4v) / 6.0
 
 
 @njit(cache=True)
-def step_bounds(va, vb, h, g, A, w, R, mu, flat, sin_c, frame):
+def step_bounds(va, vb, h, fl, frame, mu, sin_c):
     """Bounds on a step of length h (s) from speeds va to vb: (a_max ≥ sup|v̇|,
     J ≥ sup|v̈|, L_N ≥ sup|Ṅ|), all on the exact solution through the step."""
+    g, A = frame_forces(fl, frame)
+    w, R = fl.w, fl.R
+    flat = is_flat(R)
     gmax = g + A * w * w
     jerk = A * w * w * w
     v0 = max(abs(va), abs(vb))
@@ -180,15 +199,6 @@ def clear_of_cusp(q, v, dv, h, J, R, q_c):
     return q < q_c or kh < 0.0
 
 
-@njit(cache=True, inline="always")
-def frame_forces(fl, frame):
-    # (g, A) of the module doc's equations: the paper's; the conveyor's normal (gy, Ay)
-    # (its along-plane (gx, Ax) the functions here read from the frame)
-    if frame is None:
-        return fl.g, fl.A
-    return frame.gy, frame.Ay
-
-
 @njit(cache=True)
 def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
     """Integrate one contact stretch from st = (θ or d = q, v, floor time s, period count tp,
@@ -226,7 +236,7 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
         elif start_dir != 0.0:
             sgn = start_dir
         else:
-            sgn = 1.0 if tangential_force(q, s, g, A, w, flat, frame) > 0.0 else -1.0
+            sgn = 1.0 if tangential_force(q, s, fl, frame) > 0.0 else -1.0
     sin_c = 0.0 if flat else min(0.5 * S / R, 1.0)
     q_c = math.inf if flat else math.asin(sin_c)
     # resolve the faster of the floor's period and the arc's pendulum period 2π√(R/g_max)
@@ -237,7 +247,7 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
             gm = math.hypot(g, frame.gx) + math.hypot(A, frame.Ax) * w * w
             h_nom = min(h_nom, 2.0 * math.pi * math.sqrt(R / gm) / STEPS_PER_SWING)
     t_start = tp * T + (s - s0)
-    n_a = normal_force(q, v, s, g, A, w, R, flat, frame)
+    n_a = normal_force(q, v, s, fl, frame)
     if n_a <= 0.0:
         return (q, v, s, tp, cell, isamp), LIFT, (0.0, 0.0)
     if not flat and abs(q) >= q_c and q * v > 0.0:
@@ -278,12 +288,12 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
         sampling = t_lim - t_now <= hs
         if sampling:
             hs = max(t_lim - t_now, 0.0)
-        dq, dv = rk4(q, v, s, hs, g, A, w, R, mu, sgn, flat, frame)
+        dq, dv = rk4(q, v, s, hs, fl, frame, mu, sgn)
         qb = q + dq
         vb = v + dv
         lost = q_lost + dq if qb == q else q_lost
         sb = s + hs
-        nb = normal_force(qb, vb, sb, g, A, w, R, flat, frame)
+        nb = normal_force(qb, vb, sb, fl, frame)
         lift = nb <= 0.0
         cusp = (not flat) and abs(qb + lost) >= q_c
         if frame is not None:
@@ -291,12 +301,12 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
             # stays at ±θ_c to rounding for a while, which is no arrival at the cusp
             cusp = cusp and qb * vb > 0.0
         stop = mu > 0.0 and sgn * vb <= 0.0
-        amax, J, L = step_bounds(v, vb, hs, g, A, w, R, mu, flat, sin_c, frame)
+        amax, J, L = step_bounds(v, vb, hs, fl, frame, mu, sin_c)
         # N: chord minus Lipschitz, N ≥ (N_a + N_b)/2 − L h/2
         certified = n_a + nb > L * hs
         dva = 0.0
         if mu > 0.0 or frame is not None:
-            dva = rates(q, v, s, g, A, w, R, mu, sgn, flat, frame)[1]
+            dva = rates(q, v, s, fl, frame, mu, sgn)[1]
         if not flat:
             # ±θ(τ) ≤ ±θ_a ± θ̇_a τ + a_max τ²/(2R), convex: below θ_c at both ends
             # (θ_a itself may be at a cusp it is leaving) means below it in between
