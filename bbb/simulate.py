@@ -137,7 +137,7 @@ def simulate(
     # a tilted or thrown floor runs the conveyor's compiled kernel (frame), the paper's floor
     # its own (frame None: numba prunes the conveyor's branches)
     frame = frame_of(p.g, p.A, p.tilt, p.throw) if p.transport or _force_conveyor else None
-    evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
+    evolve_ensemble((st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface),
                     Floor(float(p.g), float(p.A), float(p.omega), shape_of(p), float(p.S),
                           float(p.alpha), float(p.beta)),
                     Run(float(t_max), float(record_from), numerics.tol_t, numerics.v_stick,

@@ -33,11 +33,12 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..dynamics.liftoff import liftoff_wait
+from ..dynamics.options import Floor
 from ..ensemble import InitialState, initial_state
 from ..numerics import Numerics
 from ..params import Params
 from ..simulate import simulate
-from ..surface import cell_of, floor_depth
+from ..surface import cell_of, floor_depth, shape_of
 
 __all__ = ["Lyapunov", "flat_floor_jacobian", "flat_floor_tangent_exponent", "lyapunov"]
 
@@ -286,6 +287,7 @@ def _end_state(p: Params, st: dict[str, np.ndarray], last: _FLOAT, has: NDArray[
                period: float, numerics: Numerics) -> dict[str, np.ndarray]:
     """States at the end of the period, rebuilt from each particle's last collision."""
     w, A, g = p.omega, p.A, p.g
+    fl = Floor(float(g), float(A), float(w), shape_of(p), float(p.S), float(p.alpha), float(p.beta))
     # the anchor: the last collision, or the start when there was none
     t_a = np.where(has, last[:, 0], 0.0)
     s_a = np.where(has, last[:, 5] * period, st["s"])
@@ -309,7 +311,7 @@ def _end_state(p: Params, st: dict[str, np.ndarray], last: _FLOAT, has: NDArray[
     for i in range(n):
         ta, sa, xa, ya, vxa, vya = t_a[i], s_a[i], x_a[i], y_a[i], vx_a[i], vy_a[i]
         if stuck_a[i]:
-            wait = liftoff_wait(sa, A, w, g, False)
+            wait = liftoff_wait(sa, 0.0, fl, None, False)
             if ta + wait >= t_end:
                 stuck[i] = True
                 x[i] = xa

@@ -4,15 +4,16 @@ The floor is a compile-time choice: ``frame`` None is the paper's level floor, a
 :class:`~bbb.dynamics.options.Frame` the tilted/thrown conveyor; numba prunes the other's
 branches, so each floor compiles to its own code.  Modules, one idea each:
 
-- options: the kernel's option records (Floor, Run, Frame)
+- options: the kernel's records (Floor, Run, Frame; a contact step's Contact and Tally)
 - events: event codes, the event guard, the floor clock, recorded rows, counters
 - motion: positions, floor velocity and flights (Eqs. 1-4) on either floor
-- collide: the collision rule, Eqs. (5)-(6), per floor
-- liftoff: when a particle held at rest lifts off, per floor
+- collide: the collision rule, Eqs. (5)-(6), once for both floors
+- liftoff: when a particle held at rest lifts off, once for both floors
 - bounds_level / bounds_conveyor: each floor's gap and certificates (lower bounds, start step)
 - search: the certified collision search, one driver and one refine_root for both floors
 - slide: the contact phase's integrator with certified events (both floors)
-- contact_level / contact_conveyor: a contact step and its rules, per floor
+- contact_level / contact_conveyor: a contact step per floor; the contact start
+  (enter_contact) and a stretch's end (stretch_end) once for both, in contact_conveyor
 - evolve: the map itself, evolve and evolve_ensemble
 """
 

@@ -142,7 +142,7 @@ def start_step_c(h_max, G1, d0, d10, s, gx, gy, Ax, Ay, w, R, S, Dx, lifting):
         # both bounds below need G'' bounded below: stop before the nearest cusp's concave kink
         return start_step_arc(h_max, G1, dn, max(0.5 * S - abs(dn), 0.0), 0.5 * S, d10, s, gx,
                               gy, Ax, Ay, w, R, Dx, lifting)
-    # a lift-off from a cusp (bbb.dynamics.liftoff.liftoff_wait_c: both arcs have let go; a bounce
+    # a lift-off from a cusp (bbb.dynamics.liftoff.liftoff_wait: both arcs have let go; a bounce
     # there takes the path above, whose tiny steps resolve a flight across the cusp): both
     # arcs are the floor, G = min(G_own, G_other), each the gap to a whole circle
     # (smooth, convex depth), while d stays within r of the cusp: both circles defined (half

@@ -1,7 +1,8 @@
-"""The collision rule, Eqs. (5)-(6), one per floor: restitution in the arc's normal and
-tangential frame relative to the floor's velocity, with the kick that ends a grazing
-cascade where the arc falls away faster than the particle; and, on the conveyor, which
-wall of a cusp a collision meets."""
+"""The collision rule, Eqs. (5)-(6), once for both floors: restitution in the floor's normal
+and tangential frame relative to the floor's velocity, with the kick that ends a grazing
+cascade where the floor falls away faster than the particle; and, on the conveyor, which
+wall of a cusp a collision meets.  The paper's floor (``frame = None``) is the variant numba
+prunes at compile time: each floor's expressions keep the order its bits were made with."""
 
 from __future__ import annotations
 
@@ -11,8 +12,8 @@ from numba import njit
 
 from ..surface import floor_a, floor_v
 from .bounds_conveyor import cusp_side, times_or_zero
-from .floors import curvature, normal
-from .floors.arc import arc_curvature, arc_normal, arc_slope
+from .floors import curvature, normal, slope
+from .floors.arc import arc_normal
 
 
 @njit(cache=True, inline="always")
@@ -25,15 +26,47 @@ def restitute(ux, uy, nx, ny, alpha, beta):
     return alpha * abs(un), beta * ut
 
 
+@njit(cache=True, inline="always")
+def floor_velocity_at(s, w, fl, frame):
+    # the floor's velocity (vfx, vfy) (mm/s), each floor in the expression order its bits
+    # were made with: −(A ω) cos ωs on the paper's floor, −Ay (ω cos ωs) on the conveyor
+    if frame is None:
+        return 0.0, floor_v(s, fl.A, w)
+    cw = w * math.cos(w * s)
+    return -frame.Ax * cw, -frame.Ay * cw
+
+
+@njit(cache=True, inline="always")
+def plus_floor(vf, v, frame):
+    # vf + v, but v on the paper's floor, which does not move along x (vf = 0 there, and
+    # 0 + v would turn a −0 into +0)
+    if frame is None:
+        return v
+    return vf + v
+
+
+@njit(cache=True, inline="always")
+def pressing(d, s, w, fl, frame):
+    # the gap's G'' at G = G' = 0 but for the tangential motion's c'' d'² term (mm/s²), as
+    # (normal part, tilt part): −g − ÿ_f on the paper's floor; −gy − ÿ_f and c' (−gx − ẍ_f)
+    # under the conveyor's tilted forces
+    if frame is None:
+        return -fl.g - floor_a(s, fl.A, w), 0.0
+    sw = w * w * math.sin(w * s)
+    return -frame.gy - frame.Ay * sw, times_or_zero(slope(fl.R, d), -frame.gx - frame.Ax * sw)
+
+
 @njit(cache=True)
-def collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, allow_kick):
+def collide(vx, vy, d, s, fl, frame, v_stick, allow_kick):
     """Eqs. (5)-(6): restitution in the floor's normal/tangential frame at offset d, relative
-    to the floor velocity, on the floor shape R (bbb.dynamics.floors).  Returns (vx⁺, vy⁺,
-    outgoing relative normal speed, kicked); a speed below ``v_stick`` means the particle
-    sticks."""
+    to the floor's velocity, on the floor shape fl.R (bbb.dynamics.floors) of the floor
+    ``frame`` selects (None: the paper's; else the conveyor's Frame, arcs only).  Returns
+    (vx⁺, vy⁺, outgoing relative normal speed, kicked); a speed below ``v_stick`` means the
+    particle sticks."""
+    R = fl.R
     nx, ny = normal(R, d)
-    vf = floor_v(s, A, w)
-    un_out, ut_out = restitute(vx, vy - vf, nx, ny, alpha, beta)
+    vfx, vfy = floor_velocity_at(s, fl.w, fl, frame)
+    un_out, ut_out = restitute(vx - vfx, vy - vfy, nx, ny, fl.alpha, fl.beta)
     if un_out < v_stick:
         # A cascade of ever smaller bounces (which ends in sticking) needs the surface to
         # press on the particle: G'' ≤ 0 at G = G' = 0.  Where the arc falls away faster
@@ -41,50 +74,26 @@ def collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, allow_kick):
         # tangential touch), the particle flies off instead: leave with v_stick.
         # Never twice in a row: in a cusp (R = S/2) the neighbouring wall sends the particle
         # straight back, and repeated kicks would be an endless Zeno sequence.
-        g2 = -g - floor_a(s, A, w) + (ut_out * ny) ** 2 * curvature(R, d)
+        gn, gt = pressing(d, s, fl.w, fl, frame)
+        g2 = gn + (ut_out * ny) ** 2 * curvature(R, d)
+        g2 += gt  # only its sign matters: + 0.0 on the paper's floor changes none
         if allow_kick and g2 > 0.0 and abs(ut_out) >= v_stick:
-            return v_stick * nx + ut_out * ny, vf + v_stick * ny - ut_out * nx, v_stick, True
-    return un_out * nx + ut_out * ny, vf + un_out * ny - ut_out * nx, un_out, False
-
-
-@njit(cache=True)
-def collide_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, alpha, beta, v_stick, allow_kick):
-    """Eqs. (5)-(6) relative to the floor's velocity (Vx, Vy) = −(Ax, Ay) ω cos ωs; returns
-    (vx⁺, vy⁺, outgoing relative normal speed, kicked) as :func:`collide`."""
-    nx, ny = arc_normal(d, R)
-    cw = w * math.cos(w * s)
-    vfx = -Ax * cw
-    vfy = -Ay * cw
-    un_out, ut_out = restitute(vx - vfx, vy - vfy, nx, ny, alpha, beta)
-    if un_out < v_stick:
-        # collide's kick, with the gap's G'' at G = G' = 0 under the tilted forces:
-        # −gy − ÿ_f + c'' d'² + c' (−gx − ẍ_f), d' = ut ny the relative tangential motion
-        sw = w * w * math.sin(w * s)
-        g2 = -gy - Ay * sw + (ut_out * ny) ** 2 * arc_curvature(d, R)
-        g2 += times_or_zero(arc_slope(d, R), -gx - Ax * sw)
-        if allow_kick and g2 > 0.0 and abs(ut_out) >= v_stick:
-            return (vfx + v_stick * nx + ut_out * ny, vfy + v_stick * ny - ut_out * nx,
-                    v_stick, True)
-    return vfx + un_out * nx + ut_out * ny, vfy + un_out * ny - ut_out * nx, un_out, False
+            return (plus_floor(vfx, v_stick * nx, frame) + ut_out * ny,
+                    vfy + v_stick * ny - ut_out * nx, v_stick, True)
+    return (plus_floor(vfx, un_out * nx, frame) + ut_out * ny, vfy + un_out * ny - ut_out * nx,
+            un_out, False)
 
 
 @njit(cache=True, inline="always")
-def collision(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, allow_kick, frame):
-    # Eqs. (5)-(6) on the floor ``frame`` selects (None: the paper's)
-    if frame is None:
-        return collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, allow_kick)
-    return collide_c(vx, vy, d, s, frame.gx, frame.gy, frame.Ax, frame.Ay, w, R, alpha, beta,
-                     v_stick, allow_kick)
-
-
-@njit(cache=True, inline="always")
-def wall_met(cell, d, vx, vy, s, Ax, Ay, w, R, S):
+def wall_met(cell, d, vx, vy, s, fl, frame):
     """(cell, d, met) of the wall a collision at offset d meets: at a cusp (within CUSP_REACH)
     the one the particle approaches, relative normal speed < 0 — the nearest arc by rounding
     may be the one it leaves (a rattle down a steep cusp: Eq. (5) took |u⊥| on the wrong
     wall); met is False where it leaves both walls there: the root found was the gap's
     rounding at the cusp point (a bounce 4e-16 mm short of it 'hit' the neighbour 2e-16 s later,
-    again and again), not a collision."""
+    again and again), not a collision.  ``fl``, ``frame``: the conveyor's records."""
+    Ax, Ay = frame.Ax, frame.Ay
+    w, R, S = fl.w, fl.R, fl.S
     side = cusp_side(d, R, S)
     if side == 0:
         return cell, d, True

@@ -9,7 +9,7 @@ its arc, at angle θ from the top (normal n = (sin θ, cos θ), tangent (cos θ,
     R θ̈ = Gy sin θ − Gx cos θ − μ N sgn(v),     N = Gx sin θ + Gy cos θ − v²/R
 
 (flat floor: d̈ = −Gx − μ Gy sgn(v), N = Gy).  :func:`bbb.dynamics.slide.slide` integrates it with
-its certified event location, given ``side`` = (gx, Ax).  At rest, friction holds the particle
+its certified event location, given the frame.  At rest, friction holds the particle
 while |F_t| ≤ μN with F_t = Gy sin θ − Gx cos θ.  In a cusp (within CUSP_REACH of it, where the
 floor lets go only when both arcs do) it slides up a wall only where that wall presses, N > 0,
 and pulls it up the wall by more than μN; a wall with N ≤ 0 does not touch it (before
@@ -27,9 +27,12 @@ import math
 from numba import njit
 
 from .bounds_conveyor import cusp_side
-from .collide import collide_c
+from .collide import collide, floor_velocity_at
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row, wrap_period
-from .floors.arc import arc_depth, arc_normal
+from .floors import is_flat, normal
+from .floors.arc import arc_normal
+from .motion import on_arc_velocity, surface_y
+from .options import Contact, Tally
 from .slide import BUDGET, CUSP, END, LIFT, normal_force, slide, tangential_force
 
 # a contact step's verdicts for bbb.dynamics.evolve's loop (contact_c, bbb.dynamics.contact_level)
@@ -41,8 +44,9 @@ TWO_PI = 2.0 * math.pi
 
 
 @njit(cache=True, inline="always")
-def forces_at_rest(nx, ny, gx, gy, Ax, Ay, w):
+def forces_at_rest(nx, ny, frame, w):
     """(F_t, dF_t/du, N, dN/du) (mm/s²) at rest where the normal is (nx, ny), u = sin ωs."""
+    gx, gy, Ax, Ay = frame
     w2 = w * w
     return gy * nx - gx * ny, (Ay * nx - Ax * ny) * w2, gx * nx + gy * ny, (Ax * nx + Ay * ny) * w2
 
@@ -60,11 +64,11 @@ def cut(lo, hi, c, k):
 
 
 @njit(cache=True)
-def hold_interval(d, gx, gy, Ax, Ay, w, R, S, mu, flat):
+def hold_interval(d, fl, frame, mu):
     """The interval [lo, hi] of u = sin ωs in which static friction holds a particle at rest
     on one arc at offset d, |F_t| ≤ μN (empty: lo > hi; N ≥ |F_t|/μ ≥ 0 there)."""
-    nx, ny = arc_normal(d, R)
-    ft, ftu, n, nu = forces_at_rest(nx, ny, gx, gy, Ax, Ay, w)
+    nx, ny = arc_normal(d, fl.R)
+    ft, ftu, n, nu = forces_at_rest(nx, ny, frame, fl.w)
     lo, hi = cut(-math.inf, math.inf, ft - mu * n, ftu - mu * nu)
     return cut(lo, hi, -ft - mu * n, -ftu - mu * nu)
 
@@ -82,12 +86,12 @@ def above(lo, hi, c, k):
 
 
 @njit(cache=True)
-def wall_slip(nx, ny, up, gx, gy, Ax, Ay, w, mu):
+def wall_slip(nx, ny, up, frame, w, mu):
     """The open interval (lo, hi) of u = sin ωs in which a particle at rest in a cusp slides
     up the wall of normal (nx, ny) (``up`` = ±1: the x direction up that wall, away from the
     cusp): the wall presses, N > 0, and the pull up it beats friction, up·F_t > μN.  A wall
     with N ≤ 0 does not touch the particle: it cannot slide on it."""
-    ft, ftu, n, nu = forces_at_rest(nx, ny, gx, gy, Ax, Ay, w)
+    ft, ftu, n, nu = forces_at_rest(nx, ny, frame, w)
     lo, hi = above(-math.inf, math.inf, n, nu)
     return above(lo, hi, up * ft - mu * n, up * ftu - mu * nu)
 
@@ -132,7 +136,7 @@ def enter_wait(s, w, lo, hi):
 
 
 @njit(cache=True)
-def slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat):
+def slip_wait_c(d, s, fl, frame, mu, flat):
     """(time in s until static friction lets go of a particle at rest at offset d from floor
     time s, the wall it then slides on: 0 its own arc, ±1 the neighbour on that side).
 
@@ -141,16 +145,17 @@ def slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat):
     the floor lets go only when both arcs do) it slides up the wall whose pull beats friction
     while that wall presses (wall_slip); the two cannot hold at once (up both walls the pull
     would have to point into both, N < 0 on each)."""
+    w, R, S = fl.w, fl.R, fl.S
     side = 0 if flat else cusp_side(d, R, S)
     if side == 0:
-        lo, hi = hold_interval(d, gx, gy, Ax, Ay, w, R, S, mu, flat)
+        lo, hi = hold_interval(d, fl, frame, mu)
         return exit_wait(s, w, lo, hi), 0
     # up this arc is away from the cusp (−side), up the neighbour's is +side
     nx, ny = arc_normal(d, R)
-    lo, hi = wall_slip(nx, ny, -float(side), gx, gy, Ax, Ay, w, mu)
+    lo, hi = wall_slip(nx, ny, -float(side), frame, w, mu)
     t_own = enter_wait(s, w, lo, hi)
     nx, ny = arc_normal(d - side * S, R)
-    lo, hi = wall_slip(nx, ny, float(side), gx, gy, Ax, Ay, w, mu)
+    lo, hi = wall_slip(nx, ny, float(side), frame, w, mu)
     t_other = enter_wait(s, w, lo, hi)
     if t_other < t_own:
         return t_other, side
@@ -158,53 +163,109 @@ def slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat):
 
 
 @njit(cache=True)
-def enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, mu, flat, v_stick):
-    """After a collision that ended a bouncing cascade: the tangential speed v (mm/s)
-    relative to the floor, the angle θ (d on a flat floor), and whether it slides (else it is
-    held: N ≤ 0, left to the lift-off, or at rest where friction holds it).  In a cusp a
-    speed below v_stick is rest there (as after a cusp event): held, and the cusp's rule
-    (slip_wait_c) decides which wall it may slide up — not the arc it last hit."""
+def holds_at_rest(d, R, S, mu, flat):
+    """Whether a particle at rest at offset d stays at rest while g_eff > 0: on a flat
+    floor, in a cusp (held by both walls), at an arc's top, or where static friction
+    holds it, |g_eff sin θ| ≤ μ N = μ g_eff cos θ, i.e. |tan θ| ≤ μ."""
+    if flat or d == 0.0 or abs(d) >= 0.5 * S:
+        return True
     nx, ny = arc_normal(d, R)
-    cw = w * math.cos(w * s)
-    v = (vx + Ax * cw) * ny - (vy + Ay * cw) * nx
+    return abs(nx) <= mu * ny
+
+
+@njit(cache=True, inline="always")
+def held_at_rest(d, s, fl, frame, mu, flat):
+    # whether a particle at rest relative to the floor at offset d stays at rest now: on the
+    # paper's floor holds_at_rest, on the conveyor until static friction lets go (slip_wait_c)
+    if frame is None:
+        return holds_at_rest(d, fl.R, fl.S, mu, flat)
+    return slip_wait_c(d, s, fl, frame, mu, flat)[0] > 0.0
+
+
+@njit(cache=True, inline="always")
+def in_cusp(d, R, S, frame):
+    # at a cusp, where both walls hold a particle: exactly there on the paper's floor,
+    # within CUSP_REACH on the conveyor (bbb.dynamics.bounds_conveyor.cusp_side)
+    if frame is None:
+        return abs(d) >= 0.5 * S
+    return cusp_side(d, R, S) != 0
+
+
+@njit(cache=True)
+def enter_contact(vx, vy, d, s, fl, frame, mu, v_stick):
+    """After a collision that ended a bouncing cascade (outgoing normal speed < v_stick), on
+    the floor ``frame`` selects (None: the paper's): the tangential speed v (mm/s) relative to
+    the floor, the contact angle θ (d on a flat floor), and whether the particle slides (else
+    it is held at rest: N ≤ 0, i.e. it can only leave when the floor lets go, or at rest
+    where static friction holds it).  In a cusp a tangential speed below v_stick (mm/s) is
+    rest there, held by both walls, whichever wall the collision met: the exact model
+    rattles up a wall between the two walls, ever closer to the cusp (an inelastic collapse,
+    ~1e-14 mm, ~1e-9 s: below what x resolves); its limit is rest in the cusp, as after a
+    cusp event (on the conveyor the cusp's rule, slip_wait_c, then decides which wall it may
+    slide up — not the arc it last hit)."""
+    R = fl.R
+    flat = is_flat(R)
+    nx, ny = normal(R, d)
+    vfx, vfy = floor_velocity_at(s, fl.w, fl, frame)
+    v = (vx - vfx) * ny - (vy - vfy) * nx
     q = d if flat else math.asin(nx)
-    if normal_force(q, v, s, gy, Ay, w, R, flat, (gx, Ax)) <= 0.0:
+    if normal_force(q, v, s, fl, frame) <= 0.0:
         return v, q, False
-    if not flat and abs(v) < v_stick and cusp_side(d, R, S) != 0:
+    if not flat and abs(v) < v_stick and in_cusp(d, R, fl.S, frame):
         return 0.0, q, False
-    if v == 0.0 and slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)[0] > 0.0:
+    if v == 0.0 and held_at_rest(d, s, fl, frame, mu, flat):
         return v, q, False
     return v, q, True
 
 
+@njit(cache=True, inline="always")
+def stretch_end(q, vt, s, ev, fl, frame, flat):
+    # the state at the end of a slide (bbb.dynamics.slide: angle q, tangential speed vt, at
+    # floor time s, event ev) on the floor ``frame`` selects: (d, (nx, ny), y, (vx, vy)), the
+    # offset d (mm; the cusp point at a CUSP event), the normal, the height (mm) and the
+    # velocity (mm/s), carried along the floor's motion
+    R = fl.R
+    if ev == CUSP:
+        d = math.copysign(0.5 * fl.S, q)
+    else:
+        d = q if flat else R * math.sin(q)
+    nx, ny = normal(R, d)
+    vfx, vfy = floor_velocity_at(s, fl.w, fl, frame)
+    return d, (nx, ny), surface_y(s, d, fl.A, fl.w, R, frame), on_arc_velocity(vt, nx, ny, vfx,
+                                                                                 vfy, frame)
+
+
 @njit(cache=True)
-def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, mu, flat,
-              sample_times, pos, rec, n_rec):
+def contact_c(st, s0, t_n, fl, run, frame, mu, io):
     """One step of sustained contact on the conveyor (module doc) for a particle held at rest
-    (``stuck``; the floor lets go of it after t_n s, bbb.dynamics.liftoff.liftoff_wait_c: in a cusp
+    (``stuck``; the floor lets go of it after t_n s, bbb.dynamics.liftoff.liftoff_wait: in a cusp
     when both arcs do) or sliding (angle q, tangential speed vt relative to the floor): a
     slip, a stretch of sliding to its event, or what that event leads to.  Returns (verdict,
-    cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, collisions,
-    sticking episodes, lift-offs, time slid in s, the stretch's longest run of steps without
-    progress) with the verdict NEXT, DONE, HELD (lift-off first: not moved) or STALLED (the
-    step budget of bbb.dynamics.slide ran out); for the rest of the time the call moved the
-    clock the particle was held.  ``fl``, ``run``, ``frame``: bbb.dynamics.options' records."""
+    Contact, Tally) with the verdict NEXT, DONE, HELD (lift-off first: not moved) or STALLED
+    (the step budget of bbb.dynamics.slide ran out); for the rest of the time the call moved
+    the clock the particle was held.  ``st`` (a Contact; its y, vx, vy, sliding and kicked are
+    not read), ``fl``, ``run``, ``frame``: bbb.dynamics.options' records; s0 (s) the
+    particle's start in its floor period; io = (sample_times, pos, rec)."""
+    cell, d, _, _, _, s, tp, isamp, stuck, _, q, vt, _, n_rec = st
+    sample_times, pos, rec = io
     gx, gy, Ax, Ay = frame
-    w, R, S, alpha, beta = fl.w, fl.R, fl.S, fl.alpha, fl.beta
+    w, R, S = fl.w, fl.R, fl.S
+    T = 2.0 * math.pi / w
+    flat = is_flat(R)
     t_max, rec_from, tol_t, v_stick = run.t_max, run.rec_from, run.tol_t, run.v_stick
     ns = sample_times.shape[0]
     t_now = tp * T + (s - s0)
     start_dir = 0.0
     if stuck:
-        t_f, wall = slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)
+        t_f, wall = slip_wait_c(d, s, fl, frame, mu, flat)
         # at least tol_t held: a particle sent straight back into a cusp (at a slip's edge)
         # must not loop without time passing; a slip within tol_t of the floor's letting go
         # is the lift-off (where the effective gravity vanishes, throw = 90° − tilt, every
         # load reaches 0 at once and the two waits differ by rounding)
         t_f = max(t_f, tol_t)
         if not t_f < t_n - tol_t or t_f >= t_max - t_now:
-            return HELD, cell, d, 0.0, 0.0, 0.0, s, tp, isamp, True, False, q, vt, False, \
-                n_rec, 0, 0, 0, 0.0, 0.0
+            return HELD, Contact(cell, d, 0.0, 0.0, 0.0, s, tp, isamp, True, False, q, vt, False, n_rec), \
+                Tally(0, 0, 0, 0.0, 0.0)
         # carried with the floor until static friction lets go
         base = cell * S + d
         while isamp < ns and sample_times[isamp] < t_now + t_f:
@@ -226,24 +287,18 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, m
         if side == 0:
             # the way the pull points just after the slip: at it |F_t| = μN, ~0 for a tiny μN,
             # where rounding would pick the sign (T·2⁻²⁰ on, the pull's sign is its own)
-            ft = tangential_force(q, s + T * 2.0**-20, gy, Ay, w, flat, (gx, Ax))
+            ft = tangential_force(q, s + T * 2.0**-20, fl, frame)
             start_dir = 1.0 if ft > 0.0 else -1.0
         vt = 0.0
-    q, vt, s, tp, cell, isamp, ev, el, worst = slide(q, vt, s, tp, s0, T, gy, Ay, w, R, S, mu,
-                                                     flat, t_max, sample_times, pos, isamp, cell,
-                                                     tol_t, (gx, Ax), start_dir)
-    if ev == CUSP:
-        d = math.copysign(0.5 * S, q)
-    else:
-        d = q if flat else R * math.sin(q)
-    nx, ny = arc_normal(d, R)
+    (q, vt, s, tp, cell, isamp), ev, (el, worst) = slide((q, vt, s, tp, cell, isamp), s0, fl,
+                                                         frame, mu, run, (sample_times, pos),
+                                                         start_dir)
+    d, (nx, ny), y, (vx, vy) = stretch_end(q, vt, s, ev, fl, frame, flat)
     cw = w * math.cos(w * s)
-    vx = -Ax * cw + vt * ny
-    vy = -Ay * cw - vt * nx
-    y = -Ay * math.sin(w * s) - arc_depth(d, R)
     if ev == END or ev == BUDGET:
-        return DONE if ev == END else STALLED, cell, d, y, vx, vy, s, tp, isamp, False, True, q, \
-            vt, False, n_rec, 0, 0, 0, el, worst
+        return DONE if ev == END else STALLED, Contact(cell, d, y, vx, vy, s, tp, isamp, False, True, q, vt,
+                                                       False, n_rec), \
+            Tally(0, 0, 0, el, worst)
     t_c = tp * T + (s - s0)
     xl = cell * S + d - Ax * math.sin(w * s)
     if ev == LIFT:
@@ -252,8 +307,8 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, m
         vy += v_stick * ny
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T,
                         EV_CONTACT_LIFT, True)
-        return NEXT, cell, d, y, vx, vy, s, tp, isamp, False, False, q, vt, False, n_rec, 0, 0, 1, \
-            el, worst
+        return NEXT, Contact(cell, d, y, vx, vy, s, tp, isamp, False, False, q, vt, False, n_rec), \
+            Tally(0, 0, 1, el, worst)
     if ev == CUSP:
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T, EV_CUSP, True)
         # the neighbouring arc's wall: Eqs. (5)-(6) with its normal
@@ -265,12 +320,10 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, m
         kicked = False
         sliding = False
         if not held:
-            vx, vy, un_out, kicked = collide_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, alpha, beta,
-                                               v_stick, True)
+            vx, vy, un_out, kicked = collide(vx, vy, d, s, fl, frame, v_stick, True)
             n_coll = 1
             if un_out < v_stick:
-                vt, q, sliding = enter_contact_c(vx, vy, d, s, gx, gy, Ax, Ay, w, R, S, mu, flat,
-                                                 v_stick)
+                vt, q, sliding = enter_contact(vx, vy, d, s, fl, frame, mu, v_stick)
                 held = not sliding or abs(vt) < v_stick
                 sliding = not held
         code = EV_COLLISION
@@ -284,12 +337,12 @@ def contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, m
             vy = -Ay * cw
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d - Ax * math.sin(w * s), y,
                         vx, vy, s / T, code, False)
-        return NEXT, cell, d, y, vx, vy, s, tp, isamp, held, sliding, q, vt, kicked, n_rec, \
-            n_coll, 1 if held else 0, 0, el, worst
+        return NEXT, Contact(cell, d, y, vx, vy, s, tp, isamp, held, sliding, q, vt, kicked, n_rec), \
+            Tally(n_coll, 1 if held else 0, 0, el, worst)
     # STOP (Coulomb): at rest relative to the floor; static friction holds it or it slides on
     vx = -Ax * cw
     vy = -Ay * cw
-    held = slip_wait_c(d, s, gx, gy, Ax, Ay, w, R, S, mu, flat)[0] > 0.0
+    held = slip_wait_c(d, s, fl, frame, mu, flat)[0] > 0.0
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, xl, y, vx, vy, s / T, EV_STOP, True)
-    return NEXT, cell, d, y, vx, vy, s, tp, isamp, held, not held, q, 0.0, False, n_rec, 0, \
-        1 if held else 0, 0, el, worst
+    return NEXT, Contact(cell, d, y, vx, vy, s, tp, isamp, held, not held, q, 0.0, False, n_rec), \
+        Tally(0, 1 if held else 0, 0, el, worst)

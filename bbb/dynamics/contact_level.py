@@ -12,61 +12,29 @@ from numba import njit
 
 from ..surface import floor_v
 from .collide import collide
-from .contact_conveyor import DONE, HELD, NEXT, STALLED
+from .contact_conveyor import DONE, HELD, NEXT, STALLED, enter_contact, holds_at_rest, stretch_end
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row
+from .floors import is_flat
 from .floors.arc import arc_normal
-from .motion import surface_y
-from .slide import BUDGET, CUSP, END, LIFT, g_eff, normal_force, slide
+from .options import Contact, Tally
+from .slide import BUDGET, CUSP, END, LIFT, g_eff, slide
 
-__all__ = ["contact_level", "enter_contact", "holds_at_rest"]
-
-
-@njit(cache=True)
-def holds_at_rest(d, R, S, mu, flat):
-    """Whether a particle at rest at offset d stays at rest while g_eff > 0: on a flat
-    floor, in a cusp (held by both walls), at an arc's top, or where static friction
-    holds it, |g_eff sin θ| ≤ μ N = μ g_eff cos θ, i.e. |tan θ| ≤ μ."""
-    if flat or d == 0.0 or abs(d) >= 0.5 * S:
-        return True
-    nx, ny = arc_normal(d, R)
-    return abs(nx) <= mu * ny
+__all__ = ["contact_level"]
 
 
 @njit(cache=True)
-def enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat, v_stick):
-    """After a collision that ended a bouncing cascade (outgoing normal speed < v_stick):
-    the tangential speed v (mm/s) relative to the floor, the contact angle θ (or d on a
-    flat floor), and whether the particle slides (else it is held at rest: N ≤ 0, i.e. it
-    can only leave when the floor lets go, or at rest where it stays at rest).  In a cusp
-    (|d| = S/2) a tangential speed below v_stick (mm/s) is rest there, held by both walls,
-    whichever wall the collision met (as bbb.dynamics.contact_conveyor.enter_contact_c)."""
-    nx, ny = arc_normal(d, R)
-    v = vx * ny - (vy - floor_v(s, A, w)) * nx
-    q = d if flat else math.asin(nx)
-    n = normal_force(q, v, s, g, A, w, R, flat, None)
-    if n <= 0.0:
-        return v, q, False
-    if not flat and abs(v) < v_stick and abs(d) >= 0.5 * S:
-        # up a wall at below v_stick the exact model rattles between the two walls, ever
-        # closer to the cusp (an inelastic collapse, ~1e-14 mm, ~1e-9 s: below what x
-        # resolves); its limit is rest in the cusp, as after a cusp event
-        return 0.0, q, False
-    if v == 0.0 and holds_at_rest(d, R, S, mu, flat):
-        return v, q, False
-    return v, q, True
-
-
-@njit(cache=True)
-def contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt, kicked, fl,
-                  run, mu, flat, sample_times, pos, rec, n_rec):
+def contact_level(st, s0, fl, run, mu, io):
     """One contact step on the paper's floor for a particle held at rest (``stuck``) or
     sliding (angle q, tangential speed vt): a slide to its event and what that leads to.
-    Returns (verdict, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec,
-    collisions, sticking episodes, lift-offs, time slid in s, the stretch's peak step debt)
-    as bbb.dynamics.contact_conveyor.contact_c; HELD: held at rest, left to the lift-off.
-    ``fl``, ``run``: bbb.dynamics.options' records."""
+    Returns (verdict, Contact, Tally) as bbb.dynamics.contact_conveyor.contact_c; HELD: held
+    at rest, left to the lift-off.  ``st`` (a Contact), ``fl``, ``run``: bbb.dynamics.options'
+    records; s0 (s) the particle's start in its floor period; io = (sample_times, pos, rec)."""
+    cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec = st
+    sample_times, pos, rec = io
     g, A, w, R, S = fl.g, fl.A, fl.w, fl.R, fl.S
-    t_max, rec_from, tol_t, v_stick = run.t_max, run.rec_from, run.tol_t, run.v_stick
+    T = 2.0 * math.pi / w
+    flat = is_flat(R)
+    t_max, rec_from, v_stick = run.t_max, run.rec_from, run.v_stick
     if stuck and not holds_at_rest(d, R, S, mu, flat) and g_eff(s, g, A, w) > 0.0:
         # at rest where the contact model cannot hold it (an initial state, or held
         # by N ≤ 0): slide; with g_eff ≤ 0 the floor lets go first (lift-off)
@@ -75,24 +43,17 @@ def contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt
         q = d if flat else math.asin(max(-1.0, min(1.0, d / R)))
         vt = 0.0
     if not sliding:
-        return HELD, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, \
-            0, 0, 0, 0.0, 0.0
-    q, vt, s, tp, cell, isamp, ev, el, worst = slide(q, vt, s, tp, s0, T, g, A, w, R, S, mu,
-                                                     flat, t_max, sample_times, pos, isamp, cell,
-                                                     tol_t, None)
+        return HELD, Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec), \
+            Tally(0, 0, 0, 0.0, 0.0)
+    (q, vt, s, tp, cell, isamp), ev, (el, worst) = slide((q, vt, s, tp, cell, isamp), s0, fl,
+                                                         None, mu, run, (sample_times, pos))
     if ev == END or ev == BUDGET:
         d = q if flat else R * math.sin(q)
-        return DONE if ev == END else STALLED, cell, d, y, vx, vy, s, tp, isamp, stuck, \
-            sliding, q, vt, kicked, n_rec, 0, 0, 0, el, worst
-    if ev == CUSP:
-        d = math.copysign(0.5 * S, q)
-    else:
-        d = q if flat else R * math.sin(q)
-    nx, ny = arc_normal(d, R)
+        return DONE if ev == END else STALLED, Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q,
+                                                       vt, kicked, n_rec), \
+            Tally(0, 0, 0, el, worst)
+    d, (nx, ny), y, (vx, vy) = stretch_end(q, vt, s, ev, fl, None, flat)
     vf = floor_v(s, A, w)
-    y = surface_y(s, d, A, w, R, None)
-    vx = vt * ny
-    vy = vf - vt * nx
     t_c = tp * T + (s - s0)
     if ev == LIFT:
         # leave with the normal speed v_stick, as a fly-off in collide(): the
@@ -101,24 +62,28 @@ def contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt
         vy += v_stick * ny
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy, s / T,
                         EV_CONTACT_LIFT, True)
-        return NEXT, cell, d, y, vx, vy, s, tp, isamp, stuck, False, q, vt, False, n_rec, \
-            0, 0, 1, el, worst
+        return NEXT, Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, False, q, vt, False, n_rec), \
+            Tally(0, 0, 1, el, worst)
     if ev == CUSP:
-        return cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, flat,
-                          rec, n_rec, isamp, tp, el, worst)
+        return cusp_level(Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked,
+                                  n_rec), vf, t_c, fl, run, mu, rec, (el, worst))
     # STOP (Coulomb): v = 0; static friction holds it or it slides back
     held = holds_at_rest(d, R, S, mu, flat)
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, 0.0, vf, s / T, EV_STOP,
                     True)
-    return NEXT, cell, d, y, 0.0, vf, s, tp, isamp, held, not held, q, vt, kicked, n_rec, 0, \
-        1 if held else 0, 0, el, worst
+    return NEXT, Contact(cell, d, y, 0.0, vf, s, tp, isamp, held, not held, q, vt, kicked, n_rec), \
+        Tally(0, 1 if held else 0, 0, el, worst)
 
 
 @njit(cache=True, inline="always")
-def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, flat, rec, n_rec,
-               isamp, tp, el, worst):
-    # a slide reached a cusp: the neighbouring arc's wall, Eqs. (5)-(6) with its normal
-    g, A, w, R, S, alpha, beta = fl
+def cusp_level(st, vf, t_c, fl, run, mu, rec, spent):
+    # a slide reached a cusp (st: a Contact at it, at time t_c; vf: the floor's velocity;
+    # spent: the slide's (time slid, peak step debt)): the neighbouring arc's wall,
+    # Eqs. (5)-(6) with its normal
+    cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec = st
+    el, worst = spent
+    w, R, S = fl.w, fl.R, fl.S
+    T = 2.0 * math.pi / w
     t_max, rec_from, v_stick = run.t_max, run.rec_from, run.v_stick
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy, s / T, EV_CUSP,
                     True)
@@ -129,15 +94,15 @@ def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, fl
         # straight back into the cusp: held there by both walls
         n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, 0.0, vf, s / T,
                         EV_COLLISION, False)
-        return NEXT, cell, d, y, 0.0, vf, s, tp, isamp, True, False, q, vt, kicked, n_rec, 0, \
-            1, 0, el, worst
-    vx, vy, un_out, kicked = collide(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick, True)
+        return NEXT, Contact(cell, d, y, 0.0, vf, s, tp, isamp, True, False, q, vt, kicked, n_rec), \
+            Tally(0, 1, 0, el, worst)
+    vx, vy, un_out, kicked = collide(vx, vy, d, s, fl, None, v_stick, True)
     code = EV_COLLISION
     stuck = False
     sliding = False
     if un_out < v_stick:
         # at rest in the cusp below v_stick: held by both walls (enter_contact)
-        vt, q, sliding = enter_contact(vx, vy, d, s, g, A, w, R, S, mu, flat, v_stick)
+        vt, q, sliding = enter_contact(vx, vy, d, s, fl, None, mu, v_stick)
         stuck = not sliding
         if sliding:
             nx, ny = arc_normal(d, R)
@@ -149,5 +114,5 @@ def cusp_level(cell, d, y, vx, vy, s, vf, t_c, T, q, vt, kicked, fl, run, mu, fl
             vy = vf
     n_rec = put_row(rec, n_rec, rec_from, t_c, t_max, cell * S + d, y, vx, vy, s / T, code,
                     False)
-    return NEXT, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, 1, \
-        1 if stuck else 0, 0, el, worst
+    return NEXT, Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec), \
+        Tally(1, 1 if stuck else 0, 0, el, worst)

@@ -19,9 +19,9 @@ import math
 import numpy as np
 from numba import njit
 
-from .collide import collision, wall_met
-from .contact_conveyor import DONE, HELD, STALLED, contact_c, enter_contact_c
-from .contact_level import contact_level, enter_contact
+from .collide import collide, wall_met
+from .contact_conveyor import DONE, HELD, STALLED, contact_c, enter_contact
+from .contact_level import contact_level
 from .events import (
     EV_COLLISION,
     EV_CONTACT,
@@ -37,42 +37,31 @@ from .events import (
     write_counters,
     write_row,
 )
-from .floors import is_flat, normal
-from .liftoff import liftoff_wait_c, rest_wait
+from .floors import normal
+from .liftoff import liftoff_wait
 from .motion import fill_carried, fill_flight, floor_velocity, fly, lab_x, on_arc_velocity, surface_y
+from .options import Contact
 from .search import SEARCH_SPENT, STACK_DEPTH, next_collision
 
 __all__ = ["evolve", "evolve_ensemble"]
 
 
 @njit(cache=True, inline="always")
-def contact_step(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt, kicked, fl, run,
-                 frame, mu, flat, retry, sample_times, pos, rec, n_rec):
-    # one step of sustained contact on the floor ``frame`` selects
+def contact_step(st, s0, fl, run, frame, mu, retry, io):
+    # one step of sustained contact (st: a Contact) on the floor ``frame`` selects; io =
+    # (sample_times, pos, rec); returns (verdict, Contact, Tally)
     if frame is None:
-        return contact_level(cell, d, y, vx, vy, s, tp, s0, T, isamp, stuck, sliding, q, vt,
-                             kicked, fl, run, mu, flat, sample_times, pos, rec, n_rec)
+        return contact_level(st, s0, fl, run, mu, io)
     # held at rest until the lift-off the stuck branch would take (in a cusp: both arcs let
     # go), unless static friction lets go first
-    t_n = liftoff_wait_c(s, d, frame.gx, frame.gy, frame.Ax, frame.Ay, fl.w, fl.R, fl.S,
-                         retry) if stuck else 0.0
-    return contact_c(cell, d, s, tp, s0, T, isamp, stuck, t_n, q, vt, fl, run, frame, mu, flat,
-                     sample_times, pos, rec, n_rec)
-
-
-@njit(cache=True, inline="always")
-def start_contact(vx, vy, d, s, fl, frame, mu, flat, v_stick):
-    # after a collision that ended a cascade: (vt, q, sliding) on the floor ``frame`` selects
-    if frame is None:
-        return enter_contact(vx, vy, d, s, fl.g, fl.A, fl.w, fl.R, fl.S, mu, flat, v_stick)
-    return enter_contact_c(vx, vy, d, s, frame.gx, frame.gy, frame.Ax, frame.Ay, fl.w, fl.R,
-                           fl.S, mu, flat, v_stick)
+    t_n = liftoff_wait(st.s, st.d, fl, frame, retry) if st.stuck else 0.0
+    return contact_c(st, s0, t_n, fl, run, frame, mu, io)
 
 
 @njit(cache=True)
-def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction, sample_times,
-           out, stack):
-    """Run one particle from its initial state to run.t_max (s, from its own start).
+def evolve(init, fl, run, frame, friction, sample_times, out, stack):
+    """Run one particle from its initial state ``init`` = (cell, d, y, vx, vy, s, stuck,
+    from_surface) (module doc) to run.t_max (s, from its own start).
 
     ``out`` = (pos, rec, counters, times, status).  Writes x at ``sample_times`` into ``pos``
     (the lab's x along the floor's plane on the conveyor, cell·S + d + X_f) and
@@ -88,6 +77,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
     paper's floor, else the conveyor's Frame; ``fl.R`` is the floor's shape
     (bbb.dynamics.floors: the arc's radius, or a sine's or sawtooth's record, level floor and
     stick model only): their types select the compiled kernel."""
+    cell, d, y, vx, vy, s, stuck, from_surface = init
     pos, rec, counters, times, status = out
     g, A, w, R, S, alpha, beta = fl
     t_max, rec_from, tol_t, v_stick, h_max_periods = run
@@ -104,7 +94,6 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
     lifting = False
     retry = False
     kicked = False
-    flat = is_flat(R)
     t_held = 0.0
     t_slid = 0.0
     sliding = False
@@ -130,11 +119,11 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
         if friction is not None:
             if stuck or sliding:
                 was_held = stuck
-                verdict, cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec, \
-                    dc, ds, dl, el, worst = contact_step(cell, d, y, vx, vy, s, tp, s0, T, isamp,
-                                                         stuck, sliding, q, vt, kicked, fl, run,
-                                                         frame, friction, flat, retry,
-                                                         sample_times, pos, rec, n_rec)
+                verdict, st, tally = contact_step(
+                    Contact(cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec),
+                    s0, fl, run, frame, friction, retry, (sample_times, pos, rec))
+                cell, d, y, vx, vy, s, tp, isamp, stuck, sliding, q, vt, kicked, n_rec = st
+                dc, ds, dl, el, worst = tally
                 status[1] = max(status[1], worst)
                 n_coll += dc
                 n_stick += ds
@@ -156,7 +145,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
                     lifting = False
                     continue
         if stuck:
-            wait = rest_wait(s, d, g, A, w, R, S, retry, frame)
+            wait = liftoff_wait(s, d, fl, frame, retry)
             t_lift = t_now + wait
             t_held += min(wait, t_max - t_now)
             isamp = fill_carried(pos, isamp, sample_times, t_lift, cell * S + d, s, t_now, w,
@@ -177,8 +166,8 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
             else:
                 credit = min(SEARCH_BURST, credit + SEARCH_RATE * (tp - tp_paid))
             tp_paid = tp
-        tau, j, credit = next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S,
-                                        frame, t_max - t_now, tol_t, h_max, stack, credit)
+        tau, j, credit = next_collision((y, vy, vx, d, s), from_surface, lifting, fl, frame,
+                                        t_max - t_now, (tol_t, h_max, stack), credit)
         low = min(low, credit)
         x0 = lab_x(cell, d, s, S, w, frame)
         if tau < 0.0:
@@ -205,7 +194,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
         s, tp = wrap_period(s + tau, tp, T)
         met = True
         if frame is not None:
-            cell, d, met = wall_met(cell, d, vx, vy, s, frame.Ax, frame.Ay, w, R, S)
+            cell, d, met = wall_met(cell, d, vx, vy, s, fl, frame)
         # on the surface exactly: the root is known to tol_t, the height to rounding
         y = surface_y(s, d, A, w, R, frame)
         if not met:
@@ -213,8 +202,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
             from_surface = True
             lifting = False
             continue
-        vx, vy, un_out, kicked = collision(vx, vy, d, s, g, A, w, R, alpha, beta, v_stick,
-                                           not kicked, frame)
+        vx, vy, un_out, kicked = collide(vx, vy, d, s, fl, frame, v_stick, not kicked)
         n_coll += 1
         if not (math.isfinite(vx) and math.isfinite(vy)):
             n_anom += 1
@@ -225,7 +213,7 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
             # the cascade ends: held with the floor (stick), or sustained contact
             stuck = True
             if friction is not None:
-                vt, q, sliding = start_contact(vx, vy, d, s, fl, frame, friction, flat, v_stick)
+                vt, q, sliding = enter_contact(vx, vy, d, s, fl, frame, friction, v_stick)
                 stuck = not sliding
             vfx, vfy = floor_velocity(s, A, w, frame)
             if stuck:
@@ -249,12 +237,13 @@ def evolve(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
 
 
 @njit(cache=True)
-def evolve_ensemble(cell, d, y, vx, vy, s, stuck, from_surface, fl, run, frame, friction,
-                    sample_times, out):
-    """Run every particle of an ensemble (arrays of initial states) independently; ``out`` =
-    (pos, rec, counters, times, status) with one row per particle, see :func:`evolve`."""
+def evolve_ensemble(init, fl, run, frame, friction, sample_times, out):
+    """Run every particle of an ensemble independently: ``init`` = arrays (cell, d, y, vx, vy,
+    s, stuck, from_surface) of initial states, ``out`` = (pos, rec, counters, times, status)
+    with one row per particle, see :func:`evolve`."""
+    cell, d, y, vx, vy, s, stuck, from_surface = init
     pos, rec, counters, times, status = out
     stack = np.empty(STACK_DEPTH)
     for i in range(cell.shape[0]):
-        evolve(cell[i], d[i], y[i], vx[i], vy[i], s[i], stuck[i], from_surface[i], fl, run, frame,
+        evolve((cell[i], d[i], y[i], vx[i], vy[i], s[i], stuck[i], from_surface[i]), fl, run, frame,
                friction, sample_times, (pos[i], rec[i], counters[i], times[i], status[i]), stack)

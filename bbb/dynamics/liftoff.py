@@ -1,6 +1,8 @@
-"""When a particle held at rest lifts off, one rule per floor: the paper's floor lets go
-where it accelerates downward faster than g (sin ωs < −1/Γ); the conveyor's where the normal
-load n·(a_floor + (gx, gy)) turns negative, in a cusp only when both arcs' loads do."""
+"""When a particle held at rest lifts off, one rule for both floors: where the normal load
+n·(a_floor + (gx, gy)) turns negative, in a conveyor's cusp only when both arcs' loads do.
+On the paper's floor (``frame = None``, pruned at compile time) that is where the floor
+accelerates downward faster than g, sin ωs < −1/Γ, in the expressions its bits were made
+with."""
 
 from __future__ import annotations
 
@@ -9,6 +11,7 @@ import math
 from numba import njit
 
 from .bounds_conveyor import cusp_side
+from .floors import normal
 from .floors.arc import arc_normal
 
 
@@ -19,21 +22,6 @@ def phase_wait(th, th_l, w):
     if th < th_l:
         return (th_l - th) / w
     return (th_l + 2.0 * math.pi - th) / w
-
-
-@njit(cache=True)
-def liftoff_wait(s, A, w, g, retry):
-    """Time (s) until a particle stuck to the floor lifts off: the floor must accelerate
-    downward faster than g, sin(w s) < -1/Γ.  inf when Γ ≤ 1 (it never lifts off)."""
-    gam = A * w * w / g
-    if gam <= 1.0:
-        return math.inf
-    thc = math.asin(1.0 / gam)
-    th = w * s
-    th_l = math.pi + thc
-    if not retry and math.sin(th) < -1.0 / gam:
-        return 0.0
-    return phase_wait(th, th_l, w)
 
 
 @njit(cache=True, inline="always")
@@ -63,42 +51,67 @@ def letgo_delay(th, k, gn, w):
     return phase_wait(th, th_l, w)
 
 
+@njit(cache=True, inline="always")
+def let_go(s, d, fl, frame):
+    # (k, c, th): the floor lets go where k sin ωs < c |k| turns true, i.e. where the normal
+    # load k sin ωs + gn turns negative, c = −gn/|k|; th = ωs shifted by π where k < 0.
+    # The paper's floor: k = A ω² > 0 and c = −1/Γ on every arc (the load is ∝ n_y), in
+    # the expression order its bits were made with (inf: it never lets go, Γ ≤ 1)
+    w = fl.w
+    if frame is None:
+        gam = fl.A * w * w / fl.g
+        if gam <= 1.0:
+            return 1.0, -math.inf, w * s
+        return 1.0, -1.0 / gam, w * s
+    nx, ny = normal(fl.R, d)
+    k, gn = normal_load(nx, ny, frame.gx, frame.gy, frame.Ax, frame.Ay, w)
+    if k == 0.0:
+        # pressed (or let go) at every phase
+        return 0.0, math.inf if gn < 0.0 else -math.inf, w * s
+    th = w * s if k > 0.0 else w * s + math.pi
+    if th >= 2.0 * math.pi:
+        th -= 2.0 * math.pi
+    return k, -gn / abs(k), th
+
+
 @njit(cache=True)
-def liftoff_wait_c(s, d, gx, gy, Ax, Ay, w, R, S, retry):
+def liftoff_wait(s, d, fl, frame, retry):
     """Time (s) until a particle carried by the floor at offset d lifts off: the normal
     contact force per unit mass, n·(a_floor + (gx, gy)) = An ω² sin ωs + gn, turns negative
-    (An, gn: the floor amplitude and gravity along the arc's normal n).  inf if never.
-    In a cusp (bbb.dynamics.bounds_conveyor.cusp_side) both arcs must let go."""
-    side = cusp_side(d, R, S)
-    if side != 0:
-        return liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry)
-    nx, ny = arc_normal(d, R)
-    k, gn = normal_load(nx, ny, gx, gy, Ax, Ay, w)
-    T = 2.0 * math.pi / w
-    if k == 0.0:
-        if gn < 0.0:
-            return T if retry else 0.0
+    (An, gn: the floor amplitude and gravity along the floor's normal n; on the paper's floor
+    ``frame = None``: sin ωs < −1/Γ).  inf if never; ``retry``: the let-go at s was just
+    tried and failed.  On the conveyor in a cusp (bbb.dynamics.bounds_conveyor.cusp_side) both
+    arcs must let go."""
+    w = fl.w
+    if frame is not None:
+        side = cusp_side(d, fl.R, fl.S)
+        if side != 0:
+            return liftoff_wait_cusp(s, d, side, fl, frame, retry)
+    k, c, th = let_go(s, d, fl, frame)
+    if frame is not None and k == 0.0:
+        if c == math.inf:
+            return 2.0 * math.pi / w if retry else 0.0
         return math.inf
-    c = -gn / abs(k)
     if c <= -1.0:
         return math.inf
     sn = math.sin(w * s) if k > 0.0 else -math.sin(w * s)
     if not retry and sn < c:
         return 0.0
+    if frame is None:
+        return phase_wait(th, math.pi + math.asin(-c), w)
     if c >= 1.0:
-        return T * 0.25  # lifting everywhere but at one phase: after a failed try, move on
-    th = w * s if k > 0.0 else w * s + math.pi
-    if th >= 2.0 * math.pi:
-        th -= 2.0 * math.pi
-    th_l = math.pi - math.asin(c)
-    return phase_wait(th, th_l, w)
+        return 2.0 * math.pi / w * 0.25  # lifting everywhere but at one phase: move on
+    return phase_wait(th, math.pi - math.asin(c), w)
 
 
 @njit(cache=True)
-def liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry):
-    """liftoff_wait_c in a cusp: the first time both arcs' normal loads are negative (the
-    particle's free motion relative to the floor then leaves both), inf if never.  A vertical
-    cusp (R = S/2: horizontal normals) lets go only of a load with no sideways part."""
+def liftoff_wait_cusp(s, d, side, fl, frame, retry):
+    """liftoff_wait on the conveyor (``frame``) in a cusp: the first time both arcs' normal
+    loads are negative (the particle's free motion relative to the floor then leaves both),
+    inf if never.  A vertical cusp (R = S/2: horizontal normals) lets go only of a load with
+    no sideways part."""
+    gx, gy, Ax, Ay = frame
+    w, R, S = fl.w, fl.R, fl.S
     T = 2.0 * math.pi / w
     n1x, n1y = arc_normal(d, R)
     n2x, n2y = arc_normal(d - side * S, R)
@@ -135,11 +148,3 @@ def liftoff_wait_cusp(s, d, side, gx, gy, Ax, Ay, w, R, S, retry):
         if ok:
             best = min(best, e)
     return best
-
-
-@njit(cache=True, inline="always")
-def rest_wait(s, d, g, A, w, R, S, retry, frame):
-    # time (s) until the floor ``frame`` selects lets go of a particle held at offset d
-    if frame is None:
-        return liftoff_wait(s, A, w, g, retry)
-    return liftoff_wait_c(s, d, frame.gx, frame.gy, frame.Ax, frame.Ay, w, R, S, retry)

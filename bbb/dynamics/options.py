@@ -1,5 +1,6 @@
-"""The kernel's options as three small records, so that :func:`bbb.dynamics.evolve.evolve`
-takes a handful of arguments instead of 27: the floor, the run, and the conveyor's frame.
+"""The kernel's options and a contact step's state as small records, so that no jitted
+function takes more than a handful of arguments: the floor, the run, the conveyor's frame,
+and a particle in sustained contact with what its step did.
 
 ``Frame`` or None selects the floor at compile time: with ``frame = None`` numba prunes
 every conveyor branch (``if frame is None``), as ``friction = None`` prunes the contact
@@ -19,6 +20,15 @@ Floor = namedtuple("Floor", "g A w R S alpha beta")
 #: one run: t_max (s), recording from rec_from (s), root tolerance tol_t (s), sticking speed
 #: v_stick (mm/s), longest search step h_max_periods (floor periods)
 Run = namedtuple("Run", "t_max rec_from tol_t v_stick h_max_periods")
+#: a particle in sustained contact (bbb.dynamics.contact_level, contact_conveyor): its cell,
+#: offset d (mm), height y (mm), velocity (vx, vy) (mm/s), floor time s (s) in its period
+#: count tp, the next position sample isamp, held at rest (stuck) or sliding, the contact
+#: angle q (rad; d on a flat floor), the tangential speed vt (mm/s) relative to the floor,
+#: whether the last collision kicked, the rows recorded n_rec
+Contact = namedtuple("Contact", "cell d y vx vy s tp isamp stuck sliding q vt kicked n_rec")
+#: what a contact step did: collisions, sticking episodes, lift-offs, time slid (s), and the
+#: stretch's peak step debt (bbb.dynamics.slide)
+Tally = namedtuple("Tally", "collisions sticks lifts slid worst")
 #: a conveyor (bbb.dynamics.bounds_conveyor's module doc): gravity (−gx, −gy) (mm/s²) and floor
 #: amplitudes (Ax, Ay) (mm) along and normal to the floor's plane
 Frame = namedtuple("Frame", "gx gy Ax Ay")

@@ -14,6 +14,7 @@ whose cells the search crosses one at a time; the conveyor's is the arc's radius
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 from numba import njit
 
@@ -27,21 +28,28 @@ SEARCH_SPENT = -2.0
 STACK_DEPTH = 96
 
 
+#: a flight as the search sees it: height y (mm), velocity (vx, vy) (mm/s), offset d0 (mm)
+#: from the centre of the cell searched, floor time s (s) at τ = 0, sin ωs and the bound Dx
+#: (mm/s²) of |d''| (the conveyor's; 0 on the paper's floor), whether it starts at a lift-off
+Flight = namedtuple("Flight", "y vy vx d0 s sin_s Dx lifting")
+
+
 @njit(cache=True, inline="always")
-def gap_at(t, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame):
+def gap_at(t, fli, fl, frame):
     # Eq. (2): G, G' and the offset d, d' (relative to the arc d0 refers to) at flight time t
     if frame is None:
-        G, G1 = gap(t, y, vy, s, d0, vx, g, A, w, R, 0.5 * S)
-        return G, G1, 0.0, vx
-    return gap_c(t, y, vy, s, d0, vx, sin_s, frame.gx, frame.gy, frame.Ax, frame.Ay, w, R, S)
+        G, G1 = gap(t, fli.y, fli.vy, fli.s, fli.d0, fli.vx, fl.g, fl.A, fl.w, fl.R, 0.5 * fl.S)
+        return G, G1, 0.0, fli.vx
+    return gap_c(t, fli.y, fli.vy, fli.s, fli.d0, fli.vx, fli.sin_s, frame.gx, frame.gy, frame.Ax,
+                 frame.Ay, fl.w, fl.R, fl.S)
 
 
 @njit(cache=True, inline="always")
-def offset(t, d0, vx, d, frame):
+def offset(t, fli, d, frame):
     # the offset at flight time t for a bound: the paper floor's d0 + vx t afresh (a value not
     # carried through the search loop), the conveyor's d as gap_c returned it
     if frame is None:
-        return d0 + vx * t
+        return fli.d0 + fli.vx * t
     return d
 
 
@@ -54,40 +62,49 @@ def newton_ok(G1, frame):
 
 
 @njit(cache=True, inline="always")
-def slope_cap(da, db, d1a, d1b, h, vx, g, A, w, R, S, Dx, frame):
-    # an upper bound of G'' on [a, a+h]: G' < 0 throughout if G'(a) + max(M, 0) h < 0
+def slope_cap(a, b, ea, eb, fli, fl, frame):
+    # an upper bound of G'' on [a, b] (ea, eb: gap_at there): G' < 0 throughout if
+    # G'(a) + max(M, 0) (b − a) < 0
+    da = offset(a, fli, ea[2], frame)
+    db = offset(b, fli, eb[2], frame)
     if frame is None:
-        return curvature_bound(da, db, vx, g, A, w, R)
-    amax, _amin, _cusp = offset_range(da, db, h, Dx, S)
-    D1 = max(abs(d1a), abs(d1b)) + 0.5 * Dx * h
-    return upper_curvature(amax, D1, Dx, frame.gy, frame.Ay, w, R)
+        return curvature_bound(da, db, fli.vx, fl.g, fl.A, fl.w, fl.R)
+    h = b - a
+    amax, _amin, _cusp = offset_range(da, db, h, fli.Dx, fl.S)
+    D1 = max(abs(ea[3]), abs(eb[3])) + 0.5 * fli.Dx * h
+    return upper_curvature(amax, D1, fli.Dx, frame.gy, frame.Ay, fl.w, fl.R)
 
 
 @njit(cache=True, inline="always")
-def gap_lower_bound(h, Ga, G1a, Gb, da, db, d1a, d1b, vx, g, A, w, R, S, Dx, frame):
-    # a rigorous lower bound of G on [a, a+h], the floor's own certificate
+def gap_lower_bound(a, b, ea, eb, fli, fl, frame):
+    # a rigorous lower bound of G on [a, b] (ea, eb: gap_at there), the floor's own certificate
+    h = b - a
+    da = offset(a, fli, ea[2], frame)
+    db = offset(b, fli, eb[2], frame)
     if frame is None:
-        return lower_bound(h, Ga, G1a, Gb, da, db, vx, g, A, w, R)
-    return lower_bound_c(h, Ga, G1a, Gb, da, db, d1a, d1b, Dx, frame.gy, frame.Ay, w, R, S)
+        return lower_bound(h, ea[0], ea[1], eb[0], da, db, fli.vx, fl.g, fl.A, fl.w, fl.R)
+    return lower_bound_c(h, ea[0], ea[1], eb[0], da, db, ea[3], eb[3], fli.Dx, frame.gy,
+                         frame.Ay, fl.w, fl.R, fl.S)
 
 
 @njit(cache=True, inline="always")
-def first_step(h_max, G1, d0, d10, vx, s, g, A, w, R, S, Dx, frame, lifting):
-    # a step σ > 0 with G > 0 on (0, σ] for a flight from the surface, 0 if none certified
+def first_step(h_max, ea, fli, fl, frame):
+    # a step σ > 0 with G > 0 on (0, σ] for a flight from the surface (ea: gap_at there), 0 if
+    # none certified
     if frame is None:
-        return start_step(h_max, G1, vx, s, g, A, w, R, lifting)
-    return start_step_c(h_max, G1, d0, d10, s, frame.gx, frame.gy, frame.Ax, frame.Ay, w, R, S,
-                        Dx, lifting)
+        return start_step(h_max, ea[1], fli.vx, fli.s, fl.g, fl.A, fl.w, fl.R, fli.lifting)
+    return start_step_c(h_max, ea[1], ea[2], ea[3], fli.s, frame.gx, frame.gy, frame.Ax,
+                        frame.Ay, fl.w, fl.R, fl.S, fli.Dx, fli.lifting)
 
 
 @njit(cache=True)
-def refine_root(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame, tol_t):
+def refine_root(a, b, Ga, Gb, fli, fl, frame, tol_t):
     """Newton safeguarded by bisection on a bracket with G(a) > 0 ≥ G(b)."""
     t = b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else 0.5 * (a + b)
     if not (a < t < b):
         t = 0.5 * (a + b)
     for _ in range(200):
-        G, G1, _d, _d1 = gap_at(t, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame)
+        G, G1, _d, _d1 = gap_at(t, fli, fl, frame)
         if G > 0.0:
             a = t
             Ga = G
@@ -111,24 +128,24 @@ def refine_root(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame, tol
 
 
 @njit(cache=True)
-def search_piece(pa, pb, d0, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame, from_surface,
-                 lifting, tol_t, h_max, stack, left):
-    """(first root of G in [pa, pb] (offset d0 at τ = 0), or NO_COLLISION if none, and
-    ``left`` less the bracketing steps taken); SEARCH_SPENT once ``left`` runs out."""
+def search_piece(pa, pb, fli, from_surface, fl, frame, srch, left):
+    """(first root of G in [pa, pb] of the Flight ``fli``, or NO_COLLISION if none, and
+    ``left`` less the bracketing steps taken); SEARCH_SPENT once ``left`` runs out.
+    ``from_surface``: the flight starts on the surface at pa; srch = (tol_t, h_max, stack)."""
+    tol_t, h_max, stack = srch
     a = pa
-    Ga, G1a, da, d1a = gap_at(a, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame)
+    Ga, G1a, da, d1a = gap_at(a, fli, fl, frame)
     if from_surface:
         if pb <= pa:
             # zero-length piece (a cusp at τ = 0): only an approach into this arc counts
             return (a if G1a < 0.0 else NO_COLLISION), left
-        sigma = first_step(min(h_max, pb - pa), G1a, da, d1a, vx, s, g, A, w, R, S, Dx, frame,
-                           lifting)
+        sigma = first_step(min(h_max, pb - pa), (Ga, G1a, da, d1a), fli, fl, frame)
         if sigma <= 0.0:
             return a, left
         a = a + sigma
         if a >= pb:
             return NO_COLLISION, left
-        Ga, G1a, da, d1a = gap_at(a, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame)
+        Ga, G1a, da, d1a = gap_at(a, fli, fl, frame)
         if Ga <= 0.0:
             # separation below rounding: the particle is back on the surface at a > 0
             return a, left
@@ -138,19 +155,15 @@ def search_piece(pa, pb, d0, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame, from
     h = h_max
     b = min(a + h, pb)
     while True:
-        Gb, G1b, db, d1b = gap_at(b, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame)
+        Gb, G1b, db, d1b = gap_at(b, fli, fl, frame)
         width = b - a
         if Gb <= 0.0:
             # unique root when G' < 0 on all of [a, b]: G'(a) + M⁺(b-a) < 0
-            M = slope_cap(offset(a, d0, vx, da, frame), offset(b, d0, vx, db, frame), d1a, d1b,
-                          width, vx, g, A, w, R, S, Dx, frame)
+            M = slope_cap(a, b, (Ga, G1a, da, d1a), (Gb, G1b, db, d1b), fli, fl, frame)
             if G1a + max(M, 0.0) * width < 0.0 or width <= tol_t:
-                return refine_root(a, b, Ga, Gb, y, vy, s, d0, vx, sin_s, g, A, w, R, S, frame,
-                                   tol_t), left
+                return refine_root(a, b, Ga, Gb, fli, fl, frame, tol_t), left
         else:
-            lb = gap_lower_bound(width, Ga, G1a, Gb, offset(a, d0, vx, da, frame),
-                                 offset(b, d0, vx, db, frame), d1a, d1b, vx, g, A, w, R, S, Dx,
-                                 frame)
+            lb = gap_lower_bound(a, b, (Ga, G1a, da, d1a), (Gb, G1b, db, d1b), fli, fl, frame)
             # below tol_t a dip is at most M tol_t²/8 deep: far below rounding of y
             if lb > 0.0 or width <= tol_t:
                 a = b
@@ -205,14 +218,16 @@ def flight_windows(y, vy, g, top, bottom):
 
 
 @njit(cache=True, inline="always")
-def search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, tol_t, h_max,
-                 stack, left):
-    """The paper floor's search over [wa, wb], one arc at a time: (τ, cell offset j of the
-    arc hit, the step budget left), NO_COLLISION if none; each arc costs a step.  ``R`` is the
-    floor's shape (bbb.dynamics.floors); a flat one is searched in one piece."""
-    if is_flat(R):
-        tau, left = search_piece(wa, wb, d, y, vy, s, 0.0, 0.0, g, A, w, R, S, 0.0, None,
-                                 from_surface and wa == 0.0, lifting, tol_t, h_max, stack, left)
+def search_cells(wa, wb, fli, from_surface, fl, srch, left):
+    """The paper floor's search over [wa, wb] of the Flight ``fli`` (d0: its offset in the
+    current cell), one arc at a time: (τ, cell offset j of the arc hit, the step budget left),
+    NO_COLLISION if none; each arc costs a step.  fl.R is the floor's shape
+    (bbb.dynamics.floors); a flat one is searched in one piece."""
+    y, vy, vx, d, s = fli.y, fli.vy, fli.vx, fli.d0, fli.s
+    S = fl.S
+    if is_flat(fl.R):
+        tau, left = search_piece(wa, wb, Flight(y, vy, 0.0, d, s, 0.0, 0.0, fli.lifting),
+                                 from_surface and wa == 0.0, fl, None, srch, left)
         return tau, 0, left
     xr = d + vx * wa
     if vx > 0.0:
@@ -237,8 +252,9 @@ def search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, 
         pb = min(tc, wb)
         start = from_surface and pa == 0.0
         if pb > pa or (start and pb == pa):
-            tau, left = search_piece(pa, max(pb, pa), d - j * S, y, vy, s, vx, 0.0, g, A, w, R, S,
-                                     0.0, None, start, lifting, tol_t, h_max, stack, left)
+            tau, left = search_piece(pa, max(pb, pa),
+                                     Flight(y, vy, vx, d - j * S, s, 0.0, 0.0, fli.lifting), start,
+                                     fl, None, srch, left)
             if tau != NO_COLLISION:
                 return tau, int(j), left
         if tc >= wb:
@@ -249,16 +265,20 @@ def search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, 
 
 
 @njit(cache=True)
-def next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, frame, tau_limit,
-                   tol_t, h_max, stack, left):
-    """Time τ (s) of the first collision after the current state, the cell offset j
+def next_collision(state, from_surface, lifting, fl, frame, tau_limit, srch, left):
+    """Time τ (s) of the first collision after the current state = (y, vy, vx, d, s) (a
+    flight from the surface if ``from_surface``, from a lift-off if ``lifting``) on the floor
+    fl (bbb.dynamics.options.Floor) ``frame`` selects, the cell offset j
     (relative to the current cell) of the arc hit (the conveyor's: 0, its flight's end takes
     the nearest arc) and the step budget ``left`` after the search (bbb.dynamics.events).
-    τ = NO_COLLISION if none before ``tau_limit``, SEARCH_SPENT if the budget ran out."""
-    cmax = valley_depth(R, S)
+    τ = NO_COLLISION if none before ``tau_limit``, SEARCH_SPENT if the budget ran out.
+    srch = (tol_t in s, h_max in s, stack): the root tolerance, longest step, bisection stack."""
+    y, vy, vx, d, s = state
+    w = fl.w
+    cmax = valley_depth(fl.R, fl.S)
     if frame is None:
-        gn = g
-        top = A
+        gn = fl.g
+        top = fl.A
         Dx = 0.0
         sin_s = 0.0
     else:
@@ -266,6 +286,7 @@ def next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, frame,
         top = abs(frame.Ay)
         Dx = abs(frame.gx) + abs(frame.Ax) * w * w
         sin_s = math.sin(w * s)
+    fli = Flight(y, vy, vx, d, s, sin_s, Dx, lifting)
     w0a, w0b, w1a, w1b = flight_windows(y, vy, gn, top, -top - cmax)
     for win in range(2):
         wa = w0a if win == 0 else w1a
@@ -273,11 +294,9 @@ def next_collision(y, vy, vx, d, s, from_surface, lifting, g, A, w, R, S, frame,
         if wb < wa or (wb == wa and not (wa == 0.0 and from_surface)):
             continue
         if frame is None:
-            tau, j, left = search_cells(wa, wb, y, vy, vx, d, s, from_surface, lifting, g, A, w,
-                                        R, S, tol_t, h_max, stack, left)
+            tau, j, left = search_cells(wa, wb, fli, from_surface, fl, srch, left)
         else:
-            tau, left = search_piece(wa, wb, d, y, vy, s, vx, sin_s, g, A, w, R, S, Dx, frame,
-                                     from_surface and wa == 0.0, lifting, tol_t, h_max, stack,
+            tau, left = search_piece(wa, wb, fli, from_surface and wa == 0.0, fl, frame, srch,
                                      left)
             j = 0
         if tau != NO_COLLISION:

@@ -40,6 +40,8 @@ import math
 
 from numba import njit
 
+from .floors import is_flat
+
 LIFT = 1
 CUSP = 2
 STOP = 3
@@ -66,30 +68,46 @@ def g_eff(s, g, A, w):
 
 
 @njit(cache=True, inline="always")
-def normal_force(q, v, s, g, A, w, R, flat, side):
-    """N (mm/s²) per unit mass: g_eff cos θ − v²/R (g_eff on a flat floor); on a conveyor
-    (``side`` = (gx, Ax), see module doc) gx_eff sin θ + g_eff cos θ − v²/R."""
-    if side is None:
+def frame_forces(fl, frame):
+    # (g, A) of the module doc's equations: the paper's; the conveyor's normal (gy, Ay)
+    # (its along-plane (gx, Ax) the functions here read from the frame)
+    if frame is None:
+        return fl.g, fl.A
+    return frame.gy, frame.Ay
+
+
+@njit(cache=True, inline="always")
+def normal_force(q, v, s, fl, frame):
+    """N (mm/s²) per unit mass on the floor fl (bbb.dynamics.options.Floor): g_eff cos θ − v²/R
+    (g_eff on a flat floor); on a conveyor (``frame`` a Frame, module doc) gx_eff sin θ +
+    g_eff cos θ − v²/R."""
+    g, A = frame_forces(fl, frame)
+    w, R = fl.w, fl.R
+    flat = is_flat(R)
+    if frame is None:
         if flat:
             return g_eff(s, g, A, w)
         return g_eff(s, g, A, w) * math.cos(q) - v * v / R
     if flat:
         return g_eff(s, g, A, w)
-    return g_eff(s, side[0], side[1], w) * math.sin(q) + g_eff(s, g, A, w) * math.cos(q) \
+    return g_eff(s, frame.gx, frame.Ax, w) * math.sin(q) + g_eff(s, g, A, w) * math.cos(q) \
         - v * v / R
 
 
 @njit(cache=True, inline="always")
-def rates(q, v, s, g, A, w, R, mu, sgn, flat, side):
+def rates(q, v, s, fl, frame, mu, sgn):
     # contact equation R θ̈ = g_eff sin θ − μ N sgn(v) (docs/physics.md, "Contact models");
     # on a conveyor R θ̈ = g_eff sin θ − gx_eff cos θ − μ N sgn(v) ("Transport")
+    g, A = frame_forces(fl, frame)
+    w, R = fl.w, fl.R
+    flat = is_flat(R)
     ge = g_eff(s, g, A, w)
-    if side is None:
+    if frame is None:
         if flat:
             return v, -mu * ge * sgn
         n = ge * math.cos(q) - v * v / R
         return v / R, ge * math.sin(q) - mu * n * sgn
-    gxe = g_eff(s, side[0], side[1], w)
+    gxe = g_eff(s, frame.gx, frame.Ax, w)
     if flat:
         return v, -gxe - mu * ge * sgn
     sq = math.sin(q)
@@ -99,38 +117,42 @@ def rates(q, v, s, g, A, w, R, mu, sgn, flat, side):
 
 
 @njit(cache=True, inline="always")
-def tangential_force(q, s, g, A, w, flat, side):
+def tangential_force(q, s, fl, frame):
     """The tangential force per unit mass at rest (mm/s², positive towards +x), friction
     aside: g_eff sin θ − gx_eff cos θ (−gx_eff on a flat floor)."""
-    if side is None:
+    g, A = frame_forces(fl, frame)
+    w = fl.w
+    flat = is_flat(fl.R)
+    if frame is None:
         return 0.0 if flat else g_eff(s, g, A, w) * math.sin(q)
-    gxe = g_eff(s, side[0], side[1], w)
+    gxe = g_eff(s, frame.gx, frame.Ax, w)
     if flat:
         return -gxe
     return g_eff(s, g, A, w) * math.sin(q) - gxe * math.cos(q)
 
 
 @njit(cache=True)
-def rk4(q, v, s, h, g, A, w, R, mu, sgn, flat, side):
+def rk4(q, v, s, h, fl, frame, mu, sgn):
     """One classic RK4 step of length h (s) from floor time s; returns the increments (δq, δv)
     (the caller adds them: q + δq is the same rounding as before the split)."""
-    k1q, k1v = rates(q, v, s, g, A, w, R, mu, sgn, flat, side)
-    k2q, k2v = rates(q + 0.5 * h * k1q, v + 0.5 * h * k1v, s + 0.5 * h, g, A, w, R, mu, sgn, flat,
-                     side)
-    k3q, k3v = rates(q + 0.5 * h * k2q, v + 0.5 * h * k2v, s + 0.5 * h, g, A, w, R, mu, sgn, flat,
-                     side)
-    k4q, k4v = rates(q + h * k3q, v + h * k3v, s + h, g, A, w, R, mu, sgn, flat, side)
+    k1q, k1v = rates(q, v, s, fl, frame, mu, sgn)
+    k2q, k2v = rates(q + 0.5 * h * k1q, v + 0.5 * h * k1v, s + 0.5 * h, fl, frame, mu, sgn)
+    k3q, k3v = rates(q + 0.5 * h * k2q, v + 0.5 * h * k2v, s + 0.5 * h, fl, frame, mu, sgn)
+    k4q, k4v = rates(q + h * k3q, v + h * k3v, s + h, fl, frame, mu, sgn)
     return h * (k1q + 2.0 * k2q + 2.0 * k3q + k4q) / 6.0, h * (k1v + 2.0 * k2v + 2.0 * k3v + k4v) / 6.0
 
 
 @njit(cache=True)
-def step_bounds(va, vb, h, g, A, w, R, mu, flat, sin_c, side):
+def step_bounds(va, vb, h, fl, frame, mu, sin_c):
     """Bounds on a step of length h (s) from speeds va to vb: (a_max ≥ sup|v̇|,
     J ≥ sup|v̈|, L_N ≥ sup|Ṅ|), all on the exact solution through the step."""
+    g, A = frame_forces(fl, frame)
+    w, R = fl.w, fl.R
+    flat = is_flat(R)
     gmax = g + A * w * w
     jerk = A * w * w * w
     v0 = max(abs(va), abs(vb))
-    if side is None:
+    if frame is None:
         if flat:
             return mu * gmax, mu * jerk, jerk
         amax = gmax * (sin_c + mu) + mu * v0 * v0 / R
@@ -143,8 +165,8 @@ def step_bounds(va, vb, h, g, A, w, R, mu, flat, sin_c, side):
         L = jerk + gmax * sin_c * V / R + 2.0 * V * amax / R
         return amax, J, L
     # conveyor: g, A are then the normal parts gy, Ay; |gx_eff| ≤ gxm, |ġx_eff| ≤ jx
-    gxm = abs(side[0]) + abs(side[1]) * w * w
-    jx = abs(side[1]) * w * w * w
+    gxm = abs(frame.gx) + abs(frame.Ax) * w * w
+    jx = abs(frame.Ax) * w * w * w
     gmax = abs(g) + abs(A) * w * w
     jerk = abs(A) * w * w * w
     if flat:
@@ -178,49 +200,58 @@ def clear_of_cusp(q, v, dv, h, J, R, q_c):
 
 
 @njit(cache=True)
-def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos, isamp,
-          cell, tol_t, side, start_dir=0.0):
-    """Integrate one contact stretch from (θ or d = q, v, floor time s, period count tp)
-    until an event.  Writes x (mm) at the sample times passed into ``pos``.
+def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
+    """Integrate one contact stretch from st = (θ or d = q, v, floor time s, period count tp,
+    cell, next sample isamp) until an event, on the floor fl (bbb.dynamics.options.Floor) that
+    ``frame`` selects; s0 (s) is the particle's start in its floor period, ``run`` gives
+    t_max and tol_t.  Writes x (mm) at the sample times into ``pos``, io = (sample_times, pos).
 
-    ``side`` is None on the paper's floor (the branches it decides are pruned at compile
-    time); on a conveyor (gx, Ax): the along-plane gravity (mm/s²) and floor amplitude (mm),
-    with g, A then the normal ones (gy, Ay); q, v are relative to the moving floor and the
+    ``frame`` is None on the paper's floor (the branches it decides are pruned at compile
+    time, here and in the helpers it passes it to); on a conveyor (a Frame) the forces split
+    into the along-plane (gx, Ax) and the normal (gy, Ay), the g, A of the helpers
+    (frame_forces); q, v are relative to the moving floor and the
     positions written are the lab's, cell·S + d + X_f (bbb.dynamics.bounds_conveyor).
 
     ``start_dir`` (±1) is the direction of a start from rest where the caller knows it (a slip
     up a cusp's wall, or where the pull is ~0 at the slip: μN ≈ 0); 0: the pull's sign then.
 
-    Returns (q, v, s, tp, cell, isamp, event, elapsed time in s, the step debt's peak).  A
+    Returns ((q, v, s, tp, cell, isamp), event, (elapsed time in s, the step debt's peak)).  A
     flat floor's q is the offset d, wrapped into [-S/2, S/2) with ``cell``.  The step debt
     counts tried steps less PAYBACK per nominal step's worth of time covered; above
     :data:`STRETCH_BUDGET` it ends the stretch with the event BUDGET (the caller stops the
     particle, bbb.simulate raises): no input makes a stretch crawl without end."""
+    q, v, s, tp, cell, isamp = st
+    sample_times, pos = io
+    g, A = frame_forces(fl, frame)
+    w, R, S = fl.w, fl.R, fl.S
+    T = 2.0 * math.pi / w
+    flat = is_flat(R)
+    t_max, tol_t = run.t_max, run.tol_t
     sgn = 1.0 if v > 0.0 else -1.0
     if v == 0.0:
         # from rest the particle moves downhill (the caller only starts a stretch at rest
         # where static friction cannot hold it)
-        if side is None:
+        if frame is None:
             sgn = 1.0 if math.sin(q) > 0.0 else -1.0
         elif start_dir != 0.0:
             sgn = start_dir
         else:
-            sgn = 1.0 if tangential_force(q, s, g, A, w, flat, side) > 0.0 else -1.0
+            sgn = 1.0 if tangential_force(q, s, fl, frame) > 0.0 else -1.0
     sin_c = 0.0 if flat else min(0.5 * S / R, 1.0)
     q_c = math.inf if flat else math.asin(sin_c)
     # resolve the faster of the floor's period and the arc's pendulum period 2π√(R/g_max)
     h_nom = T / STEPS_PER_PERIOD
     if not flat:
         h_nom = min(h_nom, 2.0 * math.pi * math.sqrt(R / (g + A * w * w)) / STEPS_PER_SWING)
-        if side is not None:  # the swing under the whole effective gravity, |G| ≤ g + Aω²
-            gm = math.hypot(g, side[0]) + math.hypot(A, side[1]) * w * w
+        if frame is not None:  # the swing under the whole effective gravity, |G| ≤ g + Aω²
+            gm = math.hypot(g, frame.gx) + math.hypot(A, frame.Ax) * w * w
             h_nom = min(h_nom, 2.0 * math.pi * math.sqrt(R / gm) / STEPS_PER_SWING)
     t_start = tp * T + (s - s0)
-    n_a = normal_force(q, v, s, g, A, w, R, flat, side)
+    n_a = normal_force(q, v, s, fl, frame)
     if n_a <= 0.0:
-        return q, v, s, tp, cell, isamp, LIFT, 0.0, 0.0
+        return (q, v, s, tp, cell, isamp), LIFT, (0.0, 0.0)
     if not flat and abs(q) >= q_c and q * v > 0.0:
-        return q, v, s, tp, cell, isamp, CUSP, 0.0, 0.0
+        return (q, v, s, tp, cell, isamp), CUSP, (0.0, 0.0)
     h = h_nom  # the next step to try
     hunting = False  # an event lies within h of the current state: bisect, never grow
     t_hit = math.inf  # the earliest end (s) of a tried step that met an event
@@ -239,12 +270,12 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
     while True:
         t_now = tp * T + (s - s0)
         if t_max - t_now <= tol_t:
-            return q, v, s, tp, cell, isamp, END, t_now - t_start, worst
+            return (q, v, s, tp, cell, isamp), END, (t_now - t_start, worst)
         debt += 1.0
         if debt > worst:
             worst = debt
             if debt > STRETCH_BUDGET:
-                return q, v, s, tp, cell, isamp, BUDGET, t_now - t_start, worst
+                return (q, v, s, tp, cell, isamp), BUDGET, (t_now - t_start, worst)
         hs = h
         cap = h_nom
         if not flat:
@@ -257,32 +288,32 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
         sampling = t_lim - t_now <= hs
         if sampling:
             hs = max(t_lim - t_now, 0.0)
-        dq, dv = rk4(q, v, s, hs, g, A, w, R, mu, sgn, flat, side)
+        dq, dv = rk4(q, v, s, hs, fl, frame, mu, sgn)
         qb = q + dq
         vb = v + dv
         lost = q_lost + dq if qb == q else q_lost
         sb = s + hs
-        nb = normal_force(qb, vb, sb, g, A, w, R, flat, side)
+        nb = normal_force(qb, vb, sb, fl, frame)
         lift = nb <= 0.0
         cusp = (not flat) and abs(qb + lost) >= q_c
-        if side is not None:
+        if frame is not None:
             # on a conveyor a particle may leave a cusp from rest (bbb.dynamics.contact_conveyor): θ then
             # stays at ±θ_c to rounding for a while, which is no arrival at the cusp
             cusp = cusp and qb * vb > 0.0
         stop = mu > 0.0 and sgn * vb <= 0.0
-        amax, J, L = step_bounds(v, vb, hs, g, A, w, R, mu, flat, sin_c, side)
+        amax, J, L = step_bounds(v, vb, hs, fl, frame, mu, sin_c)
         # N: chord minus Lipschitz, N ≥ (N_a + N_b)/2 − L h/2
         certified = n_a + nb > L * hs
         dva = 0.0
-        if mu > 0.0 or side is not None:
-            dva = rates(q, v, s, g, A, w, R, mu, sgn, flat, side)[1]
+        if mu > 0.0 or frame is not None:
+            dva = rates(q, v, s, fl, frame, mu, sgn)[1]
         if not flat:
             # ±θ(τ) ≤ ±θ_a ± θ̇_a τ + a_max τ²/(2R), convex: below θ_c at both ends
             # (θ_a itself may be at a cusp it is leaving) means below it in between
             reach = amax * hs * hs / (2.0 * R)
             up = q + v * hs / R + reach < q_c
             down = -q - v * hs / R + reach < q_c
-            if side is not None:
+            if frame is not None:
                 # a particle leaving a cusp from rest (bbb.dynamics.contact_conveyor) starts with
                 # v = v̇ = 0: the quadratic bound then admits steps of only ~v/a_max and
                 # it crawls out in steps of tol_t; the cubic one grows them geometrically
@@ -318,21 +349,21 @@ def slide(q, v, s, tp, s0, T, g, A, w, R, S, mu, flat, t_max, sample_times, pos,
             cell += int(k)
         if sampling and isamp < ns:
             x = cell * S + (q if flat else R * math.sin(q))
-            if side is not None:
-                x -= side[1] * math.sin(w * s)
+            if frame is not None:
+                x -= frame.Ax * math.sin(w * s)
             while isamp < ns and sample_times[isamp] <= t_lim:
                 pos[isamp] = x
                 isamp += 1
         t_el = tp * T + (s - s0) - t_start
         if lift:
-            return q, v, s, tp, cell, isamp, LIFT, t_el, worst
+            return (q, v, s, tp, cell, isamp), LIFT, (t_el, worst)
         if cusp:
-            return math.copysign(q_c, q), v, s, tp, cell, isamp, CUSP, t_el, worst
+            return (math.copysign(q_c, q), v, s, tp, cell, isamp), CUSP, (t_el, worst)
         if stop:
-            return q, 0.0, s, tp, cell, isamp, STOP, t_el, worst
+            return (q, 0.0, s, tp, cell, isamp), STOP, (t_el, worst)
         if hs > 0.0:
             h = hs if hunting else min(h_nom, 2.0 * hs)
-            if hunting and side is not None:
+            if hunting and frame is not None:
                 t_after = tp * T + (s - s0)
                 if t_after >= t_hit:
                     # the event the bisection chased did not come (the longer step's

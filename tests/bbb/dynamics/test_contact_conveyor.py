@@ -158,7 +158,7 @@ def test_a_bounce_exactly_at_a_cusp_leaving_both_arcs_flies(side):
     # that leaves both arcs (here: up and sideways relative to the floor) must fly, not meet the
     # neighbouring arc at τ = 0 (before 2026-11-23: r = 0 in start_step_c, so τ = 0 and a
     # collision applied with an arc the particle leaves, a chain of them at one instant)
-    from bbb.dynamics.options import Frame
+    from bbb.dynamics.options import Floor, Frame
     from bbb.dynamics.search import STACK_DEPTH, next_collision
 
     p = Params.preset("klages2004", f=55.0, contact="slide", tilt=3.0, throw=60.0)
@@ -167,9 +167,9 @@ def test_a_bounce_exactly_at_a_cusp_leaving_both_arcs_flies(side):
     y = -Ay * math.sin(w * s) - (p.R - math.sqrt(p.R**2 - d0 * d0))
     # relative velocity (3, 5) mm/s: the walls' slopes are ±1/15, so it leaves both
     vx, vy = -Ax * w * math.cos(w * s) + 3.0, -Ay * w * math.cos(w * s) + 5.0
-    tau, _, _ = next_collision(y, vy, vx, d0, s, True, False, 0.0, 0.0, w, p.R, p.S,
-                               Frame(gx, gy, Ax, Ay), 1.0, 1e-12, 1.0 / p.f, np.empty(STACK_DEPTH),
-                               2**24)
+    fl = Floor(0.0, 0.0, w, p.R, p.S, p.alpha, p.beta)
+    tau, _, _ = next_collision((y, vy, vx, d0, s), True, False, fl, Frame(gx, gy, Ax, Ay), 1.0,
+                               (1e-12, 1.0 / p.f, np.empty(STACK_DEPTH)), 2**24)
     assert tau > 1e-4
 
 

@@ -195,7 +195,8 @@ def test_a_contact_start_in_a_cusp_below_v_stick_is_rest_there(off_cusp, speed, 
     """enter_contact at d = S/2 − off_cusp (R = 1.05, S = 2, μ = 0.3, v_stick = 1e-3 mm/s), with
     the relative tangential speed up the wall given: in the cusp a speed below v_stick is
     held (0 returned), above it slides; a hair off the cusp it slides at any speed."""
-    from bbb.dynamics.contact_level import enter_contact
+    from bbb.dynamics.contact_conveyor import enter_contact
+    from bbb.dynamics.options import Floor
 
     R, S, A, f = 1.05, 2.0, 0.3, 100.0
     w = 2 * math.pi * f
@@ -203,8 +204,8 @@ def test_a_contact_start_in_a_cusp_below_v_stick_is_rest_there(off_cusp, speed, 
     nx, ny = d / R, math.sqrt(R * R - d * d) / R
     vf = -A * w  # the floor's velocity at s = 0
     # up the wall of the arc left of the cusp is −x: velocity −speed along its tangent (ny, −nx)
-    vt, q, sliding = enter_contact(-speed * ny, vf + speed * nx, d, 0.0, G, A, w, R, S, 0.3, False,
-                                   1e-3)
+    fl = Floor(G, A, w, R, S, 0.8, 1.0)
+    vt, q, sliding = enter_contact(-speed * ny, vf + speed * nx, d, 0.0, fl, None, 0.3, 1e-3)
     assert sliding == slides
     assert vt == (pytest.approx(-speed, rel=1e-9) if slides else 0.0)
     assert q == pytest.approx(math.asin(d / R), rel=1e-15)

@@ -892,7 +892,7 @@ def test_clock_started_a_million_periods_later_gives_the_same_first_collision():
         rec = np.full((n, 3, len(COLLISION_FIELDS)), np.nan)
         counters = np.zeros((n, len(COUNTER_NAMES)), np.int64)
         floor = KernelFloor(p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta)
-        evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, s, st.stuck, st.from_surface, floor,
+        evolve_ensemble((st.cell, st.d, st.y, st.vx, st.vy, s, st.stuck, st.from_surface), floor,
                         Run(1.0, 0.0, 1e-12, 1e-3, 0.25), None, None, np.zeros(0),
                         (np.zeros((n, 0)), rec, counters, np.zeros((n, 2)), np.zeros((n, 4))))
         return rec

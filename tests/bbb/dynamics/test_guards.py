@@ -66,10 +66,12 @@ def test_a_contact_stretch_that_makes_no_progress_ends_with_the_budget_event():
     speed, which only a fault upstream could hand it) would step at tol_t for ever: the step
     debt passes STRETCH_BUDGET and the stretch ends with BUDGET, having covered only
     ~STRETCH_BUDGET × tol_t of its 1 s."""
-    out = slide(0.01, math.nan, 0.0, 0, 0.0, 1.0 / 60.0, 9800.0, 0.1, 2 * math.pi * 60.0, 15.0,
-                2.0, 0.3, False, 1.0, np.zeros(0), np.zeros(0), 0, 0, 1e-12, None)
-    assert out[6] == BUDGET and out[8] > STRETCH_BUDGET
-    assert out[7] < 2.0 * STRETCH_BUDGET * 1e-12
+    fl = Floor(9800.0, 0.1, 2 * math.pi * 60.0, 15.0, 2.0, 0.8, 1.0)
+    run = Run(1.0, 0.0, 1e-12, 1e-3, 1.0)
+    _, event, (elapsed, worst) = slide((0.01, math.nan, 0.0, 0, 0, 0), 0.0, fl, None, 0.3, run,
+                                       (np.zeros(0), np.zeros(0)))
+    assert event == BUDGET and worst > STRETCH_BUDGET
+    assert elapsed < 2.0 * STRETCH_BUDGET * 1e-12
 
 
 def test_the_step_budget_error_names_the_input():
@@ -99,7 +101,7 @@ def raw_run(p: Params, st: InitialState, t_max: float) -> np.ndarray:
     """The kernel on states that bbb.simulate would refuse (no validation): the status rows."""
     n = st.cell.shape[0]
     status = np.zeros((n, 5))
-    evolve_ensemble(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface,
+    evolve_ensemble((st.cell, st.d, st.y, st.vx, st.vy, st.s, st.stuck, st.from_surface),
                     Floor(p.g, p.A, p.omega, p.R, p.S, p.alpha, p.beta),
                     Run(t_max, 0.0, 1e-12, 1e-3, 0.25), None, None, np.zeros(0),
                     (np.zeros((n, 0)), np.zeros((n, 0, 6)), np.zeros((n, 5), np.int64),
