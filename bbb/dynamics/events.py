@@ -17,7 +17,7 @@ EV_CUSP = 7.0
 
 #: the event guard (no input loops without end): more than EVENT_BUDGET events of a particle
 #: within EVENT_WINDOW floor periods stop it, and bbb.simulate raises (margins measured by
-#: benchmarks/guards.py).  A particle's status row: why it stopped (STOP_*), the peak step
+#: benchmarks/calibrations/guards.py).  A particle's status row: why it stopped (STOP_*), the peak step
 #: debt of its contact stretches, the most events in one window, the time (s) it stopped
 EVENT_WINDOW = 1.0 / 1024.0
 EVENT_BUDGET = 2**20
@@ -28,7 +28,7 @@ STOP_OK, STOP_STEPS, STOP_EVENTS, STOP_SEARCH = 0.0, 1.0, 2.0, 3.0
 #: pays one per step; a particle that runs out stops, and bbb.simulate raises.  So a call
 #: takes at most SEARCH_BURST + SEARCH_RATE · f·t_max search steps per particle, and a search
 #: that makes no progress in time stops after SEARCH_BURST steps (~0.5 s).  Status column
-#: 4 holds the deepest a particle drew on it (margins measured by benchmarks/guards.py)
+#: 4 holds the deepest a particle drew on it (margins measured by benchmarks/calibrations/guards.py)
 SEARCH_BURST = 2**22
 SEARCH_RATE = 2**16
 

@@ -56,7 +56,7 @@ STEPS_PER_SWING = 2048.0
 MAX_ANGLE_STEP = 0.02
 #: the step budget of a contact stretch (slide): its debt, tried steps less PAYBACK for each
 #: nominal step's worth of time covered, may not exceed STRETCH_BUDGET (margins measured by
-#: benchmarks/guards.py)
+#: benchmarks/calibrations/guards.py)
 PAYBACK = 64.0
 STRETCH_BUDGET = 2.0**24
 
