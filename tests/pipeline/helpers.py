@@ -77,15 +77,15 @@ def assert_same_store(a, b) -> None:
     assert ga.attrs["fingerprint"] == gb.attrs["fingerprint"]
 
 
-def run_outside(py, code: str, cwd) -> str:
+def run_outside(py, code: str, cwd, timeout: float = 600) -> str:
     """stdout of ``py -c code`` run in ``cwd`` (outside the repository), without the
-    PYTHONPATH of this environment; asserts it exits 0."""
+    PYTHONPATH of this environment, cut after ``timeout`` s; asserts it exits 0."""
     import os
     import subprocess
 
     env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "PYTHONSAFEPATH")}
     out = subprocess.run([str(py), "-c", code], cwd=cwd, env=env, capture_output=True,
-                         text=True, timeout=600)
+                         text=True, timeout=timeout)
     assert out.returncode == 0, out.stderr[-3000:]
     return out.stdout
 
