@@ -26,6 +26,8 @@ import tempfile
 
 import numba
 
+from benchmarks.common import cpu_name
+
 #: the arcs' own depth, R − √(R² − S²/4) for the preset's R = 15, S = 2 (mm): shapes as deep
 #: as the paper's floor, besides the scenes' ten times deeper ones
 ARC_DEPTH = 15.0 - (15.0**2 - 1.0) ** 0.5
@@ -49,17 +51,6 @@ cpu = time.process_time() - c0
 assert run.counters["anomalies"].sum() == 0
 print(first, int(run.counters["collisions"].sum()), cpu)
 """
-
-
-def cpu_name() -> str:
-    try:
-        with open("/proc/cpuinfo") as fh:
-            for line in fh:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return platform.processor() or "unknown"
 
 
 def measure(cache: str, kw: dict, f: float, n: int, t_max: float) -> tuple[float, int, float]:

@@ -84,12 +84,9 @@ def test_a_draft_or_a_report_without_a_claims_section_is_not_complete():
     assert not is_complete(text.replace("make_figures`", "make_figures --fast`", 1), headings)
 
 
-def test_the_previous_report_is_the_last_complete_committed_one(tmp_path):
-    """In a repository whose newest committed report lacks a section, the one before it is
-    the report compared with."""
+def _full_then_partial(tmp_path) -> None:
+    """A git repository whose figures/REPORT.md was committed complete, then partial."""
     import subprocess
-
-    from pipeline.claims.changes import previous_report
 
     def git(*a):
         subprocess.run(["git", "-C", str(tmp_path), *a], check=True, capture_output=True)
@@ -100,6 +97,14 @@ def test_the_previous_report_is_the_last_complete_committed_one(tmp_path):
     for body in ("## Claims\nfull\n## Transport\nx\n", "## Claims\npartial\n"):
         report.write_text("# R\n\nWritten now by `python -m pipeline.make_figures`.\n" + body)
         git("add", "-A"), git("commit", "-qm", "r")
+
+
+def test_the_previous_report_is_the_last_complete_committed_one(tmp_path):
+    """In a repository whose newest committed report lacks a section, the one before it is
+    the report compared with."""
+    from pipeline.claims.changes import previous_report
+
+    _full_then_partial(tmp_path)
     text, where = previous_report(tmp_path / "figures", tmp_path, ["## Claims", "## Transport"])
     assert "full" in text and "last complete committed report" in where
 
@@ -107,19 +112,9 @@ def test_the_previous_report_is_the_last_complete_committed_one(tmp_path):
 def test_a_new_studys_section_does_not_make_every_older_report_partial(tmp_path):
     """A section no committed report holds yet (a study added since) is not asked of the old
     reports: the last complete one is still found, and a partial one still skipped."""
-    import subprocess
-
     from pipeline.claims.changes import previous_report
 
-    def git(*a):
-        subprocess.run(["git", "-C", str(tmp_path), *a], check=True, capture_output=True)
-    git("init", "-q")
-    git("config", "user.email", "t@t"), git("config", "user.name", "t")
-    (tmp_path / "figures").mkdir()
-    report = tmp_path / "figures" / "REPORT.md"
-    for body in ("## Claims\nfull\n## Transport\nx\n", "## Claims\npartial\n"):
-        report.write_text("# R\n\nWritten now by `python -m pipeline.make_figures`.\n" + body)
-        git("add", "-A"), git("commit", "-qm", "r")
+    _full_then_partial(tmp_path)
     text, where = previous_report(tmp_path / "figures", tmp_path,
                                   ["## Claims", "## Transport", "## Impacts"])
     assert "full" in text and "last complete committed report" in where
