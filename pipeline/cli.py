@@ -1,9 +1,9 @@
 """The ``bbb`` command line: ``bbb run``, ``bbb reduce``, ``bbb status``, ``bbb verify``,
-``bbb plot``, ``bbb accuracy``, ``bbb plan``, ``bbb scenes``, ``bbb --version``.
+``bbb plot``, ``bbb accuracy``, ``bbb plan``, ``bbb scenes``, ``bbb new``, ``bbb --version``.
 
 This module builds the parser and runs a command; the commands are in pipeline/commands/,
 one module per group (run and accuracy; the store's reduce, status, verify, plot; plan and
-scenes).  Wherever a WORKFLOW is asked for, a file path or the name of a shipped scene
+scenes; a scene as a template: ``scenes --show``, ``new``).  Wherever a WORKFLOW is asked for, a file path or the name of a shipped scene
 (``bbb run smoke``; ``bbb scenes`` lists them) is accepted; a path that exists wins.
 
 Usage errors (bad arguments, a malformed workflow, a store of another workflow, a damaged
@@ -21,7 +21,7 @@ import argparse
 import os
 import sys
 
-from .commands import plan_scenes, run_accuracy, store
+from .commands import plan_scenes, run_accuracy, store, templates
 from .commands.common import (
     DEBUG_ENV,
     EXIT_PIPE,
@@ -45,6 +45,7 @@ def _build_parser() -> argparse.ArgumentParser:
     run_accuracy.add_parsers(sub)
     store.add_parsers(sub)
     plan_scenes.add_parsers(sub)
+    templates.add_parsers(sub)  # after plan_scenes: it adds --show to `bbb scenes`
     return p
 
 

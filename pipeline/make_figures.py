@@ -17,9 +17,10 @@ scenes share one LocalCluster (unless ``--scheduler`` names one), started once. 
 Outputs in the output folder: every figure as PNG and PDF, the tables the figures were drawn
 and the claims judged from (CSV, :mod:`pipeline.tables.files`), ``run_log.json`` (wall times of
 the runs that computed each store) and ``REPORT.md``; writing the repository's ``figures/``,
-also the README's table of run times (:mod:`pipeline.studies.run_times`).  A scene that this
-invocation only resumed (nothing left to compute) keeps the wall time logged by the invocation
-that computed it, if ``run_log.json`` in the output folder has it for the same store.
+also the table of run times in docs/reproducing.md (:mod:`pipeline.studies.run_times`).  A
+scene that this invocation only resumed (nothing left to compute) keeps the wall time logged by
+the invocation that computed it, if ``run_log.json`` in the output folder has it for the same
+store.
 """
 
 from __future__ import annotations
@@ -67,6 +68,7 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     from .claims.changes import changes_section, previous_report
     from .execute.run import run_study
     from .studies.report import section_headings, write_report
+    from .studies.run_times import PAGE as RUN_TIMES_PAGE
     from .studies.run_times import update_readme
 
     t_start = time.perf_counter()
@@ -111,7 +113,7 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     for s in studies:  # in the registry's order: a study may read a table an earlier one wrote
         t0 = time.perf_counter()
         tables = s.tables(stores, echo=echo)
-        # the time to make a study's tables is logged on its first scene (the README counts it)
+        # the time to make a study's tables is logged on its first scene (the run times count it)
         log["scenes"][s.scenes[0]]["reduce_s"] = time.perf_counter() - t0
         echo(f"drawing the figures of {s.name} ...")
         paths += s.draw(tables, stores, out)  # may add tables read off the stores
@@ -123,9 +125,9 @@ def make_figures(out_dir: str | os.PathLike | None = None, runs_dir: str | os.Pa
     log["written"] = datetime.now(UTC).isoformat(timespec="seconds")
     log["cpus"] = os.cpu_count()
     (out / "run_log.json").write_text(json.dumps(log, indent=2) + "\n")
-    readme = ROOT / "README.md"
-    if out.resolve() == (ROOT / "figures").resolve() and readme.is_file():
-        update_readme(readme, log)  # the committed figures: the README's table of run times
+    page = ROOT / RUN_TIMES_PAGE
+    if out.resolve() == (ROOT / "figures").resolve() and page.is_file():
+        update_readme(page, log)  # the committed figures: docs/reproducing.md's table of run times
     previous, against = previous_report(out, ROOT, section_headings(studies))
     # the report reads the tables back from their CSVs: REPORT.md is what they give
     report = write_report(out, stores=stores, tables={s.name: s.read_tables(out) for s in studies},

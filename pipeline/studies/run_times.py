@@ -1,14 +1,15 @@
-"""The README's table of measured wall times, generated from ``figures/run_log.json``.
+"""The table of measured wall times in docs/reproducing.md (:data:`PAGE`), generated from
+``figures/run_log.json``.
 
 One row per scene of the first registered study (the paper's, whose scenes are the README's
 figures), one per further study (its scenes summed), the shared Dask
 cluster's start-up and shut-down, and the sum, all read off the log that ``make_figures``
 writes beside the figures (per scene: wall time of the run that computed its chunks, the chunks
 it computed, the workers, the reduce time).  A scene whose store an earlier ``make_figures``
-computed carries that invocation's times, marked.  The README holds the table between
+computed carries that invocation's times, marked.  The page holds the table between
 :data:`BEGIN` and :data:`END`; ``make_figures`` rewrites it there when it writes the repository's
 ``figures/`` (:func:`update_readme`), and tests/pipeline/studies/test_run_times.py
-checks that the committed README matches the committed log.
+checks that the committed page matches the committed log.
 """
 
 from __future__ import annotations
@@ -17,7 +18,10 @@ import os
 from collections.abc import Mapping
 from pathlib import Path
 
-__all__ = ["BEGIN", "END", "table", "update_readme"]
+__all__ = ["BEGIN", "END", "PAGE", "table", "update_readme"]
+
+#: the page that holds the table, relative to the repository
+PAGE = "docs/reproducing.md"
 
 BEGIN = "<!-- run times: generated from figures/run_log.json by make_figures; do not edit -->"
 END = "<!-- end of run times -->"
@@ -72,13 +76,13 @@ def table(log: Mapping) -> list[str]:
         lines.append(f"| the last `make figures` (drawing and the report included) | "
                      f"{_duration(log['this_invocation_s'])} | | | |")
     if "cpus" in log:
-        # when the run was made stays in the log (its "written"): the README shows no run dates
+        # when the run was made stays in the log (its "written"): the page shows no run dates
         lines += ["", f"Measured on {log['cpus']} CPUs."]
     return lines
 
 
 def update_readme(readme: str | os.PathLike, log: Mapping) -> bool:
-    """Replace the table between BEGIN and END in ``readme`` by :func:`table` of ``log``;
+    """Replace the table between BEGIN and END in ``readme`` (a Markdown file: :data:`PAGE`) by :func:`table` of ``log``;
     False (nothing written) if the file has no such markers."""
     path = Path(readme)
     text = path.read_text(encoding="utf-8")

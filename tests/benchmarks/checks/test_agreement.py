@@ -88,9 +88,9 @@ def _latest_figure2_agreement():
     return m.groups()
 
 
-def test_the_readme_and_accuracy_doc_quote_the_latest_figure2_agreement():
+def test_the_reproducing_and_accuracy_docs_quote_the_latest_figure2_agreement():
     agree, total, percent, by_ci = _latest_figure2_agreement()
-    readme = " ".join((ROOT / "README.md").read_text().split())
+    readme = " ".join((ROOT / "docs" / "reproducing.md").read_text().split())
     accuracy = " ".join((ROOT / "docs" / "accuracy.md").read_text().split())
     assert f"at {agree} of {total} frequencies ({percent} %)" in readme
     assert f"({by_ci} of {total})" in readme

@@ -1,17 +1,18 @@
-"""The README's table of run times: generated from figures/run_log.json, and matching it."""
+"""The table of run times in docs/reproducing.md: generated from figures/run_log.json, and
+matching it."""
 
 from __future__ import annotations
 
 import json
 from pathlib import Path
 
-from pipeline.studies.run_times import BEGIN, END, table, update_readme
+from pipeline.studies.run_times import BEGIN, END, PAGE, table, update_readme
 
 ROOT = Path(__file__).resolve().parents[3]
 
 
-def test_the_readmes_run_times_are_the_committed_run_log():
-    text = (ROOT / "README.md").read_text(encoding="utf-8")
+def test_the_pages_run_times_are_the_committed_run_log():
+    text = (ROOT / PAGE).read_text(encoding="utf-8")
     assert text.count(BEGIN) == 1 and text.count(END) == 1
     shown = text.split(BEGIN, 1)[1].split(END, 1)[0].strip().splitlines()
     log = json.loads((ROOT / "figures" / "run_log.json").read_text())
