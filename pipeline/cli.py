@@ -3,8 +3,9 @@
 
 This module builds the parser and runs a command; the commands are in pipeline/commands/,
 one module per group (run and accuracy; the store's reduce, status, verify, plot; plan and
-scenes; a scene as a template: ``scenes --show``, ``new``).  Wherever a WORKFLOW is asked for, a file path or the name of a shipped scene
-(``bbb run smoke``; ``bbb scenes`` lists them) is accepted; a path that exists wins.
+scenes; a scene as a template: ``scenes --show``, ``new``).  Wherever a WORKFLOW is asked
+for, a file path or the name of a shipped scene (``bbb run smoke``; ``bbb scenes`` lists
+them) is accepted; a path that exists wins.
 
 Usage errors (bad arguments, a malformed workflow, a store of another workflow, a damaged
 store) print one line ``bbb: error: ...`` to stderr and exit with status 2, without a

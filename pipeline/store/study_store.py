@@ -62,7 +62,8 @@ from .layout import (  # importable from here as before the split
 )
 from .metadata import MetadataReport, inspect_metadata
 
-__all__ = ["StoreError", "StoreDamaged", "MetadataDamaged", "check_metadata", "StudyStore",
+__all__ = ["StoreError", "StoreNotFound", "StoreDamaged", "missing_store", "MetadataDamaged",
+           "check_metadata", "StudyStore",
            "normalize_path", "COLLISION_FIELDS", "LAYOUT_VERSION",
            "package_version", "read_attrs", "store_fingerprint", "JSON_ATTRS", "KERNEL_ATTRS",
            # of pipeline.store.layout and the counters observable, importable from here too
@@ -70,6 +71,48 @@ __all__ = ["StoreError", "StoreDamaged", "MetadataDamaged", "check_metadata", "S
 
 class StoreError(ValueError):
     """A store that cannot be used as asked (wrong workflow, not a bbb store, unwritable)."""
+
+
+class StoreNotFound(StoreError, FileNotFoundError):
+    """No store at the path: a FileNotFoundError (what Python says of a missing file) and a
+    StoreError (what the command line reports in one line)."""
+
+
+def missing_store(path: str, given: str | os.PathLike | None = None) -> StoreError:
+    """The error for a path where no store is: a scene (a TOML file, or a shipped scene's
+    name) given where a store was asked for says so and names the scene's store; anything
+    else is :class:`StoreNotFound`.  ``given``: the path as the caller wrote it."""
+    given = os.fspath(given if given is not None else path)
+    store = _scene_store(path, given)
+    if store is not None:
+        return StoreError(f"{given}: a scene, not a store; allowed: a store made by `bbb run` "
+                          f"(`bbb run {given}` writes {store})")
+    return StoreNotFound(f"{path}: no such store; allowed: a store made by `bbb run`")
+
+
+def _scene_store(path: str, given: str) -> str | None:
+    """The default store of the scene at ``path`` (a TOML file) or named ``given`` (a shipped
+    scene), e.g. ``runs/smoke.zarr``; None if it is neither."""
+    import tomllib
+
+    from ..workflow.scenes import scene_names, scene_path
+
+    if is_local(path) and os.path.isfile(path):
+        try:
+            with open(path, "rb") as fh:
+                doc = tomllib.load(fh)
+        except (OSError, UnicodeDecodeError, tomllib.TOMLDecodeError):
+            return None
+        if not isinstance(doc, dict) or not {"frequencies", "observables"} & set(doc):
+            return None
+        stem = os.path.basename(path).removesuffix(".toml")
+    elif not os.path.exists(path) and given in scene_names():
+        doc, stem = tomllib.loads(scene_path(given).read_text(encoding="utf-8")), given
+    else:
+        return None
+    study = doc.get("study")
+    name = study.get("name") if isinstance(study, dict) else None
+    return f"runs/{name if isinstance(name, str) else stem}.zarr"
 
 
 class MetadataDamaged(StoreError):
@@ -189,11 +232,15 @@ class StudyStore:
 
     @classmethod
     def open(cls, path: str | os.PathLike) -> StudyStore:
-        """Open an existing store read-only, with the Study it was made by."""
-        path = normalize_path(path)
+        """Open an existing store read-only, with the Study it was made by.  No store at
+        ``path``: :class:`StoreNotFound` (a FileNotFoundError), or a StoreError saying that a
+        scene was given (a TOML file, a shipped scene's name) where a store is asked for."""
+        given, path = path, normalize_path(path)
+        if is_local(path) and os.path.isfile(path):
+            raise missing_store(path, given)
         g = _open_group(path, eager=True)
         if g is None:
-            raise StoreError(f"{path}: no such store")
+            raise missing_store(path, given)
         attrs = read_attrs(g)
         if "fingerprint" not in attrs:
             raise StoreError(f"{path}: not a (complete) bbb study store")

@@ -57,6 +57,7 @@ from .study_store import (
     StoreError,
     check_metadata,
     is_local,
+    missing_store,
     normalize_path,
     read_attrs,
     store_fingerprint,
@@ -115,7 +116,9 @@ def verify_store(path: str | os.PathLike) -> VerifyReport:
     or MetadataDamaged (a StoreError) naming a damaged ``zarr.json``: its chunks cannot be
     read as the store describes them until `bbb run` rebuilds it.
     """
-    path = normalize_path(path)
+    given, path = path, normalize_path(path)
+    if is_local(path) and os.path.isfile(path):  # a scene given where a store is asked for
+        raise missing_store(path, given)
     report = VerifyReport(path)
     if is_local(path):
         check_metadata(path)  # a damaged zarr.json: MetadataDamaged, naming it
@@ -124,7 +127,7 @@ def verify_store(path: str | os.PathLike) -> VerifyReport:
         g = zarr.open_group(path, mode="r", use_consolidated=False)
     except (FileNotFoundError, zarr.errors.GroupNotFoundError, zarr.errors.NodeTypeValidationError):
         check_metadata(path)
-        raise StoreError(f"{path}: no such store; allowed: a store made by `bbb run`") from None
+        raise missing_store(path, given) from None
     except Exception as e:  # e.g. a file, or an unreadable zarr.json, where the store should be
         check_metadata(path)
         raise StoreError(f"{path}: cannot open ({type(e).__name__}: {e}); "

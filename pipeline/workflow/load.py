@@ -73,7 +73,7 @@ from .keys import (
     reference_markdown,
 )
 from .observables.registry import scene_tables
-from .schema import Reader, as_dict, declared, tname
+from .schema import Reader, as_dict, declared, line_of, tname
 from .study import (  # the validated workflow; importable from here as before the split
     GridNotRunnable,
     Study,
@@ -201,9 +201,14 @@ def _params(r: Reader, doc: dict, grid: Grid = ()) -> tuple[str, dict[str, float
     return tbl["preset"], overrides
 
 
+#: the two forms of [frequencies], as an error's "allowed"
+FREQUENCY_FORMS = ("values = [60.0, 72.0] (Hz), or start = 50.0, stop = 90.0, step = 0.5 (Hz, an "
+                   "inclusive grid); also `frequencies = [60.0, 72.0]` before any table")
+
+
 def _frequencies(r: Reader, doc: dict) -> tuple[tuple[float, ...], RefineTable | None]:
     if "frequencies" not in doc:
-        r.fail(("frequencies",), "missing", "[frequencies] values = [...] or start/stop/step")
+        r.fail(("frequencies",), "missing", FREQUENCY_FORMS)
     raw = doc["frequencies"]
     if isinstance(raw, list):  # frequencies = [...]
         path = ("frequencies",)
@@ -217,10 +222,15 @@ def _frequencies(r: Reader, doc: dict) -> tuple[tuple[float, ...], RefineTable |
             r.fail(("frequencies",), "give either values or start/stop/step, not both")
         mhz = [_mhz(r, v, path, ALLOWED_F) for v in tbl["values"]]
     else:
+        given = [k for k in ("start", "stop", "step") if tbl[k] is not None]
         for k in ("start", "stop", "step"):
             if tbl[k] is None:
-                r.fail(("frequencies", k), "missing",
-                       "[frequencies] values = [...] or start, stop, step (Hz)")
+                # an empty table names its header's line; a grid missing a key, the table's
+                # line too (the absent key has none)
+                at = ("frequencies", given[0]) if given else ("frequencies",)
+                raise r.error(r.source, f"frequencies.{k}" if given else "frequencies",
+                              "missing" if given else "empty: neither values nor start, stop, step",
+                              FREQUENCY_FORMS, line_of(r.text, at))
         start, stop, step = (_mhz(r, tbl[k], ("frequencies", k), _key(FrequenciesTable, k)
                                   .allowed_text()) for k in ("start", "stop", "step"))
         if stop < start:

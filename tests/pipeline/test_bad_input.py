@@ -65,6 +65,12 @@ WORKFLOWS = {
     "g inf": (_param("g = inf"), 7, "params.g", "allowed: 1 ≤ g ≤ 1e+08 (mm/s²)"),
     "S zero": (_param("S = 0.0"), 7, "params.S", "allowed: 1e-06 ≤ S ≤ 1e+06 (mm)"),
     "R < S/2": (_param("R = 0.5"), 7, "params.R", "allowed: S/2 = 1 ≤ R ≤ 1e+15"),
+    "empty [frequencies] table": (_sub("values = [54.0, 60.0]", ""), 8, "frequencies",
+                                  "empty: neither values nor start, stop, step; allowed: values = "
+                                  "[60.0, 72.0] (Hz), or start = 50.0, stop = 90.0, step = 0.5"),
+    "grid of frequencies without stop": (_sub("values = [54.0, 60.0]", "start = 50.0\nstep = 1.0"),
+                                         9, "frequencies.stop", "allowed: values = [60.0, 72.0] "
+                                         "(Hz), or start = 50.0, stop = 90.0, step = 0.5"),
     "empty frequency list": (_sub("[54.0, 60.0]", "[]"), 9, "frequencies.values",
                              "allowed: frequencies 0.001 ≤ f ≤ 100000 (Hz)"),
     "negative frequency": (_sub("[54.0, 60.0]", "[-54.0, 60.0]"), 9, "frequencies.values",
@@ -102,7 +108,8 @@ WORKFLOWS = {
                              "allowed: confidence level, 0.5 <= ci < 1"),
     "store name with a path": (_sub('name = "tiny"', 'name = "../tiny"'), 2, "study.name",
                                "allowed: letters, digits"),
-    "empty file": (lambda t: "", None, "frequencies", "allowed: [frequencies] values = [...]"),
+    "empty file": (lambda t: "", None, "frequencies", "allowed: values = [60.0, 72.0] (Hz), or "
+                   "start = 50.0, stop = 90.0, step = 0.5 (Hz, an inclusive grid)"),
     # [grid] (TINY is 30 lines: [grid] is line 31, its first axis line 32)
     "grid key also in params": (lambda t: _param("alpha = 0.5")(t) + "[grid]\nalpha = [0.5, 0.7]\n",
                                 33, "grid.alpha", "allowed: alpha in [params] (one value) or in "
@@ -246,6 +253,14 @@ COMMAND_LINES = {
                                  ["--out {FILE}: cannot create the directory",
                                   "allowed: a directory path"]),
     "status of a file": (["status", "{FILE}"], ["{FILE}: no such store"]),
+    "status of a scene": (["status", "{GOOD}"], ["{GOOD}: a scene, not a store; allowed: a store "
+                                                 "made by `bbb run` (`bbb run {GOOD}` writes runs/"]),
+    "status of a shipped scene's name": (["status", "smoke"], [
+        "smoke: a scene, not a store; allowed: a store made by `bbb run` (`bbb run smoke` writes "
+        "runs/smoke.zarr)"]),
+    "reduce of a scene": (["reduce", "{GOOD}"], ["{GOOD}: a scene, not a store"]),
+    "plot of a scene": (["plot", "{GOOD}"], ["{GOOD}: a scene, not a store"]),
+    "verify of a scene": (["verify", "{GOOD}"], ["{GOOD}: a scene, not a store"]),
     "verify of a missing path": (["verify", "{MISSING}"],
                                  ["{MISSING}: no such store; allowed: a store made by `bbb run`"]),
     "verify of a file": (["verify", "{FILE}"], ["{FILE}: no such store"]),
