@@ -99,13 +99,16 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     workflow's order; a store without ``[grid]`` has none), ``family``, ``particle``,
     ``chunk`` and, as recorded, ``time`` (s), ``collision`` and ``field``; each variable's
     ``units`` and ``long_name`` are in its attributes (positions in mm; collisions' fields t s,
-    x mm, y mm, vx mm/s, vy mm/s).  A grid is unstacked: one dimension per axis, each point at
-    the values it holds (:func:`pipeline.workflow.point.map_coords`: mu = 0 of a stick
-    point), NaN where a point is absent.  The boolean variable ``present`` (over the point
+    x mm, y mm, vx mm/s, vy mm/s).  Its dask chunks are whole chunks of the store: one task's
+    ``chunk_size`` particles of one point and family (a grid's points in whole lines).  A
+    grid is unstacked: one dimension per axis, each point at the values it holds
+    (:func:`pipeline.workflow.point.map_coords`: mu = 0 of a stick point), NaN where a point
+    is absent.  The boolean variable ``present`` (over the point
     dimensions and ``family``; :func:`pipeline.tables.dataset.presence`) is True where the
     store holds the point and the family has a chunk done there, False at an absent cell
     (no point there: a conditional axis away from its condition, left out as invalid, not
-    added by refinement; or nothing done yet); :func:`reduced_dataset` carries the same.
+    added by refinement; or nothing done yet); :func:`reduced_dataset` carries the same, and
+    the same scalar coordinates of the scene's fixed parameters (tilt, throw, contact, ...).
 
     mask    -- True (default): every variable with a ``particle`` dimension is NaN for the
                particles of chunks not marked done (``ds.where(done)`` applied chunk by
@@ -125,7 +128,7 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     import xarray as xr
 
     from .store.study_store import StudyStore, normalize_path
-    from .tables.dataset import presence
+    from .tables.dataset import fixed_params, presence
 
     st = StudyStore.open(path)  # checks that it is a complete bbb store
     study = st.study
@@ -139,12 +142,16 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
                           **({"chunks": chunks} if chunks else {}))
     ds.attrs = {k: json.dumps(v) if isinstance(v, dict | list) else v for k, v in ds.attrs.items()}
     # the per-particle mask
-    chunk_of = np.arange(ds.sizes["particle"]) // study.accuracy.chunk_size
-    if study.grid:  # lazily, in the dask chunks of the data (a map's done flags are many)
-        done_p = ds["done"].data.astype(bool)[:, :, chunk_of]
-    else:  # in memory (F x M x N booleans): as a dask array indexed from `done`'s
-        # one-element chunks it would split every variable into one chunk per particle
-        done_p = done[:, :, chunk_of]
+    if study.grid:  # lazily, in the dask chunks of the data (a map's done flags are many):
+        # each chunk's flag repeated over its particles, so that the mask's dask chunks are
+        # the store's (chunk_size particles; indexed by particle, a dask array of `done`'s
+        # one-element chunks would split every masked variable into one chunk per particle)
+        import dask.array as da
+
+        done_p = da.repeat(ds["done"].data.astype(bool), study.accuracy.chunk_size, axis=2)
+    else:  # in memory (F x M x N booleans)
+        done_p = np.repeat(done, study.accuracy.chunk_size, axis=2)
+    done_p = done_p[:, :, :ds.sizes["particle"]]
     ds = ds.assign_coords(particle_done=((study.point_dim, "family", "particle"), done_p, {
         "long_name": "the particle's chunk is marked done", "units": ""}))
     if mask:
@@ -154,6 +161,7 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     if study.grid and unstack:
         ds = _unstack(ds, study)
     ds["present"] = _present_on(ds, presence(study, done))
+    ds = ds.assign_coords({k: v for k, v in fixed_params(study).items() if k not in ds.variables})
     if reduced:
         from .tables.catalog import tables
 
@@ -252,11 +260,13 @@ def reduced_dataset(path: str | os.PathLike, names: list[str] | None = None) -> 
     attributes (``Conventions``, ``units``, ``long_name``) on every variable; columns and
     names in :mod:`pipeline.tables.dataset`; the coordinates and the presence mask
     ``present`` of :func:`open_study` (every variable NaN, text ``""``, at an absent
-    point), so the two agree value for value.  ``ds.to_netcdf(...)`` writes it (needs the
-    ``netcdf`` extra: ``pip install bbb[netcdf]``)."""
+    point), so the two agree value for value; the scene's fixed parameters (tilt, throw,
+    contact, alpha, ... where not an axis) as scalar coordinates with their units
+    (:func:`pipeline.tables.dataset.fixed_params`).  ``ds.to_netcdf(...)`` writes it (needs
+    the ``netcdf`` extra: ``pip install bbb[netcdf]``)."""
     from .store.study_store import StudyStore
     from .tables.catalog import tables
-    from .tables.dataset import mask_absent, presence, tables_dataset
+    from .tables.dataset import fixed_params, mask_absent, presence, tables_dataset
 
     st = StudyStore.open(path)
     study, attrs, done = st.study, st.attrs(), st.done()
@@ -269,7 +279,8 @@ def reduced_dataset(path: str | os.PathLike, names: list[str] | None = None) -> 
                          "kernel_hash": attrs["kernel_hash"]})
     ds = mask_absent(ds, present)
     ds["present"] = _present_on(ds, present)
-    return ds
+    return ds.assign_coords({k: v for k, v in fixed_params(study).items()
+                             if k not in ds.variables})
 
 
 def attach_tables(ds: xr.Dataset, tables: dict[str, pd.DataFrame]) -> xr.Dataset:

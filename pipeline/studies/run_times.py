@@ -82,8 +82,8 @@ def table(log: Mapping) -> list[str]:
 
 
 def update_readme(readme: str | os.PathLike, log: Mapping) -> bool:
-    """Replace the table between BEGIN and END in ``readme`` (a Markdown file: :data:`PAGE`) by :func:`table` of ``log``;
-    False (nothing written) if the file has no such markers."""
+    """Replace the table between BEGIN and END in ``readme`` (a Markdown file: :data:`PAGE`)
+    by :func:`table` of ``log``; False (nothing written) if the file has no such markers."""
     path = Path(readme)
     text = path.read_text(encoding="utf-8")
     if BEGIN not in text or END not in text:

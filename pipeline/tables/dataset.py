@@ -28,6 +28,11 @@ that was computed and failed (D where its estimator failed), never an absent poi
   columns (True/False/unknown) are floats 1/0/NaN and text columns strings ("" where
   absent), so ``to_netcdf`` writes the Dataset as it is.  Dataset attributes: ``Conventions``
   (CF-1.10), ``title``, ``source`` and what the caller adds (the store's fingerprint).
+* The scene's fixed parameters (every ``[params]`` key that is not an axis of the grid and
+  holds one value at every point: ``tilt``, ``throw``, ``contact``, ``alpha``, ``R``, ...)
+  are scalar coordinates with ``units`` and ``long_name`` (:func:`fixed_params`), so a
+  Dataset written to netCDF says where it was computed, and Datasets of two scenes
+  concatenate along any of them.
 """
 
 from __future__ import annotations
@@ -45,7 +50,7 @@ from .units import column_unit
 if TYPE_CHECKING:
     from ..workflow.study import Study
 
-__all__ = ["LONG_NAMES", "FAMILY_STEMS", "CONVENTIONS", "PRESENT_ATTRS", "tables_dataset",
+__all__ = ["LONG_NAMES", "FAMILY_STEMS", "CONVENTIONS", "PRESENT_ATTRS", "tables_dataset", "fixed_params",
            "long_name", "same_values", "presence", "mask_absent"]
 
 CONVENTIONS = "CF-1.10"
@@ -152,6 +157,28 @@ def _filled(ds: xr.Dataset) -> xr.Dataset:
         if var.dtype == object:
             ds[name] = var.fillna("").astype(str).assign_attrs(var.attrs)
     return ds
+
+
+def fixed_params(study: Study) -> dict[str, xr.DataArray]:
+    """{key: scalar coordinate} of every ``[params]`` key (:data:`~pipeline.workflow.keys.
+    GRID_AXES`) that is not one of the study's grid axes and has one value at all its
+    points (the bbb.Params each point resolves to; A is left out where ``Gamma`` sets it per
+    frequency, Gamma itself is a column of the tables), with ``units`` and ``long_name``
+    from the workflow's maps."""
+    from ..workflow.keys import GRID_AXES, PARAM_LONG_NAMES, PARAM_UNITS
+
+    axes = {a for a, _ in study.grid}
+    out: dict[str, xr.DataArray] = {}
+    for key in GRID_AXES:
+        if key in axes or not study.points:
+            continue
+        values = {getattr(p.params, key, None) for p in study.points}
+        if len(values) != 1 or None in values:
+            continue
+        (value,) = values
+        out[key] = xr.DataArray(value, attrs={"units": PARAM_UNITS.get(key, ""),
+                                              "long_name": PARAM_LONG_NAMES.get(key, key)})
+    return out
 
 
 def presence(study: Study, done: np.ndarray) -> xr.DataArray:

@@ -86,6 +86,24 @@ def test_run_study_resumes_with_a_distributed_client_to_the_cli_store_bit_for_bi
     assert sorted(a) == sorted(b) and a == b
 
 
+def _particle_chunks(ds) -> dict[str, tuple[int, ...]]:
+    """{variable: its dask chunks along particle} of every dask variable with particles."""
+    return {n: v.chunks[v.dims.index("particle")] for n, v in ds.variables.items()
+            if "particle" in v.dims and v.chunks is not None}
+
+
+def test_open_study_keeps_the_stores_chunks_in_dask(cli_store):
+    """Every variable with particles, masked or not, in dask chunks of one store chunk
+    (chunk_size particles): the mask must not split them into one chunk per particle."""
+
+    acc = StudyStore.open(cli_store).study.accuracy
+    store_chunks = (acc.chunk_size,) * acc.n_chunks
+    for mask in (True, False):
+        chunks = _particle_chunks(open_study(cli_store, mask=mask))
+        assert chunks and "positions" in chunks
+        assert set(chunks.values()) == {store_chunks}, (mask, chunks)
+
+
 def test_open_study_names_dimensions_and_units(cli_store):
     ds = open_study(cli_store)
     assert ds.positions.dims == ("frequency", "family", "particle", "time")

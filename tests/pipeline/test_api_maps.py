@@ -164,3 +164,45 @@ def test_the_presence_mask_round_trips_through_netcdf(stores, tmp_path):
     assert back["present"].dtype == bool and not back["present"].all()
     assert np.array_equal(back["present"].values, ds["present"].values)
     assert back["present"].attrs["flag_meanings"] == "absent present"
+
+
+@pytest.mark.parametrize("unstack", [True, False])
+def test_a_maps_dask_chunks_are_whole_chunks_of_its_store(stores, unstack):
+    """A map opened (masked, unstacked or not): along particle the store's chunks, along
+    point (or each axis) whole store chunks."""
+    from pipeline.store.study_store import StudyStore
+
+    path = stores(SLIDING)
+    acc = StudyStore.open(path).study.accuracy
+    ds = open_study(path, unstack=unstack)
+    v = ds["positions"]
+    assert v.chunks[v.dims.index("particle")] == (acc.chunk_size,) * acc.n_chunks
+    assert ds["particle_done"].chunks[-1] == (acc.chunk_size,) * acc.n_chunks
+    raw = zarr.open_group(path, mode="r")["positions"]
+    assert v.chunks[v.dims.index("time")] == (raw.chunks[-1],) * (raw.shape[-1] // raw.chunks[-1])
+
+
+def test_the_reduced_netcdf_keeps_every_axis_and_fixed_parameter_as_a_coordinate(stores, tmp_path):
+    """The sliding scene's netCDF: its axes (contact, mu) as dimensions, its fixed [params]
+    (tilt, throw, read from the scene file itself) and the preset's restitution as scalar
+    coordinates with units, read back from the file."""
+    import tomllib
+
+    import xarray as xr
+
+    from bbb.params import PRESETS
+    from pipeline.workflow.keys import PARAM_UNITS
+
+    from .map_scenes import ROOT
+
+    scene = tomllib.loads((ROOT / SLIDING).read_text())
+    path = tmp_path / "sliding.nc"
+    reduced_dataset(stores(SLIDING)).to_netcdf(path)
+    with xr.open_dataset(path) as nc:
+        assert {"frequency", "contact", "mu"} <= set(nc.dims)
+        for key in ("tilt", "throw"):
+            assert key in nc.coords and nc[key].dims == ()
+            assert float(nc[key]) == scene["params"][key]
+            assert nc[key].attrs["units"] == PARAM_UNITS[key] == "degree"
+        assert float(nc["alpha"]) == PRESETS[scene["params"]["preset"]]["alpha"]
+        assert "alpha" not in nc.dims and "tilt" not in nc.data_vars
