@@ -13,6 +13,14 @@ Every Parquet table carries its provenance in the schema metadata under the key 
 column its unit as field metadata ``unit``, from the one map :mod:`pipeline.tables.units`
 ("1": dimensionless, "": not a quantity, such as a label or flag).  :func:`table_metadata`
 reads them back.
+
+Every CSV has its units in a sidecar beside it, ``<table>.csv-metadata.json``: W3C CSV on the
+Web metadata (the file name CSVW tools look for by default), one entry per column in the
+CSV's order with its ``name``, ``datatype`` and unit as ``schema:unitText`` (the same strings
+as the Parquet metadata), the study and store in ``dc:title`` and ``dc:source``;
+:func:`csv_units` reads it back.  A sidecar rather than a header line: every reader of
+these CSVs (``pd.read_csv`` in users' scripts, in the studies and the claims, spreadsheets)
+reads the first line as the column names, and a unit line there would break each of them.
 """
 
 from __future__ import annotations
@@ -34,7 +42,11 @@ from .catalog import tables
 from .notes import reduce_notes
 from .units import column_unit, units
 
-__all__ = ["reduce_store", "default_out_dir", "column_unit", "table_metadata", "write_table"]
+__all__ = ["reduce_store", "default_out_dir", "column_unit", "table_metadata", "write_table",
+           "write_csv", "csv_units", "CSVW_SUFFIX"]
+
+#: the sidecar of ``<table>.csv``: ``<table>.csv-metadata.json`` (CSVW's default location)
+CSVW_SUFFIX = "-metadata.json"
 
 
 def default_out_dir(store_path: str, study: Study) -> str:
@@ -69,8 +81,9 @@ def reduce_store(store_path: str | os.PathLike | StudyStore,
     provenance = _provenance(store)
     for name, df in made.items():
         write_table(df, out / f"{name}.parquet", {**provenance, "table": name})
-        df.to_csv(out / f"{name}.csv", index=False)
-    echo(f"{study.name}: wrote {', '.join(f'{n}.parquet/.csv' for n in made)} to {out}")
+        write_csv(df, out / f"{name}.csv", {**provenance, "table": name})
+    echo(f"{study.name}: wrote {', '.join(f'{n}.parquet/.csv' for n in made)} to {out} "
+         "(units: the Parquet metadata, <table>.csv-metadata.json)")
     if "diffusion" in made:
         for line in reduce_notes(study.name, made["diffusion"]):
             (warn or _stderr)(line)
@@ -90,6 +103,47 @@ def write_table(df: pd.DataFrame, path: str | os.PathLike, provenance: dict) -> 
                        metadata={**(table.schema.metadata or {}),
                                  b"bbb": json.dumps({**provenance, "units": col_units}).encode()})
     pq.write_table(table.cast(schema), path)
+
+
+def write_csv(df: pd.DataFrame, path: str | os.PathLike, provenance: dict) -> None:
+    """``df`` as CSV at ``path`` and its CSVW sidecar ``path`` + :data:`CSVW_SUFFIX`: every
+    column's name, datatype and unit (:mod:`pipeline.tables.units`) in the CSV's order."""
+    path = Path(path)
+    df.to_csv(path, index=False)
+    col_units = units(df.columns)
+    meta = {
+        "@context": "http://www.w3.org/ns/csvw",
+        "url": path.name,
+        "dc:title": f"bbb reduce: {provenance.get('table', path.stem)} table of study "
+                    f"{provenance.get('study')}",
+        "dc:source": f"store fingerprint {provenance.get('store_fingerprint')}, kernel "
+                     f"{provenance.get('kernel_hash')}, bbb {provenance.get('bbb_version')}",
+        "tableSchema": {"columns": [
+            {"name": str(c), "titles": str(c), "datatype": _csvw_datatype(df[c]),
+             "schema:unitText": col_units[c]} for c in df.columns]},
+    }
+    Path(f"{path}{CSVW_SUFFIX}").write_text(json.dumps(meta, indent=1, ensure_ascii=False) + "\n",
+                                            encoding="utf-8")
+
+
+def _csvw_datatype(col: pd.Series) -> str | dict:
+    """The CSVW datatype of a column as pandas writes it: numbers, True/False, text."""
+    values = col.dropna()
+    if pd.api.types.is_bool_dtype(col) or (len(values) and values.map(type).eq(bool).all()):
+        return {"base": "boolean", "format": "True|False"}  # flags: True, False, or blank
+    if pd.api.types.is_integer_dtype(col):
+        return "integer"
+    if pd.api.types.is_float_dtype(col):
+        return "double"
+    return "string"
+
+
+def csv_units(path: str | os.PathLike) -> dict[str, str]:
+    """{column: unit} of a CSV ``bbb reduce`` wrote, from its sidecar
+    ``<table>.csv-metadata.json`` (FileNotFoundError naming the sidecar if it has none)."""
+    sidecar = Path(f"{path}{CSVW_SUFFIX}")
+    meta = json.loads(sidecar.read_text(encoding="utf-8"))
+    return {c["name"]: c["schema:unitText"] for c in meta["tableSchema"]["columns"]}
 
 
 def table_metadata(path: str | os.PathLike) -> dict:

@@ -88,6 +88,29 @@ def test_parquet_tables_carry_units_and_the_store_provenance(reference, tables):
     assert table_metadata(tables / "counters.parquet")["units"]["collisions_per_s"] == "1/s"
 
 
+def test_every_csv_has_a_units_sidecar_naming_its_columns_in_order_with_the_parquet_units(tables):
+    """<table>.csv-metadata.json (CSVW): one entry per column of the CSV as pandas reads it,
+    in its order, each unit the one the Parquet field carries; the CSV itself stays a plain
+    table (its first line the header)."""
+    import json
+
+    import pyarrow.parquet as pq
+
+    from pipeline.tables.reduce import csv_units
+
+    csvs = sorted(tables.glob("*.csv"))
+    assert {p.stem for p in csvs} == {p.stem for p in tables.glob("*.parquet")}
+    for csv in csvs:
+        meta = json.loads((tables / f"{csv.name}-metadata.json").read_text(encoding="utf-8"))
+        assert meta["@context"] == "http://www.w3.org/ns/csvw" and meta["url"] == csv.name
+        header = list(pd.read_csv(csv).columns)
+        assert [c["name"] for c in meta["tableSchema"]["columns"]] == header
+        schema = pq.read_schema(tables / f"{csv.stem}.parquet")
+        assert csv_units(csv) == {c: schema.field(c).metadata[b"unit"].decode() for c in header}
+    units = csv_units(tables / "diffusion.csv")
+    assert (units["f"], units["D"], units["D_lo"], units["EB"]) == ("Hz", "mm^2/s", "mm^2/s", "1")
+
+
 def test_csv_holds_the_same_table_as_parquet(tables):
     pq = pd.read_parquet(tables / "diffusion.parquet")
     csv = pd.read_csv(tables / "diffusion.csv")
