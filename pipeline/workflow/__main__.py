@@ -1,5 +1,5 @@
-"""``python -m pipeline.workflow --reference [--write]``: the workflow reference
-(:func:`pipeline.workflow.load.main`)."""
+"""``python -m pipeline.workflow --reference [--write]``: the workflow reference;
+``--schema``: the scene format as a JSON Schema (:func:`pipeline.workflow.load.main`)."""
 
 import sys
 
