@@ -43,7 +43,7 @@ from .notes import reduce_notes
 from .units import column_unit, units
 
 __all__ = ["reduce_store", "default_out_dir", "column_unit", "table_metadata", "write_table",
-           "write_csv", "csv_units", "CSVW_SUFFIX"]
+           "write_csv_table", "csv_units", "CSVW_SUFFIX"]
 
 #: the sidecar of ``<table>.csv``: ``<table>.csv-metadata.json`` (CSVW's default location)
 CSVW_SUFFIX = "-metadata.json"
@@ -81,7 +81,7 @@ def reduce_store(store_path: str | os.PathLike | StudyStore,
     provenance = _provenance(store)
     for name, df in made.items():
         write_table(df, out / f"{name}.parquet", {**provenance, "table": name})
-        write_csv(df, out / f"{name}.csv", {**provenance, "table": name})
+        write_csv_table(df, out / f"{name}.csv", {**provenance, "table": name})
     echo(f"{study.name}: wrote {', '.join(f'{n}.parquet/.csv' for n in made)} to {out} "
          "(units: the Parquet metadata, <table>.csv-metadata.json)")
     if "diffusion" in made:
@@ -105,7 +105,7 @@ def write_table(df: pd.DataFrame, path: str | os.PathLike, provenance: dict) -> 
     pq.write_table(table.cast(schema), path)
 
 
-def write_csv(df: pd.DataFrame, path: str | os.PathLike, provenance: dict) -> None:
+def write_csv_table(df: pd.DataFrame, path: str | os.PathLike, provenance: dict) -> None:
     """``df`` as CSV at ``path`` and its CSVW sidecar ``path`` + :data:`CSVW_SUFFIX`: every
     column's name, datatype and unit (:mod:`pipeline.tables.units`) in the CSV's order."""
     path = Path(path)

@@ -153,8 +153,9 @@ def scene_schema() -> dict[str, Any]:
         "analysis": table_schema(Analysis),
     }
     assert list(tables) == list(TABLES)
-    return {"$schema": "https://json-schema.org/draft/2020-12/schema", "title": "bbb scene", "description": "A scene of the bbb study pipeline "
-            "(python -m pipeline.workflow --reference: the same keys as a table)",
+    return {"$schema": "https://json-schema.org/draft/2020-12/schema", "title": "bbb scene",
+            "description": "A scene of the bbb study pipeline (python -m pipeline.workflow "
+                           "--reference: the same keys as a table)",
             "type": "object", "properties": tables, "required": ["frequencies", "observables"],
             "additionalProperties": False}
 

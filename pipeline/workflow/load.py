@@ -4,8 +4,8 @@ A workflow says what to study, and nothing it does not ask for is computed or st
 keys are declared once in :mod:`pipeline.workflow.keys` (type, units, range, default, doc);
 :mod:`pipeline.workflow.schema` checks each table against them, and the rules that involve several
 keys (chunk_size divides n_particles, every frequency gives valid bbb.Params, ...) are here.
-``python -m pipeline.workflow --reference [--write]`` prints (writes into pipeline/README.md)
-the reference table generated from the declarations.
+``python -m pipeline.workflow --reference [--write]`` (:mod:`pipeline.workflow.__main__`)
+prints (writes into pipeline/README.md) the reference table generated from the declarations.
 
 ```toml
 [study]
@@ -45,7 +45,6 @@ found), the key, and what is allowed.
 from __future__ import annotations
 
 import re
-import sys
 from pathlib import Path
 
 from bbb.numerics import Numerics
@@ -58,7 +57,6 @@ from .keys import (
     DEFAULT_ANALYSIS,
     INITIAL_KINDS,
     PARAM_FIELDS,
-    README,
     TABLES,
     Accuracy,
     Analysis,
@@ -69,7 +67,6 @@ from .keys import (
     RefineTable,
     StudyTable,
     observables_table,
-    readme_with_reference,
     reference_markdown,
 )
 from .observables.registry import scene_tables
@@ -371,31 +368,6 @@ def _analysis(r: Reader, doc: dict) -> Analysis:
     return Analysis(**{k: float(v) if k != "ci_method" else v for k, v in an.items()})
 
 
-def main(argv: list[str] | None = None) -> int:
-    """``python -m pipeline.workflow --reference [--write]``: print the reference table, or
-    write it into pipeline/README.md between the markers; ``--schema``: print the scene
-    format as a JSON Schema (:mod:`pipeline.workflow.json_schema`)."""
-    argv = sys.argv[1:] if argv is None else argv
-    if argv == ["--schema"]:
-        import json
-
-        from .json_schema import scene_schema
-
-        print(json.dumps(scene_schema(), indent=1, ensure_ascii=False))
-        return 0
-    if "--reference" not in argv or set(argv) - {"--reference", "--write"}:
-        print("usage: python -m pipeline.workflow --reference [--write] | --schema",
-              file=sys.stderr)
-        return 2
-    if "--write" in argv:
-        README.write_text(readme_with_reference(README.read_text(encoding="utf-8")),
-                          encoding="utf-8")
-        print(f"wrote the workflow reference into {README.name}")
-    else:
-        print(reference_markdown(), end="")
-    return 0
-
-
 # -- small helpers ----------------------------------------------------------------------------
 _FAMILY_RE = re.compile(r"[A-Za-z][A-Za-z0-9_-]*")
 
@@ -414,6 +386,3 @@ def _has_refine(doc: dict) -> bool:
     fr = doc.get("frequencies")
     return isinstance(fr, dict) and fr.get("refine") not in (None, False)
 
-
-if __name__ == "__main__":
-    sys.exit(main())
