@@ -107,8 +107,9 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     dimensions and ``family``; :func:`pipeline.tables.dataset.presence`) is True where the
     store holds the point and the family has a chunk done there, False at an absent cell
     (no point there: a conditional axis away from its condition, left out as invalid, not
-    added by refinement; or nothing done yet); :func:`reduced_dataset` carries the same, and
-    the same scalar coordinates of the scene's fixed parameters (tilt, throw, contact, ...).
+    added by refinement; or nothing done yet); :func:`reduced_dataset` carries the same.
+    The scene's fixed parameters are in the attribute ``params`` (JSON) here, scalar
+    coordinates in :func:`reduced_dataset` (the netCDF).
 
     mask    -- True (default): every variable with a ``particle`` dimension is NaN for the
                particles of chunks not marked done (``ds.where(done)`` applied chunk by
@@ -128,7 +129,7 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     import xarray as xr
 
     from .store.study_store import StudyStore, normalize_path
-    from .tables.dataset import fixed_params, presence
+    from .tables.dataset import presence
 
     st = StudyStore.open(path)  # checks that it is a complete bbb store
     study = st.study
@@ -161,7 +162,6 @@ def open_study(path: str | os.PathLike, *, mask: bool = True, reduced: bool = Fa
     if study.grid and unstack:
         ds = _unstack(ds, study)
     ds["present"] = _present_on(ds, presence(study, done))
-    ds = ds.assign_coords({k: v for k, v in fixed_params(study).items() if k not in ds.variables})
     if reduced:
         from .tables.catalog import tables
 
