@@ -86,6 +86,20 @@ def test_run_study_resumes_with_a_distributed_client_to_the_cli_store_bit_for_bi
     assert sorted(a) == sorted(b) and a == b
 
 
+def test_a_missing_store_is_file_not_found_and_a_scene_is_named_as_one(tiny_workflow, tmp_path):
+    """open_study, reduced and reduced_dataset of a path with no store raise what Python
+    raises for a missing file; given a scene file, they say it is a scene."""
+    from pipeline.api import reduced_dataset
+    from pipeline.store.study_store import StoreError
+
+    for read in (open_study, reduced, reduced_dataset):
+        with pytest.raises(FileNotFoundError, match="nope.zarr: no such store"):
+            read(tmp_path / "nope.zarr")
+        with pytest.raises(StoreError, match="a scene, not a store") as e:
+            read(tiny_workflow)
+        assert not isinstance(e.value, FileNotFoundError)
+
+
 def _particle_chunks(ds) -> dict[str, tuple[int, ...]]:
     """{variable: its dask chunks along particle} of every dask variable with particles."""
     return {n: v.chunks[v.dims.index("particle")] for n, v in ds.variables.items()
