@@ -222,7 +222,8 @@ def test_the_conveyor_example_gives_v_of_f_with_cis_as_a_new_user_gets_it(tmp_pa
 
     assert csv_units(out_dir / "diffusion.csv")["v"] == "mm/s"
     out = run_python(py, tmp_path)
-    assert "v_lo" in out and "D_drift" in out and all(f"{f:.1f}" in out for f in fs)
+    assert all(c in out for c in ("v_lo", "v_hi", "v_status", "D_drift"))
+    assert all(f"{f:.1f}" in out for f in fs)
     code = (f"from pipeline import reduced_dataset\nds = reduced_dataset('runs/{name}.zarr')\n"
             "print(float(ds.tilt), float(ds.throw), ds.v.attrs['units'], dict(ds.v.sizes))")
     tilt, throw, unit, sizes = run_python(code, tmp_path).strip().split(" ", 3)
