@@ -173,15 +173,16 @@ def _vertical_step(phase, u, A, w, g):
         return math.nan, math.nan, math.inf
     t1 = t + tau
     v_in = u - A * w * math.cos(w * t) - g * tau
-    U = A * w * math.cos(w * t1) - v_in
+    U = -A * w * math.cos(w * t1) - v_in
     return (w * t1) % (2 * math.pi), U, tau
 
 
 def period2(gamma: float, f: float, alpha: float, g: float = 9800.0,
             guess: tuple[float, float] | None = None):
     """The flat-floor period-2 orbit (two bounces in two periods) at Γ beyond Γ', by Newton on
-    the exact two-bounce map: ((U1, τ1), (U2, τ2)) -- each flight τ followed by a collision
-    of incoming relative speed U -- or None when Newton does not converge."""
+    the exact two-bounce map: {"phase": ωt of a collision (rad), "u": the relative normal
+    speed leaving it (mm/s), "legs": ((U1, τ1), (U2, τ2)) -- each flight τ (s) followed by a
+    collision of incoming relative speed U (mm/s)} -- or None when Newton does not converge."""
     w = 2.0 * math.pi * f
     A = gamma * g / (w * w)
     U0, T = period1(f, alpha, g)
@@ -229,7 +230,8 @@ def period2(gamma: float, f: float, alpha: float, g: float = 9800.0,
     _, U2, t2 = _vertical_step(p1, alpha * U1, A, w, g)
     if abs(t1 - t2) < 1e-9 / f:  # Newton fell back onto the 1/1 orbit
         return None
-    return (U1, t1), (U2, t2)
+    return {"phase": float(p % (2 * math.pi)), "u": float(u),
+            "legs": ((float(U1), float(t1)), (float(U2), float(t2)))}
 
 
 def bounce_matrix(kappa: float, U: float, tau: float, alpha: float, beta: float) -> np.ndarray:
