@@ -1,0 +1,36 @@
+"""The onset section's own words and the facts they name, read off the two maps' tables."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import pandas as pd
+
+from .claims import MAP, SINE
+from .predictions import load
+
+__all__ = ["WORDS", "facts"]
+
+
+def facts(tables: Mapping[str, pd.DataFrame], verdicts=None) -> dict:
+    """What the words name: the predictions and the maps' sizes."""
+    p = load()
+    fc = ", ".join(f"{v['f_c']:.1f} Hz (α = {a})" for a, v in p["alpha"].items())
+    out = {"f1": f"{p['f_liftoff']:.1f}", "fc": fc}
+    for key, s in (("map", MAP), ("sine", SINE)):
+        t = tables.get(f"{s}_diffusion")
+        out[f"{key}_points"] = 0 if t is None else len(t)
+    return out
+
+
+#: the section's own words
+WORDS = ("Two no-fit predictions of where motion from rest starts, registered before the maps "
+         "ran (docs/physics.md, \"Why motion starts\"). (a) Horizontal: a vertical motion at "
+         "the rest point loses horizontal stability -- at the arcs' cusp, a wedge, from the "
+         "first lift-off f(Γ = 1) = {f1} Hz whatever R (O1); at the sine's smooth valley the "
+         "chattering cycle stays horizontally stable wherever it exists (O1s). (b) Vertical: "
+         "the chattering cycle from rest stops ending within its period at f_c = {fc} (exact "
+         "flat-floor map; O2 on the arcs, O2s on the sine). Judged on the onset of every line "
+         "of the D(f, R) map ({map_points} points) and of the sine floor's D(f, depth) map "
+         "({sine_points} points), band ± the grid step (1 Hz). "
+         "pipeline/studies/onset/claims.py states the rules.")
