@@ -95,7 +95,7 @@ def onset_lines(claim: Claim, ctx) -> Measured:
     return Measured(parts)
 
 
-_REG = "2026-11-28 (this commit: claims before the maps)"
+_REG = "2026-11-28 6abded2"
 _WHY = "± the scenes' grid step along f (1 Hz), stated before the run"
 CLAIMS = [
     Claim("(a) horizontal at the cusp: the wedge makes every vertical motion with a flight "
