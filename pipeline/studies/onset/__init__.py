@@ -12,6 +12,7 @@ name in :data:`pipeline.studies.registry.STUDIES`.
 from ...claims.section import Section
 from ..interface import Study
 from .claims import CLAIMS, MAP, SINE, context
+from .figures import CAPTIONS, draw
 from .report import WORDS, facts
 
 STUDY = Study(
@@ -21,6 +22,8 @@ STUDY = Study(
                     "(scenes onset_map, onset_sine)", WORDS, prefix="O"),
     claims=tuple(CLAIMS),
     context=context,
+    draw=draw,
+    captions=CAPTIONS,
     reads=(f"{MAP}_diffusion", f"{SINE}_diffusion"),
     facts=facts,
 )
