@@ -13,7 +13,7 @@ from ...claims.section import Section
 from ..interface import Study
 from .claims import CLAIMS, MAP, SINE, context
 from .figures import CAPTIONS, draw
-from .report import WORDS, facts
+from .report import WORDS, facts, further
 
 STUDY = Study(
     name="onset",
@@ -26,6 +26,7 @@ STUDY = Study(
     captions=CAPTIONS,
     reads=(f"{MAP}_diffusion", f"{SINE}_diffusion"),
     facts=facts,
+    further=further,
 )
 
 __all__ = ["STUDY"]

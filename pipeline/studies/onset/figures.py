@@ -79,14 +79,15 @@ def figure_onset(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathLike 
     with rc_context(STYLE):
         fig = new_figure("fig_onset_theory", (PAGE, 0.85 * PAGE), layout="constrained")
         axes = fig.subplots(1, 2, gridspec_kw={"width_ratios": [1.6, 1.0]}, sharey=True)
-        for ax, scene, logx, title in ((axes[0], MAP, True, "(a) arcs: onset against R"),
-                                       (axes[1], SINE, False, "(b) sine floor: against depth")):
+        for ax, scene, logx, title, where in (
+                (axes[0], MAP, True, "(a) arcs: onset against R", "upper center"),
+                (axes[1], SINE, False, "(b) sine floor: against depth", "upper left")):
             t = tables.get(f"{scene}_diffusion")
             top = float(t["f"].max()) if t is not None and len(t) else 70.0
             _panel(ax, onset_rows(t, scene), AXES[scene], preds, step_of(scene), top, logx)
             ax.set_xlabel(f"{AXES[scene]} (mm)")
             ax.set_title(title)
-            ax.legend(fontsize="x-small", loc="lower right")
+            ax.legend(fontsize="x-small", loc=where)
         return save_figure(fig, out_dir)
 
 
