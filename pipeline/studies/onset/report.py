@@ -7,6 +7,7 @@ from collections.abc import Mapping
 import pandas as pd
 
 from .claims import MAP, SINE
+from .lines import step_of
 from .predictions import load
 
 __all__ = ["WORDS", "facts", "further"]
@@ -16,7 +17,7 @@ def facts(tables: Mapping[str, pd.DataFrame], verdicts=None) -> dict:
     """What the words name: the predictions and the maps' sizes."""
     p = load()
     fc = ", ".join(f"{v['f_c']:.1f} Hz (α = {a})" for a, v in p["alpha"].items())
-    out = {"f1": f"{p['f_liftoff']:.1f}", "fc": fc}
+    out = {"f1": f"{p['f_liftoff']:.1f}", "fc": fc, "step": f"{step_of(MAP):g}"}
     for key, s in (("map", MAP), ("sine", SINE)):
         t = tables.get(f"{s}_diffusion")
         out[f"{key}_points"] = 0 if t is None else len(t)
@@ -32,7 +33,7 @@ WORDS = ("Two no-fit predictions of where motion from rest starts, registered be
          "the chattering cycle from rest stops ending within its period at f_c = {fc} (exact "
          "flat-floor map; O2 on the arcs, O2s on the sine). Judged on the onset of every line "
          "of the D(f, R) map ({map_points} points) and of the sine floor's D(f, depth) map "
-         "({sine_points} points), band ± the grid step (1 Hz). "
+         "({sine_points} points), band ± the grid step ({step} Hz). "
          "pipeline/studies/onset/claims.py states the rules.")
 
 
