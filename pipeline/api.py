@@ -252,8 +252,11 @@ def reduced_dataset(path: str | os.PathLike, names: list[str] | None = None) -> 
     attributes (``Conventions``, ``units``, ``long_name``) on every variable; columns and
     names in :mod:`pipeline.tables.dataset`; the coordinates and the presence mask
     ``present`` of :func:`open_study` (every variable NaN, text ``""``, at an absent
-    point), so the two agree value for value.  ``ds.to_netcdf(...)`` writes it (needs the
+    point), so the two agree value for value; the attributes ``scene``, ``scene_preset`` and
+    ``fixed_<key>`` name the scene and what it fixes (:func:`pipeline.plot.titles.scene_attrs`).
+    ``ds.to_netcdf(...)`` writes it (needs the
     ``netcdf`` extra: ``pip install bbb[netcdf]``)."""
+    from .plot.titles import scene_attrs
     from .store.study_store import StudyStore
     from .tables.catalog import tables
     from .tables.dataset import mask_absent, presence, tables_dataset
@@ -269,6 +272,7 @@ def reduced_dataset(path: str | os.PathLike, names: list[str] | None = None) -> 
                          "kernel_hash": attrs["kernel_hash"]})
     ds = mask_absent(ds, present)
     ds["present"] = _present_on(ds, present)
+    ds.attrs.update(scene_attrs(study))  # the scene and what it fixes: the figures' titles
     return ds
 
 
