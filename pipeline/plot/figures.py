@@ -27,7 +27,7 @@ from __future__ import annotations
 
 import itertools
 import os
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 
 import xarray as xr
@@ -41,7 +41,7 @@ from .labels import file_token
 from .models import merge_conditional
 from .style import FORMATS, STYLE, figure_files, save_figure
 
-__all__ = ["VARIABLES", "plot_dataset", "grid_axes"]
+__all__ = ["VARIABLES", "plot_dataset", "talk_figures", "grid_axes"]
 
 #: the variables drawn when present, each with its CI bounds <var>_lo, <var>_hi
 VARIABLES = ("D", "v", "D_drift")
@@ -72,39 +72,31 @@ def _cuts(ds: xr.Dataset, axes: list[str]):
         yield pick, "".join(f"_{_token(ds, a, v)}" for a, v in pick.items())
 
 
-def plot_dataset(ds: xr.Dataset, out_dir: str | os.PathLike, *,
-                 formats: Sequence[str] = FORMATS) -> list[Path]:
-    """Write the figures of the module docstring for the reduced Dataset ``ds`` to
-    ``out_dir`` (created if missing); returns the files written, in the order written."""
+def talk_figures(ds: xr.Dataset) -> Iterator[tuple[str, Figure]]:
+    """(name, Figure) of every figure of the module docstring for the reduced Dataset ``ds``,
+    one at a time, in a deterministic order (a Figure is drawn when asked for)."""
     ds = merge_conditional(ds)
     ds = ds.squeeze([a for a in grid_axes(ds) if ds.sizes[a] == 1])
     axes = grid_axes(ds)
-    written: list[Path] = []
-
-    def save(fig: Figure, name: str) -> None:
-        fig.set_label(name)
-        with rc_context(STYLE):
-            save_figure(fig, out_dir, formats=formats)
-        written.extend(figure_files(out_dir, name, formats))
 
     def drawn(cut: xr.Dataset, var: str) -> bool:
         return bool(present(cut, cut[var]).values.any())
 
     for var in (v for v in VARIABLES if v in ds.data_vars):
         if not axes:
-            save(plot_curve(ds, "frequency", var), f"curve_{var}_vs_frequency")
+            yield f"curve_{var}_vs_frequency", plot_curve(ds, "frequency", var)
         for hue in axes:
             for pick, suffix in _cuts(ds, [a for a in axes if a != hue]):
                 cut = ds.sel(pick)
                 if drawn(cut, var):
-                    save(plot_curve(cut, "frequency", var, hue=hue),
-                         f"curve_{var}_vs_frequency_by_{hue}{suffix}")
+                    yield (f"curve_{var}_vs_frequency_by_{hue}{suffix}",
+                           plot_curve(cut, "frequency", var, hue=hue))
     if "D_family" in ds.data_vars:
         for pick, suffix in _cuts(ds, axes):
             cut = ds.sel(pick)
             if drawn(cut, "D_family"):
-                save(plot_curve(cut, "frequency", "D_family", hue="family"),
-                     f"curve_D_family_vs_frequency{suffix}")
+                yield (f"curve_D_family_vs_frequency{suffix}",
+                       plot_curve(cut, "frequency", "D_family", hue="family"))
     numeric = [a for a in axes if ds[a].dtype.kind in "iuf"]
     if ds.sizes["frequency"] >= 2:
         for var in (v for v in VARIABLES if v in ds.data_vars):
@@ -112,6 +104,18 @@ def plot_dataset(ds: xr.Dataset, out_dir: str | os.PathLike, *,
                 for pick, suffix in _cuts(ds, [a for a in axes if a != axis]):
                     cut = ds.sel(pick)
                     if drawn(cut, var):
-                        save(plot_map(cut, "frequency", axis, var),
-                             f"map_{var}_frequency-{axis}{suffix}")
+                        yield (f"map_{var}_frequency-{axis}{suffix}",
+                               plot_map(cut, "frequency", axis, var))
+
+
+def plot_dataset(ds: xr.Dataset, out_dir: str | os.PathLike, *,
+                 formats: Sequence[str] = FORMATS) -> list[Path]:
+    """Write the figures of the module docstring for the reduced Dataset ``ds`` to
+    ``out_dir`` (created if missing); returns the files written, in the order written."""
+    written: list[Path] = []
+    for name, fig in talk_figures(ds):
+        fig.set_label(name)
+        with rc_context(STYLE):
+            save_figure(fig, out_dir, formats=formats)
+        written.extend(figure_files(out_dir, name, formats))
     return written
