@@ -11,8 +11,9 @@ above the tables, knowing no study.
 * :mod:`.scales`, :mod:`.titles`, :mod:`.models` -- the rules every figure follows: log axes
   past two decades, a diverging map centred at 0 for a signed quantity; the title (scene,
   what it fixes, the cut); contact x mu drawn as one axis of models
-* :mod:`.gallery` -- ``python -m pipeline.plot.gallery``: docs/gallery.md, one figure of each
-  kind from shipped scenes
+
+``python -m pipeline.gallery`` (above the engine: it runs scenes) draws docs/gallery.md, one
+figure of each kind from shipped scenes.
 """
 
 from .curve import plot_curve

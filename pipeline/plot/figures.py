@@ -27,7 +27,8 @@ from __future__ import annotations
 
 import itertools
 import os
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Container, Iterator, Sequence
+from functools import partial
 from pathlib import Path
 
 import xarray as xr
@@ -72,9 +73,18 @@ def _cuts(ds: xr.Dataset, axes: list[str]):
         yield pick, "".join(f"_{_token(ds, a, v)}" for a, v in pick.items())
 
 
-def talk_figures(ds: xr.Dataset) -> Iterator[tuple[str, Figure]]:
-    """(name, Figure) of every figure of the module docstring for the reduced Dataset ``ds``,
-    one at a time, in a deterministic order (a Figure is drawn when asked for)."""
+def talk_figures(ds: xr.Dataset, names: Container[str] | None = None
+                 ) -> Iterator[tuple[str, Figure]]:
+    """(name, Figure) of every figure of the module docstring for the reduced Dataset ``ds``
+    (``names``: only those of these names), one at a time, in a deterministic order (a Figure
+    is drawn when asked for)."""
+    for name, draw in _planned(ds):
+        if names is None or name in names:
+            yield name, draw()
+
+
+def _planned(ds: xr.Dataset) -> Iterator[tuple[str, Callable[[], Figure]]]:
+    """(name, a call drawing its Figure) of every figure, in order."""
     ds = merge_conditional(ds)
     ds = ds.squeeze([a for a in grid_axes(ds) if ds.sizes[a] == 1])
     axes = grid_axes(ds)
@@ -84,19 +94,19 @@ def talk_figures(ds: xr.Dataset) -> Iterator[tuple[str, Figure]]:
 
     for var in (v for v in VARIABLES if v in ds.data_vars):
         if not axes:
-            yield f"curve_{var}_vs_frequency", plot_curve(ds, "frequency", var)
+            yield f"curve_{var}_vs_frequency", partial(plot_curve, ds, "frequency", var)
         for hue in axes:
             for pick, suffix in _cuts(ds, [a for a in axes if a != hue]):
                 cut = ds.sel(pick)
                 if drawn(cut, var):
                     yield (f"curve_{var}_vs_frequency_by_{hue}{suffix}",
-                           plot_curve(cut, "frequency", var, hue=hue))
+                           partial(plot_curve, cut, "frequency", var, hue=hue))
     if "D_family" in ds.data_vars:
         for pick, suffix in _cuts(ds, axes):
             cut = ds.sel(pick)
             if drawn(cut, "D_family"):
                 yield (f"curve_D_family_vs_frequency{suffix}",
-                       plot_curve(cut, "frequency", "D_family", hue="family"))
+                       partial(plot_curve, cut, "frequency", "D_family", hue="family"))
     numeric = [a for a in axes if ds[a].dtype.kind in "iuf"]
     if ds.sizes["frequency"] >= 2:
         for var in (v for v in VARIABLES if v in ds.data_vars):
@@ -105,15 +115,17 @@ def talk_figures(ds: xr.Dataset) -> Iterator[tuple[str, Figure]]:
                     cut = ds.sel(pick)
                     if drawn(cut, var):
                         yield (f"map_{var}_frequency-{axis}{suffix}",
-                               plot_map(cut, "frequency", axis, var))
+                               partial(plot_map, cut, "frequency", axis, var))
 
 
 def plot_dataset(ds: xr.Dataset, out_dir: str | os.PathLike, *,
-                 formats: Sequence[str] = FORMATS) -> list[Path]:
+                 formats: Sequence[str] = FORMATS,
+                 names: Container[str] | None = None) -> list[Path]:
     """Write the figures of the module docstring for the reduced Dataset ``ds`` to
-    ``out_dir`` (created if missing); returns the files written, in the order written."""
+    ``out_dir`` (created if missing; ``names``: only those of these names); returns the files
+    written, in the order written."""
     written: list[Path] = []
-    for name, fig in talk_figures(ds):
+    for name, fig in talk_figures(ds, names):
         fig.set_label(name)
         with rc_context(STYLE):
             save_figure(fig, out_dir, formats=formats)

@@ -225,9 +225,9 @@ def _draw_map(ds, x, y, var, ax, cmap, contours, contour_levels) -> None:
         seen[js, is_] += 1
         frac = k / (count[js, is_] + 1)
         px = cx.lo[is_] + frac * (cx.hi[is_] - cx.lo[is_])
-        ax.plot(px, cy.centres[js], ls="none", marker=f.marker, ms=3.5, mfc="black",
+        ax.plot(px, cy.centres[js], ls="none", marker=f.marker, ms=4.5, mfc="black",
                 mec="white", mew=0.6, gid=f"flag:{f.var}")
-        handles.append(Line2D([], [], ls="none", marker=f.marker, ms=3.5, mfc="black",
+        handles.append(Line2D([], [], ls="none", marker=f.marker, ms=4.5, mfc="black",
                               mec="white", mew=0.6, label=f.meaning))
     if contours is not None:
         c = (contours(ds) if callable(contours) else ds[contours]).transpose(y, x)

@@ -9,7 +9,8 @@ comparison of the contact models falls apart into one figure per mu, none with e
 (``contact``) whose values are the lines the store has, in the grid's order, each labelled with
 the conditional axis's value where it applies: ``stick``, ``slide``, ``coulomb, μ = 0.05``,
 ``coulomb, μ = 0.3``.  The conditional axis's value of each line stays as a coordinate along
-it (``mu``).  A line none of whose points is present is left out; nothing else changes.
+it (``mu``, its attribute :data:`MERGED` naming the axis).  A line none of whose points is
+present is left out; nothing else changes.
 """
 
 from __future__ import annotations
@@ -20,7 +21,11 @@ import xarray as xr
 from ..workflow.point import CONDITIONAL_AXES
 from .labels import value_label
 
-__all__ = ["merge_conditional"]
+__all__ = ["merge_conditional", "MERGED"]
+
+#: the attribute of a conditional axis's coordinate along the models: the axis it is merged
+#: into (a cut at one model names the model, not the conditional axis's value as well)
+MERGED = "merged_into"
 
 
 def merge_conditional(ds: xr.Dataset) -> xr.Dataset:
@@ -44,6 +49,6 @@ def merge_conditional(ds: xr.Dataset) -> xr.Dataset:
         merged = xr.concat(pieces, dim=pd.Index(labels, name=on), coords="minimal",
                            compat="override", join="outer")
         merged[on].attrs = dict(ds[on].attrs)
-        merged = merged.assign_coords({axis: (on, values, dict(ds[axis].attrs))})
+        merged = merged.assign_coords({axis: (on, values, {**ds[axis].attrs, MERGED: on})})
         ds = merged
     return ds

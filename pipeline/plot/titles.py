@@ -21,6 +21,7 @@ import xarray as xr
 
 from ..workflow.point import CONDITIONAL_AXES
 from .labels import value_label
+from .models import MERGED
 
 __all__ = ["scene_attrs", "scene_line", "cut_line", "figure_title", "FIXED_PREFIX"]
 
@@ -68,9 +69,11 @@ def scene_line(ds: xr.Dataset) -> str:
 
 def cut_line(da: xr.DataArray | xr.Dataset, skip=()) -> str:
     """The scalar coordinates a selection left (``ds.sel(mu=0.3)``), in words: ``"μ = 0.3"``;
-    ``""`` if none."""
+    ``""`` if none.  A model's conditional value (μ of ``contact = coulomb, μ = 0.3``,
+    :mod:`pipeline.plot.models`) is said by the model's name only."""
     return ", ".join(value_label(da, c, da[c].item(), named=True) for c in da.coords
-                     if da[c].ndim == 0 and c not in skip and c not in da.dims)
+                     if da[c].ndim == 0 and c not in skip and c not in da.dims
+                     and MERGED not in da[c].attrs)
 
 
 def figure_title(ds: xr.Dataset, da: xr.DataArray, skip=(), note: str = "") -> str:

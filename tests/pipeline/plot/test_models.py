@@ -33,3 +33,11 @@ def test_the_lines_the_store_has_become_one_axis_named_with_mu_where_it_applies(
 def test_a_dataset_without_both_axes_is_left_as_it_is():
     ds = _grid().sel(mu=0.0)
     assert merge_conditional(ds) is ds
+
+
+def test_a_cut_at_one_model_is_titled_by_the_model_alone():
+    from pipeline.plot.titles import cut_line
+
+    m = merge_conditional(_grid())
+    assert cut_line(m["D"].sel(contact="stick"), skip=("frequency",)) == "contact = stick"
+    assert cut_line(m["D"].sel(contact="coulomb, μ = 0.3")) == "contact = coulomb, μ = 0.3"

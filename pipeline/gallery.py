@@ -1,14 +1,14 @@
 """The gallery: one figure of each kind ``bbb plot`` draws, from shipped scenes run small, and
 the page docs/gallery.md that shows them.
 
-    python -m pipeline.plot.gallery [--work runs/gallery] [--docs docs] [--workers 2]
+    python -m pipeline.gallery [--work runs/gallery] [--docs docs] [--workers 2]
 
 Each entry of :data:`ENTRIES` names a shipped scene, the figure of ``bbb plot`` it shows and
 what to read in it.  The scenes run at gallery size (:data:`GALLERY_SIZE`: fewer particles,
 shorter runs than their drafts; the frequencies and grid as shipped), each in its own store
 under ``--work`` (kept: a second call only plots; an interrupted one resumes), then
-:func:`pipeline.plot.figures.plot_dataset` draws every figure of each store and the gallery
-copies the one of each entry to ``docs/gallery/<kind>.png``.  The page says how big each run
+:func:`pipeline.plot.figures.plot_dataset` draws each entry's figure of its store, as
+``bbb plot`` would, and the gallery copies it to ``docs/gallery/<kind>.png``.  The page says how big each run
 was (points x particles x simulated seconds), read from the stores, not typed in.
 """
 
@@ -24,7 +24,7 @@ from pathlib import Path
 __all__ = ["Entry", "ENTRIES", "GALLERY_SIZE", "gallery_study", "run_scenes", "write_gallery",
            "main"]
 
-ROOT = Path(__file__).resolve().parents[2]
+ROOT = Path(__file__).resolve().parents[1]
 
 
 @dataclass(frozen=True)
@@ -71,8 +71,8 @@ ENTRIES = (
     Entry("signed_curve", "workflows/sawtooth.toml", "curve_v_vs_frequency_by_peak",
           "A ratchet's drift per tooth shape",
           "v against f on the sawtooth floor, one line per position of the tooth's peak: the "
-          "off-centre teeth drive a drift without tilt, the centred ones do not. Signed: a "
-          "linear axis with its 0 marked."),
+          "scene asks whether off-centre teeth drive a drift without tilt (centred ones cannot: "
+          "mirror symmetry makes v = 0 exactly). Signed: a linear axis with its 0 marked."),
     Entry("curve_by_axis", "workflows/sine.toml", "curve_D_vs_frequency_by_depth",
           "D(f) per value of a grid axis",
           "The sine floor at two depths: one curve per value of the grid axis, in a sequential "
@@ -82,7 +82,7 @@ ENTRIES = (
 
 def gallery_study(scene: str | Path):
     """The shipped ``scene`` (a path from the repository's root) at :data:`GALLERY_SIZE`."""
-    from ..workflow.load import load_workflow
+    from .workflow.load import load_workflow
 
     study = load_workflow(ROOT / scene)
     acc = replace(study.accuracy, target_ci=None, max_particles=None, **GALLERY_SIZE)
@@ -92,7 +92,7 @@ def gallery_study(scene: str | Path):
 def run_scenes(work: str | Path, workers: int = 2, echo=print) -> dict[str, Path]:
     """Run (or resume) each scene of :data:`ENTRIES` at gallery size in ``work``; returns
     {scene: store path}."""
-    from ..api import run_study
+    from .api import run_study
 
     stores: dict[str, Path] = {}
     for scene in dict.fromkeys(e.scene for e in ENTRIES):
@@ -105,24 +105,27 @@ def run_scenes(work: str | Path, workers: int = 2, echo=print) -> dict[str, Path
     return stores
 
 
-def _size(ds) -> str:
-    """``"<points> points x <N> particles x <t> s"`` of a reduced Dataset."""
+def _size(ds) -> tuple[str, float]:
+    """(``"<points> points x <N> particles (all families) x <t> s"``, the particle-seconds
+    simulated) of a reduced Dataset."""
     import numpy as np
 
     points = int(ds["present"].any("family").sum()) if "present" in ds else 0
     n = np.asarray(ds["n_particles"].values, float) if "n_particles" in ds else np.array([])
     t = np.asarray(ds["t_max"].values, float) if "t_max" in ds else np.array([])
-    n, t = n[np.isfinite(n)], t[np.isfinite(t)]
-    return (f"{points} points × {int(n.max()) if n.size else '?'} particles × "
+    ok = np.isfinite(n) & np.isfinite(t)
+    n, t = n[ok], t[ok]
+    text = (f"{points} points × {int(n.max()) if n.size else '?'} particles (all families) × "
             f"{t.max() if t.size else float('nan'):g} s")
+    return text, float((n * t).sum())
 
 
 def write_gallery(stores: dict[str, Path], docs: str | Path, entries=ENTRIES) -> Path:
-    """Draw every figure of each store, copy each entry's to ``docs/gallery/<kind>.png`` and
+    """Draw each entry's figure of its store, copy it to ``docs/gallery/<kind>.png`` and
     write ``docs/gallery.md``; returns the page's path.  Raises FileNotFoundError naming an
     entry whose figure ``bbb plot`` did not draw."""
-    from ..api import reduced_dataset
-    from .figures import plot_dataset
+    from .api import reduced_dataset
+    from .plot.figures import plot_dataset
 
     docs = Path(docs)
     images = docs / "gallery"
@@ -131,30 +134,32 @@ def write_gallery(stores: dict[str, Path], docs: str | Path, entries=ENTRIES) ->
     for scene, store in stores.items():
         ds = reduced_dataset(store)
         out = Path(store).with_suffix("")
-        drawn[scene] = {p.stem: p for p in plot_dataset(ds, out, formats=("png",))}
+        wanted = {e.figure for e in entries if e.scene == scene}
+        drawn[scene] = {p.stem: p for p in plot_dataset(ds, out, formats=("png",), names=wanted)}
         sizes[scene] = _size(ds)
+    total = sum(cost for _, cost in sizes.values())
     lines = ["# Gallery", "",
              "One figure of each kind `bbb plot STORE` draws, from shipped scenes run small "
              "(every one of them: " + ", ".join(f"{k} = {v:g}" for k, v in GALLERY_SIZE.items())
              + "; their frequencies and grids as shipped), so the numbers are a draft's, not "
-             "results. Made by `python -m pipeline.plot.gallery`; every figure is titled with "
-             "its scene and what the scene fixes.", ""]
+             "results. Made by `python -m pipeline.gallery`, which simulates "
+             f"{total:,.0f} particle-seconds in all; every figure is titled with its scene and "
+             "what the scene fixes.", ""]
     for e in entries:
         src = drawn.get(e.scene, {}).get(e.figure)
         if src is None:
-            raise FileNotFoundError(f"{e.scene}: bbb plot drew no {e.figure}.png (drew: "
-                                    + ", ".join(sorted(drawn.get(e.scene, {}))) + ")")
+            raise FileNotFoundError(f"{e.scene}: bbb plot draws no {e.figure}.png")
         shutil.copyfile(src, images / f"{e.kind}.png")
         lines += [f"## {e.title}", "", f"![{e.title}](gallery/{e.kind}.png)", "",
                   f"{e.text}", "",
-                  f"Scene `{e.scene}` ({sizes[e.scene]}), file `{e.figure}.png`.", ""]
+                  f"Scene `{e.scene}` ({sizes[e.scene][0]}), file `{e.figure}.png`.", ""]
     page = docs / "gallery.md"
     page.write_text("\n".join(lines), encoding="utf-8")
     return page
 
 
 def main(argv: list[str] | None = None) -> int:
-    p = argparse.ArgumentParser(prog="python -m pipeline.plot.gallery",
+    p = argparse.ArgumentParser(prog="python -m pipeline.gallery",
                                 description="run the gallery's scenes small and write "
                                             "docs/gallery.md with one figure of each kind")
     p.add_argument("--work", default="runs/gallery", help="where the stores go (kept)")
