@@ -33,7 +33,7 @@ def scene_attrs(study) -> dict[str, str | float]:
     fixes: netCDF-safe strings and numbers (module docstring)."""
     out: dict[str, str | float] = {"scene": study.name, "scene_preset": study.preset}
     axes = {a: v for a, v in study.grid}
-    fixed = {k: v for k, v in study.overrides.items() if k not in axes}
+    fixed = dict(study.overrides)  # [params] keys: a key is never in both it and [grid]
     # a grid axis of one value is fixed, unless it applies under some of another axis's
     # values only (mu under Coulomb): the models' names say it there
     fixed.update({a: v[0] for a, v in axes.items() if len(v) == 1

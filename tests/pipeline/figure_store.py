@@ -156,7 +156,7 @@ initial = "rest"
 preset = "draft"
 n_particles = 8
 chunk_size = 8
-t_max = 5.0
+t_max = 10.0
 n_resamples = 50
 
 [observables.positions]
@@ -181,7 +181,7 @@ initial = "rest"
 preset = "draft"
 n_particles = 8
 chunk_size = 8
-t_max = 5.0
+t_max = 10.0
 n_resamples = 50
 
 [observables.positions]

@@ -43,7 +43,7 @@ def test_write_gallery_copies_each_entrys_figure_and_names_the_scene_and_size(st
     for e in entries:
         assert_png_drawn(tmp_path / "gallery" / f"{e.kind}.png")
         assert f"](gallery/{e.kind}.png)" in page and f"Scene `{e.scene}`" in page
-    assert "6 points × 8 particles (all families) × 5 s" in page  # the sawtooth: 3 f x 2 peaks
+    assert "6 points × 8 particles (all families) × 10 s" in page  # the sawtooth: 3 f x 2 peaks
 
 
 def test_an_entry_whose_figure_bbb_plot_did_not_draw_is_named(stores, tmp_path):

@@ -97,6 +97,19 @@ def test_marked_cells_are_exactly_the_flagged_ones_each_flag_its_own_marker():
     assert legend == ["non-ergodic", "non-stationary", "not diffusive"]
 
 
+def test_one_flag_sits_at_its_cells_centre_and_two_side_by_side_within_the_cell():
+    ds = flag(reduced(), "ergodic", frequency=55.0, alpha=0.6)
+    ds = flag(flag(ds, "ergodic", frequency=80.0, alpha=0.5), "stationary", frequency=80.0,
+              alpha=0.5)
+    marks = _by_gid(plot_map(ds), Line2D)
+    cf = cells(ds["frequency"].values)
+    lo55, hi55, lo80, hi80 = cf.lo[1], cf.hi[1], cf.lo[4], cf.hi[4]
+    assert sorted(marks["flag:ergodic"].get_xdata()) == pytest.approx(
+        [(lo55 + hi55) / 2, lo80 + (hi80 - lo80) / 3])
+    assert list(marks["flag:stationary"].get_xdata()) == pytest.approx(
+        [lo80 + 2 * (hi80 - lo80) / 3])
+
+
 def test_a_flag_marker_is_black_edged_white_so_it_shows_on_the_darkest_and_lightest_colour():
     fig = plot_map(flag(reduced(), "ergodic", frequency=55.0, alpha=0.6))
     m = _by_gid(fig, Line2D)["flag:ergodic"]

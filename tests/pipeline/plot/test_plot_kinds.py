@@ -26,8 +26,8 @@ SCENES = {
     "tiny_figures": ["tiny_figures (klages2004)", "N = 16", "= 12 s"],
     "tiny_map": ["tiny_map (klages2004)", "tilt = 2°", "N = 16", "= 10 s"],
     "tiny_sawtooth": ["tiny_sawtooth (klages2004)", "floor = sawtooth", "depth = 0.3 mm",
-                      "N = 8", "= 5 s"],
-    "tiny_sine": ["tiny_sine (klages2004)", "floor = sine", "depth = 0.3 mm", "N = 8", "= 5 s"],
+                      "N = 8", "= 10 s"],
+    "tiny_sine": ["tiny_sine (klages2004)", "floor = sine", "depth = 0.3 mm", "N = 8", "= 10 s"],
 }
 #: the one label of each quantity drawn (units: mm, s, Hz)
 LABELS = {"D": "D (mm²/s)", "D_family": "D (mm²/s)", "v": "v (mm/s)",
