@@ -262,8 +262,11 @@ def reduced_dataset(path: str | os.PathLike, names: list[str] | None = None) -> 
     ``present`` of :func:`open_study` (every variable NaN, text ``""``, at an absent
     point), so the two agree value for value; the scene's fixed parameters (tilt, throw,
     contact, alpha, ... where not an axis) as scalar coordinates with their units
-    (:func:`pipeline.tables.dataset.fixed_params`).  ``ds.to_netcdf(...)`` writes it (needs
-    the ``netcdf`` extra: ``pip install bbb[netcdf]``)."""
+    (:func:`pipeline.tables.dataset.fixed_params`); the attributes ``scene``,
+    ``scene_preset`` and ``fixed_<key>`` name the scene and what it fixes for the figures'
+    titles (:func:`pipeline.plot.titles.scene_attrs`).  ``ds.to_netcdf(...)`` writes it
+    (needs the ``netcdf`` extra: ``pip install bbb[netcdf]``)."""
+    from .plot.titles import scene_attrs
     from .store.study_store import StudyStore
     from .tables.catalog import tables
     from .tables.dataset import fixed_params, mask_absent, presence, tables_dataset
@@ -279,6 +282,7 @@ def reduced_dataset(path: str | os.PathLike, names: list[str] | None = None) -> 
                          "kernel_hash": attrs["kernel_hash"]})
     ds = mask_absent(ds, present)
     ds["present"] = _present_on(ds, present)
+    ds.attrs.update(scene_attrs(study))  # the scene and what it fixes: the figures' titles
     return ds.assign_coords({k: v for k, v in fixed_params(study).items()
                              if k not in ds.variables})
 

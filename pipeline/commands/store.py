@@ -43,8 +43,10 @@ def add_parsers(sub) -> None:
     v.add_argument("store", metavar="STORE")
     v.set_defaults(handler=cmd_verify)
 
-    g = sub.add_parser("plot", help="figures of a store: D(f) (v, D_drift) with CIs and flags "
-                                    "per family, heat maps over frequency x each grid axis")
+    g = sub.add_parser("plot", help="figures of a store, titled with the scene and what it "
+                                    "fixes: D(f) (v, D_drift) with CIs and flags per family, "
+                                    "contact models in one figure, heat maps over frequency x "
+                                    "each grid axis (docs/gallery.md)")
     g.add_argument("store", metavar="STORE")
     g.add_argument("--out", metavar="DIR", help="where the figures go (default: STORE's name "
                                                 "without .zarr, beside it, as bbb reduce)")

@@ -11,8 +11,11 @@ as a value: a small ``x`` on the lower edge of the axes marks its abscissa inste
 "estimator failed").  A point the map does not have (:func:`pipeline.plot.flags.absent`:
 ``present`` False) is drawn as nothing -- a gap in its line, legend "not computed (gap)" --
 and a line none of whose points is present (mu = 0.3 under stick) is not drawn at all.
+The value axis follows :mod:`pipeline.plot.scales` (log where D spans more than two decades,
+linear with a line at 0 for a signed quantity such as v); a figure made here is titled with the
+scene, what it fixes and the cut it shows (:func:`pipeline.plot.titles.figure_title`).
 Artists carry a ``gid`` (``"line:<hue>"``, ``"band:<hue>"``, ``"flag:<flag>:<hue>"``,
-``"failed"``) so they can be found again.
+``"failed"``, ``"zero"``) so they can be found again.
 """
 
 from __future__ import annotations
@@ -26,10 +29,12 @@ from matplotlib.lines import Line2D
 from matplotlib.transforms import blended_transform_factory
 
 from .flags import FAILED, FLAGS, NOT_COMPUTED, absent, failed, flagged
-from .labels import axis_label, value_label
+from .labels import DRIFT_NOTE, axis_label, value_label
+from .scales import set_axis_scale, value_scale
 from .style import COLUMN, STYLE, family_color, new_figure
+from .titles import figure_title
 
-__all__ = ["plot_curve", "hue_colors", "fixed_coords"]
+__all__ = ["plot_curve", "hue_colors"]
 
 
 def hue_colors(ds: xr.Dataset, hue: str | None, values) -> list:
@@ -45,13 +50,6 @@ def hue_colors(ds: xr.Dataset, hue: str | None, values) -> list:
         return [cmap(0.9 * i / (len(values) - 1)) for i in range(len(values))]
     cmap = colormaps["tab10"]
     return [cmap(i % 10) for i in range(len(values))]
-
-
-def fixed_coords(da: xr.DataArray, skip=()) -> str:
-    """The scalar coordinates a selection left on ``da`` (``ds.sel(beta=0.5)``), in words:
-    ``"β = 0.5"``; ``""`` if none."""
-    return ", ".join(value_label(da, c, da[c].item()) for c in da.coords
-                     if da[c].ndim == 0 and c not in skip and c not in da.dims)
 
 
 def _hue_of(da: xr.DataArray, along: str, hue: str | None) -> str | None:
@@ -79,6 +77,7 @@ def plot_curve(ds: xr.Dataset, along: str = "frequency", var: str = "D", *,
     ax -- the Axes to draw on; None: a new column-wide Figure in the house style
     ci -- ``"band"`` (shaded lo..hi), ``"bars"`` (error bars) or ``"none"``
 
+    A Figure made here (``ax`` None) is titled (module docstring).
     Returns the Figure drawn on (``ax.figure`` when ``ax`` is given), as every figure
     function of the package does: it is what is saved, and ``fig.axes`` holds the Axes.
     Raises ValueError if ``var`` varies along a dimension that is neither ``along`` nor
@@ -87,15 +86,21 @@ def plot_curve(ds: xr.Dataset, along: str = "frequency", var: str = "D", *,
     if ci not in ("band", "bars", "none"):
         raise ValueError(f"ci={ci!r}; allowed: 'band', 'bars', 'none'")
     with rc_context(STYLE):
-        if ax is None:
-            fig = new_figure(f"curve_{var}_vs_{along}", (COLUMN, 0.75 * COLUMN),
+        own = ax is None
+        if own:
+            fig = new_figure(f"curve_{var}_vs_{along}", (1.5 * COLUMN, 0.8 * COLUMN),
                              layout="constrained")
             ax = fig.add_subplot()
-        _draw(ds.sortby(along), along, var, ax, hue, ci)
+        hue = _draw(ds.sortby(along), along, var, ax, hue, ci)
+        if own:
+            note = DRIFT_NOTE if var in ("D", "D_family") and "D_drift" in ds.data_vars else ""
+            ax.figure.suptitle(figure_title(ds, ds[var], skip=(along, hue), note=note))
     return ax.figure
 
 
-def _draw(ds: xr.Dataset, along: str, var: str, ax: Axes, hue: str | None, ci: str) -> None:
+def _draw(ds: xr.Dataset, along: str, var: str, ax: Axes, hue: str | None,
+          ci: str) -> str | None:
+    """Draw the curves; returns the hue dimension used (None: one line)."""
     da = ds[var]
     hue = _hue_of(da, along, hue)
     values = list(ds[hue].values) if hue else [None]
@@ -104,7 +109,7 @@ def _draw(ds: xr.Dataset, along: str, var: str, ax: Axes, hue: str | None, ci: s
     bad = failed(ds, var)
     gone = absent(ds, var)
     flags = {f: flagged(ds, f, da) for f in FLAGS}
-    shown, gaps = set(), False
+    shown, gaps, drawn = set(), False, []
     for value, color in zip(values, colors, strict=True):
         pick = {hue: value} if hue else {}
         tag = "" if hue is None else str(value)
@@ -113,6 +118,7 @@ def _draw(ds: xr.Dataset, along: str, var: str, ax: Axes, hue: str | None, ci: s
             continue  # the map has no point on this line
         gaps = gaps or bool(off.any())
         y = np.where(off, np.nan, da.sel(pick).values.astype(float))
+        drawn.append(y)
         label = value_label(ds, hue, value) if hue else None
         ax.plot(x, y, "-", marker=".", ms=3, color=color, label=label, gid=f"line:{tag}")
         lo, hi = (ds[f"{var}{s}"].sel(pick).values.astype(float) if f"{var}{s}" in ds else None
@@ -144,11 +150,13 @@ def _draw(ds: xr.Dataset, along: str, var: str, ax: Axes, hue: str | None, ci: s
     if gaps:
         handles.append(Line2D([], [], ls="none"))
         labels.append(f"{NOT_COMPUTED} (gap)")
+    scale = value_scale(var, np.concatenate(drawn) if drawn else [])
+    set_axis_scale(ax, "y", scale)
+    if scale.signed:
+        ax.axhline(0.0, color="0.5", lw=0.5, ls=":", zorder=0, gid="zero")
     ax.set_xlabel(axis_label(ds, along))
     ax.set_ylabel(axis_label(ds, var))
-    title = fixed_coords(da, skip=(along, hue))
     if handles:
         ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0),
-                  borderaxespad=0.0, title=title or None)
-    elif title:
-        ax.set_title(title)
+                  borderaxespad=0.0)
+    return hue

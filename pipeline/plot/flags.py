@@ -1,17 +1,18 @@
 """The verdicts a point can be flagged by, and how each is drawn: a flag variable holds True
 (passed), False (flagged) or NaN / None (unknown: not flagged).  And which points are there at
 all: an absent point (:func:`absent`: the map does not have it, ``present`` False) is drawn as
-nothing and named "not computed" in the legend; a present point whose value is NaN
-(:func:`failed`) is named "estimator failed".
+nothing on a curve and hatched on a map, named "not computed" in the legend; a present point
+whose value is NaN (:func:`failed`) is named "estimator failed".
 
-=============  ===================  =========================  ===========
-flag variable  said in the legend   marker on a curve (open)   map hatch
-=============  ===================  =========================  ===========
-ergodic        non-ergodic          circle ``o``               ``////``
-stationary     non-stationary       square ``s``               ``\\\\``
-diffusive      not diffusive        diamond ``D``              ``..``
-steady         accelerating         triangle ``^``             ``xx``
-=============  ===================  =========================  ===========
+=============  ===================  ===========================================
+flag variable  said in the legend   its marker: open on a curve, black with a
+                                    white edge on a map (shows on every colour)
+=============  ===================  ===========================================
+ergodic        non-ergodic          circle ``o``
+stationary     non-stationary       square ``s``
+diffusive      not diffusive        diamond ``D``
+steady         accelerating         triangle ``^``
+=============  ===================  ===========================================
 
 ``steady`` is False where a conveyor's drift accelerates (the table's v_status
 "accelerating", :mod:`bbb.analysis.transport`): v there is a window's mean velocity, not a
@@ -31,21 +32,20 @@ __all__ = ["Flag", "FLAGS", "flagged", "failed", "present", "absent", "NOT_COMPU
 
 @dataclass(frozen=True)
 class Flag:
-    """One verdict: its variable, what a False means in words, its marker and its hatch."""
+    """One verdict: its variable, what a False means in words, and its marker."""
     var: str
     meaning: str
     marker: str
-    hatch: str
 
 
 #: what the legend says of an absent point (the map does not have it: nothing drawn) and of a
 #: present point whose value is NaN (its estimator failed)
 NOT_COMPUTED, FAILED = "not computed", "estimator failed"
 
-FLAGS = (Flag("ergodic", "non-ergodic", "o", "////"),
-         Flag("stationary", "non-stationary", "s", "\\\\\\\\"),
-         Flag("diffusive", "not diffusive", "D", ".."),
-         Flag("steady", "accelerating", "^", "xx"))
+FLAGS = (Flag("ergodic", "non-ergodic", "o"),
+         Flag("stationary", "non-stationary", "s"),
+         Flag("diffusive", "not diffusive", "D"),
+         Flag("steady", "accelerating", "^"))
 
 
 def _is_false(x) -> bool:

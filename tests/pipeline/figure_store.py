@@ -127,3 +127,75 @@ def assert_png_drawn(path, min_size=(400, 300)) -> None:
     ink = a < 200
     assert ink.mean() > 0.01, f"{path}: only {100 * ink.mean():.2f} % of pixels drawn"
     assert a.std() > 10.0, f"{path}: nearly uniform image"
+
+
+# The new floor shapes, level and vibrated vertically: a sawtooth whose peak sits 0.3 or 0.5 of
+# the period from its left valley (the off-centre teeth drive a drift v without tilt: a signed
+# map), and a sine without a grid (a D(f) curve).  Three frequencies: a map drawn to scale.
+TINY_FLOORS = {
+    "sawtooth": """\
+[study]
+name = "tiny_sawtooth"
+seed = 3
+
+[params]
+preset = "klages2004"
+floor = "sawtooth"
+depth = 0.3
+
+[grid]
+peak = [0.3, 0.5]
+
+[frequencies]
+values = [60.0, 70.0, 80.0]
+
+[families.rest]
+initial = "rest"
+
+[accuracy]
+preset = "draft"
+n_particles = 8
+chunk_size = 8
+t_max = 10.0
+n_resamples = 50
+
+[observables.positions]
+""",
+    "sine": """\
+[study]
+name = "tiny_sine"
+seed = 4
+
+[params]
+preset = "klages2004"
+floor = "sine"
+depth = 0.3
+
+[frequencies]
+values = [60.0, 70.0, 80.0]
+
+[families.rest]
+initial = "rest"
+
+[accuracy]
+preset = "draft"
+n_particles = 8
+chunk_size = 8
+t_max = 10.0
+n_resamples = 50
+
+[observables.positions]
+"""}
+
+
+def tiny_floor(tmp_path_factory, floor: str) -> str:
+    """The path of the TINY_FLOORS[floor] store, run once per session (one worker)."""
+    from pipeline.api import run_study
+
+    base = Path(tmp_path_factory.getbasetemp()) / f"tiny_{floor}"
+    store = base / f"tiny_{floor}.zarr"
+    if not (base / "ready").exists():
+        base.mkdir(parents=True, exist_ok=True)
+        run_study(TINY_FLOORS[floor], store, workers=1, echo=lambda s: None)
+        (base / "ready").write_text("ok\n")
+    return str(store)

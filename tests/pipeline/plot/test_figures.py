@@ -56,12 +56,15 @@ def test_two_grid_axes_give_a_cut_per_value_of_the_other_axis(tmp_path):
                      "map_D_frequency-mu_alpha=0.5", "map_D_frequency-mu_alpha=0.8"}
 
 
-def test_a_cut_of_a_real_map_without_a_point_is_not_drawn(tmp_path_factory, tmp_path):
+def test_a_real_contact_map_is_one_axis_of_models_without_its_absent_lines(tmp_path_factory,
+                                                                           tmp_path):
     ds = reduced_dataset(tiny_map(tmp_path_factory))
     names = {p.stem for p in plot_dataset(ds, tmp_path, formats=("png",))}
     assert not ds["present"].sel(contact="stick", mu=0.3).any()  # mu is Coulomb's
-    assert "curve_D_family_vs_frequency_contact=stick_mu=0.3" not in names
-    assert "curve_D_family_vs_frequency_contact=stick_mu=0" in names
+    assert {n for n in names if n.startswith("curve_D_family")} == {
+        "curve_D_family_vs_frequency_contact=stick", "curve_D_family_vs_frequency_contact=slide",
+        "curve_D_family_vs_frequency_contact=coulomb_mu=0.3"}
+    assert "curve_D_vs_frequency_by_contact" in names and not any("by_mu" in n for n in names)
 
 
 def test_a_cut_whose_points_all_failed_is_drawn(tmp_path):
