@@ -53,18 +53,27 @@ def add_parsers(sub) -> None:
 
 
 def cmd_plan(args) -> int:
-    from ..execute.pilot import plan_rates
+    from ..execute.pilot import cheaper_than_pilot, others_runnable, plan_rates
+    from ..execute.plan import loaded_wall, predict
     from ..execute.scale_plan import plan_report
 
     study = load(args.workflow)
+    why = cheaper_than_pilot(study) if args.pilot_particles is None else None
+    if why is not None:
+        print(why)
+        return 0
     try:
         rates = plan_rates(study, args.pilot_particles, args.pilot_lines, args.kernel_rate,
                            echo=lambda m: print(m, file=sys.stderr))
     except ValueError as e:  # a --kernel-rate file that is no kernel benchmark table
         raise UsageError(str(e)) from None
-    print(plan_report(study, rates, list(args.workers or (os.cpu_count() or 1,)),
-                      kind=args.cluster or "local", cores=os.cpu_count() or 1,
+    workers = list(args.workers or (os.cpu_count() or 1,))
+    cores = os.cpu_count() or 1
+    print(plan_report(study, rates, workers, kind=args.cluster or "local", cores=cores,
                       per_job=args.cores_per_job))
+    if args.cluster is None:
+        plan = predict(study, rates, workers[0])
+        print(loaded_wall(plan, others_runnable(cores, rates.busy), cores))
     return 0
 
 

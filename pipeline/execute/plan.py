@@ -5,7 +5,8 @@ The cost model, and where each number comes from:
 * Collisions per particle-second c(f, family) and the kernel rate r (collisions per
   CPU-second of one core): a :class:`Rates` table, measured by a pilot (pipeline/execute/pilot.py)
   or with r from a ``benchmarks/perf/kernel.py`` table.  The prediction is for the cores being
-  ours: on a shared machine the wall time grows by the load.
+  ours: on a shared machine the wall time grows by the load (:func:`loaded_wall`: the
+  workers' share of the cores among the other runnable processes).
 * Task CPU = chunk_size x t_max x c / r; a task's wall adds the per-task overhead
   PER_TASK_S (store write + dispatch, measured) and the run adds START_UP_S (LocalCluster,
   numba cache load, store creation).  Wall = START_UP_S + the makespan of the tasks placed
@@ -37,7 +38,7 @@ from statistics import NormalDist
 from ..workflow.identity import f_key
 from ..workflow.study import Study
 
-__all__ = ["Cell", "Rates", "Overheads", "TaskRow", "Plan", "predict", "plan_table",
+__all__ = ["Cell", "Rates", "Overheads", "TaskRow", "Plan", "predict", "plan_table", "loaded_wall",
            "particles_needed", "makespan", "CI_LAW", "POOL_MIN", "BAND_EDGES"]
 
 #: relative 95 % CI half-width of D times sqrt(N), measured at f >= 58 Hz (docs/accuracy.md):
@@ -109,6 +110,9 @@ class Rates:
     #: a grid's probed lines: cells keyed (f in mHz, family, grid values); the numeric axes'
     #: (lo, hi), by which the nearest probed line of a point is found
     scales: tuple[tuple[str, float, float], ...] = ()
+    #: (CPU s, wall s) of the pilot's simulation in this process, where it ran now (not read
+    #: from the cache): the share of a core a process of ours gets on this machine now
+    busy: tuple[float, float] = (0.0, 0.0)
 
     def cell(self, f: float, family: str, grid: tuple = ()) -> Cell:
         """The pilot cell for (f, family) at the grid values ``grid`` (() without a grid):
@@ -370,3 +374,17 @@ def plan_table(plan: Plan) -> str:
     lines.append(f"pilot: {plan.pilot_cpu_s:.1f} CPU-s of simulation, "
                  f"{100 * plan.pilot_cpu_s / total_cpu:.1f} % of the run's")
     return "\n".join(lines)
+
+
+def loaded_wall(plan: Plan, others: float | None, cores: int) -> str:
+    """The plan's wall time on a machine shared with ``others`` runnable processes
+    (:func:`pipeline.execute.pilot.others_runnable`, measured now), as a line: each of the plan's workers gets
+    g = min(1, cores / (others + workers)) of a core (the kernel's fair share among runnable
+    processes), so every part of the run -- start-up and tasks, all CPU-bound -- takes 1 / g
+    as long.  A load that changes during the run is not foreseen."""
+    if others is None:
+        return "at this machine's load: unknown (no load average on this system)"
+    share = min(1.0, cores / (others + plan.workers))
+    return (f"at this machine's load now ({others:.1f} runnable processes of others on {cores} "
+            f"cores, measured now): each worker gets {share:.2f} of a core -> wall "
+            f"{plan.wall_s / share:.0f} s ({plan.wall_s / share / 60:.1f} min)")

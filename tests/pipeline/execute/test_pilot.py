@@ -147,3 +147,62 @@ def test_a_scene_with_a_ci_target_pilots_more_particles_than_a_fixed_size_one():
     assert pilot.pilot_particles(load_scene("dissipation_r25")) == pilot.PILOT_PARTICLES_TARGET
     assert pilot.pilot_particles(load_scene("protocol")) == pilot.PILOT_PARTICLES
     assert pilot.PILOT_PARTICLES_TARGET > pilot.PILOT_PARTICLES
+
+
+@pytest.mark.parametrize("n_particles, expected", [(2, 0), (3, 0), (4, 1), (8, 2), (16, 4),
+                                                   (31, 7), (32, 8), (512, 8)])
+def test_a_fixed_size_pilot_simulates_at_most_a_quarter_of_its_run(n_particles, expected):
+    """The pilot runs n particles at every (point, family) over the run's t_max: n / N of the
+    run; the default is 8, shrunk to floor(N / 4), none below 4 particles."""
+    study = parse_workflow(PLAN_TINY.replace("n_particles = 128", f"n_particles = {n_particles}")
+                           .replace("chunk_size = 32", "chunk_size = 1"))
+    n = pilot.pilot_particles(study)
+    assert n == expected
+    assert n / n_particles <= pilot.PILOT_MAX_SHARE
+    assert (pilot.cheaper_than_pilot(study) is None) == (n >= 1)
+
+
+def test_a_target_scene_is_never_cheaper_than_its_pilot():
+    """A target scene's run size is what its pilot predicts: it keeps its pilot."""
+    from pipeline.workflow.scenes import load_scene
+
+    study = load_scene("dissipation_r25")
+    assert study.accuracy.adaptive and pilot.cheaper_than_pilot(study) is None
+
+
+def test_others_are_counted_from_the_share_of_a_core_the_pilot_got():
+    """1 CPU-s in 4 s of wall on 2 cores: a quarter of a core = 2 / (others + 1), so 7 others;
+    a share above 0.95 says fewer than the cores: at most 1 on 2 cores."""
+    assert pilot.others_runnable(2, busy=(1.0, 4.0)) == pytest.approx(7.0)
+    assert 0.0 <= pilot.others_runnable(2, busy=(3.9, 4.0)) <= 1.0
+
+
+def test_the_wall_at_load_is_the_plans_over_each_workers_share_of_a_core():
+    """A 10 s plan on 2 workers, 6 others on 2 cores: each worker gets 2 / 8 of a core, 40 s;
+    no others: the plan's own 10 s."""
+    from types import SimpleNamespace
+
+    from pipeline.execute.plan import loaded_wall
+
+    plan = SimpleNamespace(wall_s=10.0, workers=2)
+    assert "0.25 of a core -> wall 40 s" in loaded_wall(plan, 6.0, 2)
+    assert "1.00 of a core -> wall 10 s" in loaded_wall(plan, 0.0, 2)
+
+
+def test_each_pilot_line_is_printed_once_naming_its_grid_line(tmp_path, monkeypatch, capsys):
+    """A map of 2 contact models: 2 pilot lines on stderr, each naming its model, none twice;
+    a second plan reads the cache and pilots nothing."""
+    from pipeline.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    wf = tmp_path / "m.toml"
+    wf.write_text(PLAN_TINY.replace("values = [54.0, 55.0, 60.0, 72.0]", "values = [60.0]")
+                  .replace("t_max = 30.0", "t_max = 10.0").replace("n_particles = 128", "n_particles = 8")
+                  .replace("chunk_size = 32", "chunk_size = 8")
+                  .replace("[families.rest]", '[grid]\ncontact = ["stick", "slide"]\n\n[families.rest]'))
+    assert main(["plan", str(wf), "--workers", "2"]) == 0
+    lines = [ln for ln in capsys.readouterr().err.splitlines() if ": pilot of " in ln]
+    assert len(lines) == len(set(lines)) == 2
+    assert [("contact=stick" in ln, "contact=slide" in ln) for ln in lines] == [(1, 0), (0, 1)]
+    assert main(["plan", str(wf), "--workers", "2"]) == 0
+    assert ": pilot of " not in capsys.readouterr().err
