@@ -162,14 +162,6 @@ def test_a_fixed_size_pilot_simulates_at_most_a_quarter_of_its_run(n_particles, 
     assert (pilot.cheaper_than_pilot(study) is None) == (n >= 1)
 
 
-def test_a_target_scene_is_never_cheaper_than_its_pilot():
-    """A target scene's run size is what its pilot predicts: it keeps its pilot."""
-    from pipeline.workflow.scenes import load_scene
-
-    study = load_scene("dissipation_r25")
-    assert study.accuracy.adaptive and pilot.cheaper_than_pilot(study) is None
-
-
 def test_others_are_counted_from_the_share_of_a_core_the_pilot_got():
     """1 CPU-s in 4 s of wall on 2 cores: a quarter of a core = 2 / (others + 1), so 7 others;
     a share above 0.95 says fewer than the cores: at most 1 on 2 cores."""
