@@ -130,7 +130,8 @@ def test_auto_pilots_every_line_of_a_map_when_that_is_cheap(n_particles, every, 
 
 def test_the_docs_quote_the_plans_settings():
     """docs/maps.md and docs/accuracy.md state the share below which every line is piloted
-    and the fewest cells a line's CI law is pooled from: the code's values."""
+    and the fewest cells a line's CI law is pooled from, pipeline/README.md the most of a run
+    a pilot simulates: the code's values."""
     from pathlib import Path
 
     from pipeline.execute.plan import POOL_MIN
@@ -138,6 +139,11 @@ def test_the_docs_quote_the_plans_settings():
     docs = Path(__file__).resolve().parents[3] / "docs"
     assert f"at most {100 * pilot.PILOT_SHARE:g} % of the run" in (docs / "maps.md").read_text()
     assert f"fewer than {POOL_MIN})" in (docs / "accuracy.md").read_text()
+    readme = (docs.parent / "pipeline" / "README.md").read_text()
+    assert (f"at most {100 * pilot.PILOT_MAX_SHARE:g} % of the run ({pilot.PILOT_PARTICLES} "
+            f"particles per point, fewer below {pilot.PILOT_PARTICLES / pilot.PILOT_MAX_SHARE:g})"
+            in readme)
+    assert f"fewer than {1 / pilot.PILOT_MAX_SHARE:g} particles per point" in readme
 
 
 def test_a_scene_with_a_ci_target_pilots_more_particles_than_a_fixed_size_one():
