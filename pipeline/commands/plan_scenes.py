@@ -53,7 +53,7 @@ def add_parsers(sub) -> None:
 
 
 def cmd_plan(args) -> int:
-    from ..execute.pilot import cheaper_than_pilot, others_runnable, plan_rates
+    from ..execute.pilot import cheaper_than_pilot, machine_share, plan_rates
     from ..execute.plan import loaded_wall, predict
     from ..execute.scale_plan import plan_report
 
@@ -73,7 +73,7 @@ def cmd_plan(args) -> int:
                       per_job=args.cores_per_job))
     if args.cluster is None:
         plan = predict(study, rates, workers[0])
-        print(loaded_wall(plan, others_runnable(cores, rates.busy), cores))
+        print(loaded_wall(plan, machine_share(rates.busy), cores))
     return 0
 
 

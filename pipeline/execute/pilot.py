@@ -39,11 +39,11 @@ from pathlib import Path
 from ..workflow.identity import PILOT_CHUNK, f_key, pilot_seed  # noqa: F401
 from ..workflow.sanity import check_scene
 from ..workflow.study import Study
-from .plan import Cell, Rates
+from .plan import Cell, MachineShare, Rates
 
 __all__ = ["pilot_rates", "probe_lines", "pilot_share", "benchmark_rate", "plan_rates",
            "PILOT_PARTICLES", "PILOT_PARTICLES_TARGET", "PILOT_SHARE", "PILOT_MAX_SHARE",
-           "pilot_particles", "cheaper_than_pilot", "others_runnable", "TIMING_FLOOR_S",
+           "pilot_particles", "cheaper_than_pilot", "machine_share", "TIMING_FLOOR_S",
            "SHARE_PROBE_S"]
 
 #: pilot particles per (frequency, family) of a fixed-size scene, whose cost is its collision rates
@@ -67,7 +67,7 @@ PILOT_SHARE = 0.05
 #: particles is cheaper than a pilot of one particle is worth: `bbb plan` says so and does
 #: not pilot it; below PILOT_PARTICLES / PILOT_MAX_SHARE particles the pilot shrinks
 PILOT_MAX_SHARE = 0.25
-#: how long `bbb plan` measures the share of a core one process gets now, s (others_runnable)
+#: how long `bbb plan` measures the share of a core one process gets now, s (machine_share)
 SHARE_PROBE_S = 1.5
 #: a cached pilot older than its format is recomputed (2: cells hold cv2, the per-particle spread)
 CACHE_VERSION = 2
@@ -262,16 +262,14 @@ def pilot_share(study: Study, rates: Rates) -> float:
     return pilot / plan.collisions if plan.collisions else 1.0
 
 
-def others_runnable(cores: int, busy: tuple[float, float] = (0.0, 0.0),
-                    seconds: float = SHARE_PROBE_S) -> float | None:
-    """How many processes of others compete for the ``cores`` now, from the share s of a
-    core one process of ours gets (its CPU time over the wall time): the pilot's simulation
-    that just ran (``busy``: CPU s, wall s; :attr:`Rates.busy`), if it lasted at least
-    ``seconds``, else a spin of ``seconds``.  The kernel shares the cores fairly among
-    runnable processes, so s = cores / (others + 1) gives others.  A share near 1 (> 0.95)
-    only says others < cores: then the 1-minute load average (less this process) stands in,
-    at most cores - 1; None where the OS has neither.  The CPU a process gets is what counts,
-    not the load average, which also counts processes waiting on the disk."""
+def machine_share(busy: tuple[float, float] = (0.0, 0.0),
+                  seconds: float = SHARE_PROBE_S) -> MachineShare:
+    """What a run would get of this machine now (:class:`~pipeline.execute.plan.MachineShare`):
+    the share of a core one process of ours gets -- its CPU time over the wall time of the
+    pilot's simulation that just ran (``busy``: CPU s, wall s; :attr:`Rates.busy`), if it
+    lasted at least ``seconds``, else of a spin of ``seconds`` -- the 1-minute load average,
+    and whether the kernel shares the CPU between sessions before processes (Linux's
+    autogroup, /proc/sys/kernel/sched_autogroup_enabled)."""
     if busy[1] >= seconds:
         share = busy[0] / busy[1]
     else:
@@ -279,13 +277,15 @@ def others_runnable(cores: int, busy: tuple[float, float] = (0.0, 0.0),
         while time.perf_counter() - t0 < seconds:
             sum(range(1000))
         share = (time.thread_time() - c0) / (time.perf_counter() - t0)
-    if share <= 0.95:
-        return cores / share - 1
     try:
         load = os.getloadavg()[0]
     except (AttributeError, OSError):
-        return None
-    return min(max(0.0, load - 1), cores - 1)
+        load = None
+    try:
+        grouped = Path("/proc/sys/kernel/sched_autogroup_enabled").read_text().strip() == "1"
+    except OSError:
+        grouped = False
+    return MachineShare(min(1.0, share), load, grouped)
 
 
 def plan_rates(study: Study, particles: int | None, lines: str, kernel_rate: str | None,

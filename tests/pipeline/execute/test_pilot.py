@@ -168,23 +168,42 @@ def test_a_fixed_size_pilot_simulates_at_most_a_quarter_of_its_run(n_particles, 
     assert (pilot.cheaper_than_pilot(study) is None) == (n >= 1)
 
 
-def test_others_are_counted_from_the_share_of_a_core_the_pilot_got():
-    """1 CPU-s in 4 s of wall on 2 cores: a quarter of a core = 2 / (others + 1), so 7 others;
-    a share above 0.95 says fewer than the cores: at most 1 on 2 cores."""
-    assert pilot.others_runnable(2, busy=(1.0, 4.0)) == pytest.approx(7.0)
-    assert 0.0 <= pilot.others_runnable(2, busy=(3.9, 4.0)) <= 1.0
+def test_the_share_of_a_core_is_the_pilots_cpu_over_its_wall_time():
+    """1 CPU-s in 4 s of wall: a quarter of a core."""
+    assert pilot.machine_share(busy=(1.0, 4.0)).share == pytest.approx(0.25)
 
 
-def test_the_wall_at_load_is_the_plans_over_each_workers_share_of_a_core():
-    """A 10 s plan on 2 workers, 6 others on 2 cores: each worker gets 2 / 8 of a core, 40 s;
-    no others: the plan's own 10 s."""
+def _plan(start_up=4.0, makespan=6.0, workers=2):
     from types import SimpleNamespace
 
-    from pipeline.execute.plan import loaded_wall
+    return SimpleNamespace(wall_s=start_up + makespan, makespan=makespan, workers=workers,
+                           overheads=SimpleNamespace(start_up=start_up))
 
-    plan = SimpleNamespace(wall_s=10.0, workers=2)
-    assert "0.25 of a core -> wall 40 s" in loaded_wall(plan, 6.0, 2)
-    assert "1.00 of a core -> wall 10 s" in loaded_wall(plan, 0.0, 2)
+
+def test_sessions_shared_fairly_give_the_runs_workers_together_the_pilots_share():
+    """Autogroup: one process got 0.25 of a core, so the run's session gets 0.25 cores in all:
+    start-up 4 s / 0.25 = 16 s, 2 workers x 6 s of tasks / 0.25 = 48 s: 64 s."""
+    from pipeline.execute.plan import MachineShare, loaded_wall
+
+    assert loaded_wall(_plan(), MachineShare(0.25, 9.0, True), 2).endswith("-> wall 64 s (1.1 min)")
+
+
+def test_processes_shared_fairly_give_each_worker_its_own_share():
+    """Per process: 0.25 of a core = 2 / (others + 1), 7 others; each of 2 workers gets
+    2 / 9 of a core: the plan's 10 s x 4.5 = 45 s."""
+    from pipeline.execute.plan import MachineShare, loaded_wall
+
+    line = loaded_wall(_plan(), MachineShare(0.25, 9.0, False), 2)
+    assert "7.0 runnable processes of others" in line and line.endswith("-> wall 45 s (0.8 min)")
+
+
+def test_a_whole_core_counts_the_others_from_the_load_average():
+    """One process got a whole core: the load average 1.6 less this process, 0.6 others, each
+    of 2 workers 2 / 2.6 of a core: 10 s x 1.3 = 13 s; no others: the plan's own 10 s."""
+    from pipeline.execute.plan import MachineShare, loaded_wall
+
+    assert loaded_wall(_plan(), MachineShare(1.0, 1.6, True), 2).endswith("-> wall 13 s (0.2 min)")
+    assert loaded_wall(_plan(), MachineShare(1.0, 0.5, True), 2).endswith("-> wall 10 s (0.2 min)")
 
 
 def test_each_pilot_line_is_printed_once_naming_its_grid_line(tmp_path, monkeypatch, capsys):
