@@ -7,7 +7,7 @@ from __future__ import annotations
 import os
 import sys
 
-from ..execute.pilot import PILOT_PARTICLES, PILOT_PARTICLES_TARGET, PILOT_SHARE
+from ..execute.pilot import PILOT_MAX_SHARE, PILOT_PARTICLES, PILOT_PARTICLES_TARGET, PILOT_SHARE
 from .common import WORKFLOW_HELP, UsageError, load, positive_int, positive_ints
 
 __all__ = ["add_parsers", "cmd_plan", "cmd_scenes", "scene_cost", "study_cost"]
@@ -15,7 +15,8 @@ __all__ = ["add_parsers", "cmd_plan", "cmd_scenes", "scene_cost", "study_cost"]
 
 def add_parsers(sub) -> None:
     pl = sub.add_parser("plan", help="predict CPU and wall time of a workflow before it runs "
-                                     "(a cached pilot of a few particles; pipeline/execute/pilot.py)")
+                                     "(a cached pilot of a few particles; pipeline/execute/pilot.py), "
+                                     "and its wall time at this machine's load now")
     pl.add_argument("workflow", metavar="WORKFLOW", help=WORKFLOW_HELP)
     pl.add_argument("--workers", metavar="N[,N...]", type=positive_ints,
                     help="worker counts, e.g. 2,8,64,256: the table at the first, and each "
@@ -27,7 +28,9 @@ def add_parsers(sub) -> None:
                          "run, else the corner and centre lines, the others costed from them "
                          "(auto, default); the corner and centre lines (probes); every line (all)")
     pl.add_argument("--pilot-particles", metavar="N", type=positive_int, default=None,
-                    help=f"pilot particles per (frequency, family) (default: {PILOT_PARTICLES}; "
+                    help=f"pilot particles per (frequency, family) (default: {PILOT_PARTICLES}, "
+                         f"at most {100 * PILOT_MAX_SHARE:g} %% of the scene's particles -- none below "
+                         f"{1 / PILOT_MAX_SHARE:g}: a scene cheaper than its pilot; "
                          f"{PILOT_PARTICLES_TARGET} for a scene with a CI target, whose cost "
                          "the particles' spread of D sets)")
     pl.add_argument("--kernel-rate", metavar="FILE",

@@ -1,17 +1,19 @@
 """The pilot of ``bbb plan``: what a workflow's cost is measured from, on this machine.
 
 * Collisions per particle-second, c(f, family): measured by a *pilot* -- a few particles
-  (default 8) over the workflow's own t_max, with its own parameters, numerics and family, at
-  every frequency.  The collision count of the kernel is exact and deterministic (same seeds,
-  same count on any machine), and c varies irregularly with f (1070 per particle-s in the
-  creeping band 50-58 Hz from rest, ~50 in the spirals; benchmarks/results/pipeline-*.txt),
-  so no interpolation over f from a table can stand in for it.  The pilot runs the whole
-  t_max because c is not constant in time (launched particles fall into creeping one by one
-  at 54-55 Hz; creeping from rest starts with a cascade), so a short pilot would be biased.
-  It is cheap because it is few particles: for Fig. 2, 8 x 50 s at 124 frequencies is
-  ~8 CPU-s, against 3409 CPU-s for the run.  Results are cached per (kernel, parameters,
-  numerics, t_max, family, frequency), so a second ``bbb plan`` -- or the same scene at
-  another preset with the same t_max and numerics -- runs nothing.
+  (default 8, at most PILOT_MAX_SHARE of a fixed-size scene's: a scene of fewer than 4
+  particles per point is cheaper than its pilot and not piloted) over the workflow's own
+  t_max, with its own parameters, numerics and family, at every frequency.  The collision
+  count of the kernel is exact and deterministic (same seeds, same count on any machine), and
+  c varies irregularly with f (1070 per particle-s in the creeping band 50-58 Hz from rest,
+  ~50 in the spirals; benchmarks/results/pipeline-*.txt), so no interpolation over f from a
+  table can stand in for it.  The pilot runs the whole t_max because c is not constant in time
+  (launched particles fall into creeping one by one at 54-55 Hz; creeping from rest starts
+  with a cascade), so a short pilot would be biased. It is cheap because it is few particles:
+  for Fig. 2, 8 x 50 s at 124 frequencies is ~8 CPU-s, against 3409 CPU-s for the run.
+  Results are cached per (kernel, parameters, numerics, t_max, family, frequency), so a second
+  ``bbb plan`` -- or the same scene at another preset with the same t_max and numerics -- runs
+  nothing.
 * Kernel rate r (collisions per CPU-second of one core): the pilot's collisions over its own
   process CPU time (not wall time, so a load from other users while planning does not enter
   it); a pilot of less than TIMING_FLOOR_S CPU-s is timed again until its repeats reach it,
