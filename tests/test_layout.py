@@ -370,6 +370,29 @@ def test_every_package_folder_ships_in_the_wheel():
     assert gone == [], f"listed in pyproject.toml's packages, but no such folder: {gone}"
 
 
+def data_folders_not_listed(config: dict, root: Path = ROOT) -> list[str]:
+    """Folders below a listed package that hold data files (.toml, .json) without being a listed
+    package themselves, and package-data patterns reaching into a subfolder: setuptools warns
+    about each at every build ("Package would be ignored")."""
+    st = config["tool"]["setuptools"]
+    listed, where = set(st["packages"]), st.get("package-dir", {})
+    out = [f"{pkg}: {pat}" for pkg, pats in st.get("package-data", {}).items()
+           for pat in pats if "/" in pat]
+    for pkg in sorted(listed):
+        folder = root.joinpath(*where.get(pkg, pkg).split("."))
+        for sub in sorted(p for p in folder.iterdir() if p.is_dir() and not p.name.startswith(
+                ("_", "."))):
+            name = f"{pkg}.{sub.name}"
+            if name not in listed and (any(sub.glob("*.toml")) or any(sub.glob("*.json"))):
+                out.append(name)
+    return out
+
+
+def test_every_folder_of_package_data_is_a_listed_package():
+    config = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    assert data_folders_not_listed(config) == []
+
+
 def test_no_import_cycle_of_any_length_among_bbb_and_pipeline_modules():
     assert import_cycles(import_graph("bbb", "pipeline")) == []
 

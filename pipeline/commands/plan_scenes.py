@@ -7,7 +7,7 @@ from __future__ import annotations
 import os
 import sys
 
-from ..execute.pilot import PILOT_PARTICLES, PILOT_PARTICLES_TARGET, PILOT_SHARE
+from ..execute.pilot import PILOT_MAX_SHARE, PILOT_PARTICLES, PILOT_PARTICLES_TARGET, PILOT_SHARE
 from .common import WORKFLOW_HELP, UsageError, load, positive_int, positive_ints
 
 __all__ = ["add_parsers", "cmd_plan", "cmd_scenes", "scene_cost", "study_cost"]
@@ -15,7 +15,8 @@ __all__ = ["add_parsers", "cmd_plan", "cmd_scenes", "scene_cost", "study_cost"]
 
 def add_parsers(sub) -> None:
     pl = sub.add_parser("plan", help="predict CPU and wall time of a workflow before it runs "
-                                     "(a cached pilot of a few particles; pipeline/execute/pilot.py)")
+                                     "(a cached pilot of a few particles; pipeline/execute/pilot.py), "
+                                     "and its wall time at this machine's load now")
     pl.add_argument("workflow", metavar="WORKFLOW", help=WORKFLOW_HELP)
     pl.add_argument("--workers", metavar="N[,N...]", type=positive_ints,
                     help="worker counts, e.g. 2,8,64,256: the table at the first, and each "
@@ -27,7 +28,9 @@ def add_parsers(sub) -> None:
                          "run, else the corner and centre lines, the others costed from them "
                          "(auto, default); the corner and centre lines (probes); every line (all)")
     pl.add_argument("--pilot-particles", metavar="N", type=positive_int, default=None,
-                    help=f"pilot particles per (frequency, family) (default: {PILOT_PARTICLES}; "
+                    help=f"pilot particles per (frequency, family) (default: {PILOT_PARTICLES}, "
+                         f"at most {100 * PILOT_MAX_SHARE:g} %% of the scene's particles -- none below "
+                         f"{1 / PILOT_MAX_SHARE:g}: a scene cheaper than its pilot; "
                          f"{PILOT_PARTICLES_TARGET} for a scene with a CI target, whose cost "
                          "the particles' spread of D sets)")
     pl.add_argument("--kernel-rate", metavar="FILE",
@@ -53,18 +56,27 @@ def add_parsers(sub) -> None:
 
 
 def cmd_plan(args) -> int:
-    from ..execute.pilot import plan_rates
+    from ..execute.pilot import cheaper_than_pilot, machine_share, plan_rates
+    from ..execute.plan import loaded_wall, predict
     from ..execute.scale_plan import plan_report
 
     study = load(args.workflow)
+    why = cheaper_than_pilot(study) if args.pilot_particles is None else None
+    if why is not None:
+        print(why)
+        return 0
     try:
         rates = plan_rates(study, args.pilot_particles, args.pilot_lines, args.kernel_rate,
                            echo=lambda m: print(m, file=sys.stderr))
     except ValueError as e:  # a --kernel-rate file that is no kernel benchmark table
         raise UsageError(str(e)) from None
-    print(plan_report(study, rates, list(args.workers or (os.cpu_count() or 1,)),
-                      kind=args.cluster or "local", cores=os.cpu_count() or 1,
+    workers = list(args.workers or (os.cpu_count() or 1,))
+    cores = os.cpu_count() or 1
+    print(plan_report(study, rates, workers, kind=args.cluster or "local", cores=cores,
                       per_job=args.cores_per_job))
+    if args.cluster is None:
+        plan = predict(study, rates, workers[0])
+        print(loaded_wall(plan, machine_share(rates.busy), cores))
     return 0
 
 

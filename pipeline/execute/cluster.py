@@ -350,7 +350,20 @@ class JobKeeper(SchedulerPlugin):
             self.echo(f"SLURM: job {job} ended (all its workers left); submitting it anew")
 
 
+#: what a run prints for the dashboard's link without bokeh (not in the default install)
+NO_DASHBOARD = "unavailable without bokeh: pip install 'bbb[dashboard]'"
+
+
+def has_bokeh() -> bool:
+    """Whether bokeh, which serves the Dask dashboard, is installed (not imported here)."""
+    import importlib.util
+
+    return importlib.util.find_spec("bokeh") is not None
+
+
 def _dashboard(cluster) -> str:
+    if not has_bokeh():
+        return NO_DASHBOARD
     try:
         return cluster.dashboard_link
     except Exception:

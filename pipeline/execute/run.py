@@ -30,6 +30,7 @@ from ..store.study_store import StudyStore, is_local, normalize_path
 from ..workflow.identity import f_key
 from ..workflow.sanity import check_scene
 from ..workflow.study import Study
+from .cluster import NO_DASHBOARD, has_bokeh
 from .elastic import QueueGauge
 from .repair import repair_metadata
 from .task import (  # the task and what it reports, importable from here as before the split
@@ -142,7 +143,8 @@ def run_study(
     scheduler -- address of an existing Dask scheduler (``tcp://host:port``); None starts a
                  LocalCluster with ``workers`` processes (default: the number of cores)
     fail_chunks -- fault injection, as BBB_FAIL_CHUNKS (default: read from the environment)
-    dashboard -- serve the Dask dashboard of a LocalCluster (needs bokeh) and print its link
+    dashboard -- serve the Dask dashboard of a LocalCluster and print its link (needs bokeh:
+                 pip install 'bbb[dashboard]'; without it the line says so)
 
     Before anything runs, warns (stderr) about and refuses a scene in which nothing can move
     (:mod:`pipeline.workflow.sanity`).
@@ -177,7 +179,7 @@ def _run_locked(study, store_path, scheduler, workers, progress, fails, dashboar
             client, cluster = connect(None, workers, dashboard)
         report.workers = len(client.scheduler_info(n_workers=-1)["workers"])
         report.dashboard = _dashboard(client, cluster, dashboard)
-        link = report.dashboard or ("off" if not dashboard else "unavailable (pip install bokeh)")
+        link = report.dashboard or ("off" if not dashboard else NO_DASHBOARD)
         echo(f"{study.name}: {n_tasks} chunks on {report.workers} workers; numba warm-up "
              f"{warm:.1f} s; dashboard: {link}")
         if cluster is None:
@@ -285,7 +287,7 @@ def connect(scheduler: str | None, workers: int | None, dashboard: bool):
         # ":0": a free port (None would still bind the fixed :8787 for the scheduler's http
         # server, clashing with any other cluster on this machine)
         dashboard_address=":0",
-        scheduler_kwargs={"dashboard": dashboard and _has_bokeh()},
+        scheduler_kwargs={"dashboard": dashboard and has_bokeh()},
         # numba would otherwise start one thread per core in every worker for prange loops
         env={"NUMBA_NUM_THREADS": "1"},
         # A failed task is reported once, by the client (RunFailed names the chunk, the cause
@@ -295,16 +297,8 @@ def connect(scheduler: str | None, workers: int | None, dashboard: bool):
     return Client(cluster), cluster
 
 
-def _has_bokeh() -> bool:
-    try:
-        import bokeh  # noqa: F401
-    except ImportError:
-        return False
-    return True
-
-
 def _dashboard(client, cluster, wanted: bool) -> str | None:
-    if cluster is not None and not (wanted and _has_bokeh()):
+    if cluster is not None and not (wanted and has_bokeh()):
         return None
     try:
         return client.dashboard_link

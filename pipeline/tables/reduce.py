@@ -12,7 +12,9 @@ Every Parquet table carries its provenance in the schema metadata under the key 
 ``bbb_version`` of the reducing package and of the store, ``study``, ``table``), and each
 column its unit as field metadata ``unit``, from the one map :mod:`pipeline.tables.units`
 ("1": dimensionless, "": not a quantity, such as a label or flag).  :func:`table_metadata`
-reads them back.
+reads them back.  The Parquet copies need pyarrow (``pip install 'bbb[parquet]'``, not in
+the default install: 176 MB); without it the CSV tables are written alone and one line says
+what is missing.
 
 Every CSV has its units in a sidecar beside it, ``<table>.csv-metadata.json``: W3C CSV on the
 Web metadata (the file name CSVW tools look for by default), one entry per column in the
@@ -32,8 +34,6 @@ from collections.abc import Callable, Iterable
 from pathlib import Path
 
 import pandas as pd
-import pyarrow as pa
-import pyarrow.parquet as pq
 
 from ..store.layout import OPEN
 from ..store.study_store import StudyStore, package_version
@@ -43,10 +43,22 @@ from .notes import reduce_notes
 from .units import column_unit, units
 
 __all__ = ["reduce_store", "default_out_dir", "column_unit", "table_metadata", "write_table",
-           "write_csv_table", "csv_units", "CSVW_SUFFIX"]
+           "write_csv_table", "csv_units", "CSVW_SUFFIX", "has_parquet", "NO_PARQUET"]
 
 #: the sidecar of ``<table>.csv``: ``<table>.csv-metadata.json`` (CSVW's default location)
 CSVW_SUFFIX = "-metadata.json"
+
+#: the one line a reduce without pyarrow prints (stderr)
+NO_PARQUET = ("Parquet tables not written (they carry each column's unit and the store's "
+              "provenance): pyarrow is not installed -- pip install 'bbb[parquet]'; the CSV "
+              "tables are written")
+
+
+def has_parquet() -> bool:
+    """Whether pyarrow, which writes the Parquet tables, is installed (not imported here)."""
+    import importlib.util
+
+    return importlib.util.find_spec("pyarrow") is not None
 
 
 def default_out_dir(store_path: str, study: Study) -> str:
@@ -79,11 +91,16 @@ def reduce_store(store_path: str | os.PathLike | StudyStore,
              "reducing the done ones (re-run `bbb run` to finish)")
     made = tables(store, names, done)
     provenance = _provenance(store)
+    parquet = has_parquet()
     for name, df in made.items():
-        write_table(df, out / f"{name}.parquet", {**provenance, "table": name})
+        if parquet:
+            write_table(df, out / f"{name}.parquet", {**provenance, "table": name})
         write_csv_table(df, out / f"{name}.csv", {**provenance, "table": name})
-    echo(f"{study.name}: wrote {', '.join(f'{n}.parquet/.csv' for n in made)} to {out} "
-         "(units: the Parquet metadata, <table>.csv-metadata.json)")
+    kinds = ".parquet/.csv" if parquet else ".csv"
+    echo(f"{study.name}: wrote {', '.join(f'{n}{kinds}' for n in made)} to {out} "
+         "(units: " + ("the Parquet metadata, " if parquet else "") + "<table>.csv-metadata.json)")
+    if not parquet and made:
+        (warn or _stderr)(NO_PARQUET)
     if "diffusion" in made:
         for line in reduce_notes(study.name, made["diffusion"]):
             (warn or _stderr)(line)
@@ -96,7 +113,11 @@ def _stderr(line: str) -> None:
 
 def write_table(df: pd.DataFrame, path: str | os.PathLike, provenance: dict) -> None:
     """``df`` as Parquet with per-column units (:mod:`pipeline.tables.units`) and
-    ``provenance`` (plus the units) as the schema metadata ``bbb`` (JSON)."""
+    ``provenance`` (plus the units) as the schema metadata ``bbb`` (JSON); needs pyarrow
+    (:func:`has_parquet`)."""
+    import pyarrow as pa
+    import pyarrow.parquet as pq
+
     table = pa.Table.from_pandas(df, preserve_index=False)
     col_units = units(df.columns)
     schema = pa.schema([f.with_metadata({"unit": col_units[f.name]}) for f in table.schema],
@@ -147,7 +168,10 @@ def csv_units(path: str | os.PathLike) -> dict[str, str]:
 
 
 def table_metadata(path: str | os.PathLike) -> dict:
-    """The ``bbb`` metadata of a reduced Parquet table (units, fingerprint, versions)."""
+    """The ``bbb`` metadata of a reduced Parquet table (units, fingerprint, versions); needs
+    pyarrow."""
+    import pyarrow.parquet as pq
+
     meta = pq.read_schema(path).metadata or {}
     return json.loads(meta[b"bbb"]) if b"bbb" in meta else {}
 

@@ -42,7 +42,9 @@ pipeline/tables/units.py; do not edit -->
 `bbb reduce STORE` writes each table of a store beside it as Parquet and CSV (one file per
 table); each Parquet column carries its unit as field metadata `unit`, each CSV has its
 columns' units in a sidecar `<table>.csv-metadata.json` (CSV on the Web metadata:
-`schema:unitText` per column; `pipeline.tables.reduce.csv_units` reads it). Units follow
+`schema:unitText` per column; `pipeline.tables.reduce.csv_units` reads it). The Parquet files
+need pyarrow, the `parquet` extra (`pip install 'bbb[parquet]'`): without it the CSV files are
+written alone and one line on stderr says so. Units follow
 UDUNITS / CF: lengths in mm, times in s, frequencies in Hz, D in mm^2/s; `1` is a
 dimensionless number (a ratio, share, count), `–` a column that is not a quantity (a name,
 flag or text). A column marked "(+ CI)" is followed by `<column>_lo` and `<column>_hi`, the

@@ -39,6 +39,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ...tables.reduce import NO_PARQUET, has_parquet
 from ...workflow.accuracy import ACCURACY_PRESETS
 from ...workflow.load import parse_workflow
 from ...workflow.study import Study
@@ -202,16 +203,20 @@ def run_accuracy_study(
     scaling = scaling_table(results["reference"][2])
     # the tables go to out_dir and beside the figure (figures/ is committed, runs/ is not)
     dirs = [out] + ([Path(figure).parent] if figure is not None else [])
+    parquet = has_parquet()
     for d in dirs:
         d.mkdir(parents=True, exist_ok=True)
         for name, df in (("accuracy", rows), ("accuracy_summary", summary),
                          ("accuracy_scaling", scaling)):
-            df.to_parquet(d / f"{name}.parquet", index=False)
+            if parquet:
+                df.to_parquet(d / f"{name}.parquet", index=False)
             df.to_csv(d / f"{name}.csv", index=False)
     if figure is not None:
         plot_accuracy(summary, figure)
-    echo(f"accuracy: wrote accuracy*.parquet/.csv to {out}"
+    echo(f"accuracy: wrote accuracy*{'.parquet/' if parquet else '.'}csv to {out}"
          + (f" and {figure}" if figure is not None else ""))
+    if not parquet:
+        echo(f"accuracy: {NO_PARQUET}")
     return {"rows": rows, "summary": summary, "scaling": scaling}
 
 

@@ -130,7 +130,8 @@ def test_auto_pilots_every_line_of_a_map_when_that_is_cheap(n_particles, every, 
 
 def test_the_docs_quote_the_plans_settings():
     """docs/maps.md and docs/accuracy.md state the share below which every line is piloted
-    and the fewest cells a line's CI law is pooled from: the code's values."""
+    and the fewest cells a line's CI law is pooled from, pipeline/README.md the most of a run
+    a pilot simulates: the code's values."""
     from pathlib import Path
 
     from pipeline.execute.plan import POOL_MIN
@@ -138,6 +139,11 @@ def test_the_docs_quote_the_plans_settings():
     docs = Path(__file__).resolve().parents[3] / "docs"
     assert f"at most {100 * pilot.PILOT_SHARE:g} % of the run" in (docs / "maps.md").read_text()
     assert f"fewer than {POOL_MIN})" in (docs / "accuracy.md").read_text()
+    readme = (docs.parent / "pipeline" / "README.md").read_text()
+    assert (f"at most {100 * pilot.PILOT_MAX_SHARE:g} % of the run ({pilot.PILOT_PARTICLES} "
+            f"particles per point, fewer below {pilot.PILOT_PARTICLES / pilot.PILOT_MAX_SHARE:g})"
+            in readme)
+    assert f"fewer than {1 / pilot.PILOT_MAX_SHARE:g} particles per point" in readme
 
 
 def test_a_scene_with_a_ci_target_pilots_more_particles_than_a_fixed_size_one():
@@ -147,3 +153,73 @@ def test_a_scene_with_a_ci_target_pilots_more_particles_than_a_fixed_size_one():
     assert pilot.pilot_particles(load_scene("dissipation_r25")) == pilot.PILOT_PARTICLES_TARGET
     assert pilot.pilot_particles(load_scene("protocol")) == pilot.PILOT_PARTICLES
     assert pilot.PILOT_PARTICLES_TARGET > pilot.PILOT_PARTICLES
+
+
+@pytest.mark.parametrize("n_particles, expected", [(2, 0), (3, 0), (4, 1), (8, 2), (16, 4),
+                                                   (31, 7), (32, 8), (512, 8)])
+def test_a_fixed_size_pilot_simulates_at_most_a_quarter_of_its_run(n_particles, expected):
+    """The pilot runs n particles at every (point, family) over the run's t_max: n / N of the
+    run; the default is 8, shrunk to floor(N / 4), none below 4 particles."""
+    study = parse_workflow(PLAN_TINY.replace("n_particles = 128", f"n_particles = {n_particles}")
+                           .replace("chunk_size = 32", "chunk_size = 1"))
+    n = pilot.pilot_particles(study)
+    assert n == expected
+    assert n / n_particles <= pilot.PILOT_MAX_SHARE
+    assert (pilot.cheaper_than_pilot(study) is None) == (n >= 1)
+
+
+def test_the_share_of_a_core_is_the_pilots_cpu_over_its_wall_time():
+    """1 CPU-s in 4 s of wall: a quarter of a core."""
+    assert pilot.machine_share(busy=(1.0, 4.0)).share == pytest.approx(0.25)
+
+
+def _plan(start_up=4.0, makespan=6.0, workers=2):
+    from types import SimpleNamespace
+
+    return SimpleNamespace(wall_s=start_up + makespan, makespan=makespan, workers=workers,
+                           overheads=SimpleNamespace(start_up=start_up))
+
+
+def test_sessions_shared_fairly_give_the_runs_workers_together_the_pilots_share():
+    """Autogroup: one process got 0.25 of a core, so the run's session gets 0.25 cores in all:
+    start-up 4 s / 0.25 = 16 s, 2 workers x 6 s of tasks / 0.25 = 48 s: 64 s."""
+    from pipeline.execute.plan import MachineShare, loaded_wall
+
+    assert loaded_wall(_plan(), MachineShare(0.25, 9.0, True), 2).endswith("-> wall 64 s (1.1 min)")
+
+
+def test_processes_shared_fairly_give_each_worker_its_own_share():
+    """Per process: 0.25 of a core = 2 / (others + 1), 7 others; each of 2 workers gets
+    2 / 9 of a core: the plan's 10 s x 4.5 = 45 s."""
+    from pipeline.execute.plan import MachineShare, loaded_wall
+
+    line = loaded_wall(_plan(), MachineShare(0.25, 9.0, False), 2)
+    assert "7.0 runnable processes of others" in line and line.endswith("-> wall 45 s (0.8 min)")
+
+
+def test_a_whole_core_counts_the_others_from_the_load_average():
+    """One process got a whole core: the load average 1.6 less this process, 0.6 others, each
+    of 2 workers 2 / 2.6 of a core: 10 s x 1.3 = 13 s; no others: the plan's own 10 s."""
+    from pipeline.execute.plan import MachineShare, loaded_wall
+
+    assert loaded_wall(_plan(), MachineShare(1.0, 1.6, True), 2).endswith("-> wall 13 s (0.2 min)")
+    assert loaded_wall(_plan(), MachineShare(1.0, 0.5, True), 2).endswith("-> wall 10 s (0.2 min)")
+
+
+def test_each_pilot_line_is_printed_once_naming_its_grid_line(tmp_path, monkeypatch, capsys):
+    """A map of 2 contact models: 2 pilot lines on stderr, each naming its model, none twice;
+    a second plan reads the cache and pilots nothing."""
+    from pipeline.cli import main
+
+    monkeypatch.chdir(tmp_path)
+    wf = tmp_path / "m.toml"
+    wf.write_text(PLAN_TINY.replace("values = [54.0, 55.0, 60.0, 72.0]", "values = [60.0]")
+                  .replace("t_max = 30.0", "t_max = 10.0").replace("n_particles = 128", "n_particles = 8")
+                  .replace("chunk_size = 32", "chunk_size = 8")
+                  .replace("[families.rest]", '[grid]\ncontact = ["stick", "slide"]\n\n[families.rest]'))
+    assert main(["plan", str(wf), "--workers", "2"]) == 0
+    lines = [ln for ln in capsys.readouterr().err.splitlines() if ": pilot of " in ln]
+    assert len(lines) == len(set(lines)) == 2
+    assert [("contact=stick" in ln, "contact=slide" in ln) for ln in lines] == [(1, 0), (0, 1)]
+    assert main(["plan", str(wf), "--workers", "2"]) == 0
+    assert ": pilot of " not in capsys.readouterr().err

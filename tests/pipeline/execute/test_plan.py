@@ -331,3 +331,24 @@ def test_a_target_plan_states_its_pooled_ci_law():
                  for f in study.frequencies}  # cv2 = 8/9 of 8 particles: u = 1, k = z
         text = plan_table(predict(study, Rates(cells), workers=2))
         assert ("CI law" in text) == (shown is not None) and (shown is None or shown in text)
+
+
+def test_the_plan_of_a_scene_cheaper_than_its_pilot_returns_before_its_run_would(tmp_path):
+    """2 particles per point, fewer than a pilot of one particle is worth (pilot.PILOT_MAX_SHARE):
+    `bbb plan` says so without piloting and returns in less wall time than `bbb run` of the
+    same scene takes (both real commands, timed here)."""
+    wf = tmp_path / "cheap.toml"
+    wf.write_text(PLAN_TINY.replace("n_particles = 128", "n_particles = 2")
+                  .replace("chunk_size = 32", "chunk_size = 1"))
+
+    def timed(*args: str) -> tuple[float, subprocess.CompletedProcess]:
+        t0 = time.perf_counter()
+        done = subprocess.run([str(BBB), *args], capture_output=True, text=True, cwd=tmp_path,
+                              timeout=600)
+        assert done.returncode == 0, done.stderr
+        return time.perf_counter() - t0, done
+
+    plan_s, plan = timed("plan", str(wf))
+    run_s, _ = timed("run", str(wf), "--store", str(tmp_path / "cheap.zarr"), "--no-progress")
+    assert "cheaper than its pilot" in plan.stdout and ": pilot of " not in plan.stderr
+    assert plan_s < run_s, (plan_s, run_s)
