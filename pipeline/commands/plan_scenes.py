@@ -56,8 +56,9 @@ def add_parsers(sub) -> None:
 
 
 def cmd_plan(args) -> int:
+    from ..execute.machine_load import loaded_wall
     from ..execute.pilot import cheaper_than_pilot, machine_share, plan_rates
-    from ..execute.plan import loaded_wall, predict
+    from ..execute.plan import predict
     from ..execute.scale_plan import plan_report
 
     study = load(args.workflow)

@@ -41,7 +41,8 @@ from pathlib import Path
 from ..workflow.identity import PILOT_CHUNK, f_key, pilot_seed  # noqa: F401
 from ..workflow.sanity import check_scene
 from ..workflow.study import Study
-from .plan import Cell, MachineShare, Rates
+from .machine_load import MachineShare
+from .plan import Cell, Rates
 
 __all__ = ["pilot_rates", "probe_lines", "pilot_share", "benchmark_rate", "plan_rates",
            "PILOT_PARTICLES", "PILOT_PARTICLES_TARGET", "PILOT_SHARE", "PILOT_MAX_SHARE",

@@ -5,7 +5,8 @@ The cost model, and where each number comes from:
 * Collisions per particle-second c(f, family) and the kernel rate r (collisions per
   CPU-second of one core): a :class:`Rates` table, measured by a pilot (pipeline/execute/pilot.py)
   or with r from a ``benchmarks/perf/kernel.py`` table.  The prediction is for the cores being
-  ours: on a shared machine the wall time grows by the load (:func:`loaded_wall`: from the
+  ours: on a shared machine the wall time grows by the load
+  (:func:`pipeline.execute.machine_load.loaded_wall`: from the
   share of a core the pilot got).
 * Task CPU = chunk_size x t_max x c / r; a task's wall adds the per-task overhead
   PER_TASK_S (store write + dispatch, measured) and the run adds START_UP_S (LocalCluster,
@@ -38,8 +39,7 @@ from statistics import NormalDist
 from ..workflow.identity import f_key
 from ..workflow.study import Study
 
-__all__ = ["Cell", "Rates", "Overheads", "TaskRow", "Plan", "predict", "plan_table", "loaded_wall",
-           "MachineShare", "UNCONTENDED",
+__all__ = ["Cell", "Rates", "Overheads", "TaskRow", "Plan", "predict", "plan_table",
            "particles_needed", "makespan", "CI_LAW", "POOL_MIN", "BAND_EDGES"]
 
 #: relative 95 % CI half-width of D times sqrt(N), measured at f >= 58 Hz (docs/accuracy.md):
@@ -375,51 +375,3 @@ def plan_table(plan: Plan) -> str:
     lines.append(f"pilot: {plan.pilot_cpu_s:.1f} CPU-s of simulation, "
                  f"{100 * plan.pilot_cpu_s / total_cpu:.1f} % of the run's")
     return "\n".join(lines)
-
-
-@dataclass(frozen=True)
-class MachineShare:
-    """This machine now, as a run would find it (:func:`pipeline.execute.pilot.machine_share`).
-
-    share   -- the share of a core one process of ours gets (CPU time / wall time), <= 1
-    load    -- the 1-minute load average (None where the OS has none)
-    grouped -- the kernel shares the CPU fairly between sessions first, then between the
-               processes of a session (Linux's autogroup): a run's workers, all in the
-               session of `bbb run`, then share that session's part
-    """
-
-    share: float
-    load: float | None
-    grouped: bool
-
-
-#: a share of a core above this says only that fewer processes than cores compete
-UNCONTENDED = 0.95
-
-
-def loaded_wall(plan: Plan, machine: MachineShare, cores: int) -> str:
-    """The plan's wall time on this machine as shared now, as a line.  One process of ours got
-    s = ``machine.share`` of a core.  Sessions shared fairly (``grouped``): a session with one
-    runnable process gets s cores, and so does the run's session, whose W workers and client
-    then take start_up / s + W x makespan / s.  Processes shared fairly: s = cores / (others
-    + 1) counts the others, and each worker gets g = min(1, cores / (others + W)) of a core,
-    every part of the run 1 / g as long.  s above UNCONTENDED says only that the others are
-    fewer than the cores: the 1-minute load average less this process counts them then (at
-    most cores - 1), per process.  A load that changes during the run is not foreseen."""
-    w, s = plan.workers, machine.share
-    if s <= UNCONTENDED and machine.grouped:
-        wall = plan.overheads.start_up / s + w * plan.makespan / s
-        how = (f"one process of ours gets {s:.2f} of a core; the CPU is shared between "
-               f"sessions (autogroup): the run's {w} workers share {s:.2f} of a core")
-    else:
-        if s <= UNCONTENDED:
-            others = cores / s - 1
-        elif machine.load is not None:
-            others = min(max(0.0, machine.load - 1), cores - 1.0)
-        else:
-            return "at this machine's load: unknown (no load average on this system)"
-        g = min(1.0, cores / (others + w))
-        wall = plan.wall_s / g
-        how = (f"{others:.1f} runnable processes of others on {cores} cores: each of the "
-               f"{w} workers gets {g:.2f} of a core")
-    return f"at this machine's load now ({how}) -> wall {wall:.0f} s ({wall / 60:.1f} min)"

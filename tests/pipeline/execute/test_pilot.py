@@ -183,7 +183,7 @@ def _plan(start_up=4.0, makespan=6.0, workers=2):
 def test_sessions_shared_fairly_give_the_runs_workers_together_the_pilots_share():
     """Autogroup: one process got 0.25 of a core, so the run's session gets 0.25 cores in all:
     start-up 4 s / 0.25 = 16 s, 2 workers x 6 s of tasks / 0.25 = 48 s: 64 s."""
-    from pipeline.execute.plan import MachineShare, loaded_wall
+    from pipeline.execute.machine_load import MachineShare, loaded_wall
 
     assert loaded_wall(_plan(), MachineShare(0.25, 9.0, True), 2).endswith("-> wall 64 s (1.1 min)")
 
@@ -191,7 +191,7 @@ def test_sessions_shared_fairly_give_the_runs_workers_together_the_pilots_share(
 def test_processes_shared_fairly_give_each_worker_its_own_share():
     """Per process: 0.25 of a core = 2 / (others + 1), 7 others; each of 2 workers gets
     2 / 9 of a core: the plan's 10 s x 4.5 = 45 s."""
-    from pipeline.execute.plan import MachineShare, loaded_wall
+    from pipeline.execute.machine_load import MachineShare, loaded_wall
 
     line = loaded_wall(_plan(), MachineShare(0.25, 9.0, False), 2)
     assert "7.0 runnable processes of others" in line and line.endswith("-> wall 45 s (0.8 min)")
@@ -200,7 +200,7 @@ def test_processes_shared_fairly_give_each_worker_its_own_share():
 def test_a_whole_core_counts_the_others_from_the_load_average():
     """One process got a whole core: the load average 1.6 less this process, 0.6 others, each
     of 2 workers 2 / 2.6 of a core: 10 s x 1.3 = 13 s; no others: the plan's own 10 s."""
-    from pipeline.execute.plan import MachineShare, loaded_wall
+    from pipeline.execute.machine_load import MachineShare, loaded_wall
 
     assert loaded_wall(_plan(), MachineShare(1.0, 1.6, True), 2).endswith("-> wall 13 s (0.2 min)")
     assert loaded_wall(_plan(), MachineShare(1.0, 0.5, True), 2).endswith("-> wall 10 s (0.2 min)")
