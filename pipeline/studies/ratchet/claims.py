@@ -218,7 +218,7 @@ def reversals(claim: Claim, ctx) -> Measured:
     return Measured([Part(x.label, x.q, x.text, band=band) for x in parts], note=note)
 
 
-_REG = "2026-11-28 (registering commit)"
+_REG = "2026-11-28 aa6f513"
 _SCOPE = {"scenes": [SCENE], "families": ["rest"], "alpha": list(ALPHAS), "peak": list(PEAKS),
           "frequencies": "the scene's 40–100 Hz in steps of 2 Hz, steady points only"}
 CLAIMS = [
