@@ -1,7 +1,8 @@
 """Ratchet transport without tilt: the drift v over (sawtooth peak position p, restitution α,
 f) on a level, vertically vibrated sawtooth floor, from the map scene ``scenes/ratchet.toml``:
-the claims as data (``claims``, their synthetic cases in ``cases``) and the study record
-(:data:`STUDY`).
+the claims as data (``claims``, their synthetic cases in ``cases``), what the collisions do at
+each current reversal and the tilted conveyor's reversals beside them (``mechanism``), the
+figures (``figures``), the section's words (``report``) and the study record (:data:`STUDY`).
 
 Built only through the study interface (:mod:`pipeline.studies.interface`): a folder, and its
 name in :data:`pipeline.studies.registry.STUDIES`.
@@ -10,10 +11,8 @@ name in :data:`pipeline.studies.registry.STUDIES`.
 from ...claims.section import Section
 from ..interface import Study
 from .claims import CLAIMS, SCENE, TABLE, context
-
-WORDS = ("Drift v with its bootstrap CI (bbb.analysis.transport) over the sawtooth's peak "
-         "position p and α along f, particles from rest, independent (no mirror pairs); "
-         "pipeline/studies/ratchet/claims.py states the rules.")
+from .figures import CAPTIONS, draw
+from .report import WORDS, facts, further
 
 STUDY = Study(
     name="ratchet",
@@ -22,7 +21,12 @@ STUDY = Study(
                     prefix="R"),
     claims=tuple(CLAIMS),
     context=context,
-    reads=(TABLE,),
+    draw=draw,
+    reads=(TABLE, f"{SCENE}_impacts", f"{SCENE}_counters", f"{SCENE}_reversals",
+           f"{SCENE}_conveyor"),
+    captions=CAPTIONS,
+    facts=facts,
+    further=further,
 )
 
 __all__ = ["STUDY"]
