@@ -32,7 +32,15 @@ from ...claims.signs import significant_signs
 from ...plot.heatmap import cell_edges
 from ...plot.style import PAGE, STYLE, figure_files, new_figure, save_figure
 from .claims import CENTRE, SCENE, TABLE, line_reversals, map_lines
-from .mechanism import BINS, CONVEYOR_FILES, conveyor_reversals, resultant, reversal_table
+from .mechanism import (
+    BINS,
+    CONVEYOR_FILES,
+    STATES_TABLE,
+    conveyor_reversals,
+    resultant,
+    reversal_table,
+)
+from .reversal_states import STATES_SCENE, states_table
 
 __all__ = ["CAPTIONS", "draw", "figure_map", "figure_lines", "figure_mechanism"]
 
@@ -217,12 +225,16 @@ def figure_mechanism(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathL
 
 def draw(tables: dict[str, pd.DataFrame], stores: Mapping[str, str],
          out_dir: str | os.PathLike) -> list[Path]:
-    """Add the reversal table (the collisions at each reversal) and the conveyor's reversals
+    """Add the states scene's table (the states reached, from its store when there is one),
+    the reversal table (the collisions and states at each reversal) and the conveyor's reversals
     (from the transport study's committed tables in ``out_dir``) to ``tables``, draw the three
     figures into ``out_dir``; returns their files (none without the map's table)."""
     t = tables.get(TABLE)
     if t is None or t.empty:
         return []
+    states = stores.get(STATES_SCENE)
+    if states and Path(states).exists():
+        tables[STATES_TABLE] = states_table(states)
     tables[f"{SCENE}_reversals"] = reversal_table(tables)
     out = Path(out_dir)
     committed = {n: pd.read_csv(out / n) for n in CONVEYOR_FILES if (out / n).is_file()}

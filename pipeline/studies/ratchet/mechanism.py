@@ -17,6 +17,10 @@ vx_within_1  the lag-1 correlation of the post-collision vx about each particle'
              horizontal velocity from collision to collision (a walking state), near 0 or
              below it loses it (chaotic hopping)
 
+state        with the states scene's table (:mod:`.reversal_states`): the states the
+             particles end in there, each with its share (``states``: "diffusing 0.94,
+             chaotic 0.06"; blank where the scene has no such point)
+
 The conveyor's reversals (:func:`conveyor_reversals`) are read from the transport study's
 committed diffusion tables beside REPORT.md (a committed file is the interface between
 studies) with the same sign rules (:mod:`pipeline.claims.signs`).
@@ -29,10 +33,17 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
+from bbb.analysis.states import LABELS
+
 from ...claims.signs import reversal_intervals, significant_signs, steady_rows
 from .claims import CENTRE, SCENE, line_reversals, map_lines
+from .reversal_states import STATES_SCENE
 
-__all__ = ["BINS", "resultant", "reversal_table", "conveyor_reversals", "CONVEYOR_FILES"]
+__all__ = ["BINS", "STATES_TABLE", "resultant", "states_text", "reversal_table",
+           "conveyor_reversals", "CONVEYOR_FILES"]
+
+#: the key of the states scene's table (:func:`.reversal_states.states_table`)
+STATES_TABLE = f"{STATES_SCENE}_classes"
 
 BINS = 24
 #: the transport study's committed map tables read for the comparison, and their line axes
@@ -58,12 +69,26 @@ def _at(t: pd.DataFrame | None, alpha: float, peak: float, f: float) -> pd.Serie
     return None if m.empty else m.iloc[0]
 
 
+def states_text(r: pd.Series | None, floor: float = 0.05) -> str:
+    """"diffusing 0.94, chaotic 0.06": the states of a states-table row with a share of at
+    least ``floor``, commonest first (locked_k with its cycle in floor periods); "" for none."""
+    if r is None:
+        return ""
+    shares = sorted(((float(r[lab]), lab) for lab in LABELS if pd.notna(r.get(lab))),
+                    reverse=True)
+    k = r.get("period_k")
+    return ", ".join(f"{lab}{f' (k = {int(k)})' if lab == 'locked_k' and pd.notna(k) else ''} "
+                     f"{x:.2f}" for x, lab in shares if x >= floor)
+
+
 def reversal_table(tables: Mapping[str, pd.DataFrame]) -> pd.DataFrame:
     """One row per (reversal, end): alpha, peak, f_a, f_b, sign_after (+1: v turns positive
     with f), end ('a' or 'b'), f, v, v_lo, v_hi, per_period, rho, phase, vx_within_1 and its
-    CI (NaN where the impacts or counters table lacks the point: named blank, never 0)."""
+    CI (NaN where the impacts or counters table lacks the point: named blank, never 0), and
+    states (:func:`states_text` of the states scene's table, "" where it lacks the point)."""
     lines = map_lines(tables.get(f"{SCENE}_diffusion"))
     imp, cnt = tables.get(f"{SCENE}_impacts"), tables.get(f"{SCENE}_counters")
+    sts = tables.get(STATES_TABLE)
     rows = []
     for (a, p), t in lines.items():
         if np.isclose(p, CENTRE):
@@ -74,7 +99,8 @@ def reversal_table(tables: Mapping[str, pd.DataFrame]) -> pd.DataFrame:
                 i, c = _at(imp, a, p, f), _at(cnt, a, p, f)
                 rho, phase = (resultant([i[f"phase_{b}"] for b in range(BINS)])
                               if i is not None else (np.nan, np.nan))
-                rows.append({"alpha": a, "peak": p, "f_a": fa, "f_b": fb, "sign_after": k,
+                rows.append({"states": states_text(_at(sts, a, p, f)),
+                             "alpha": a, "peak": p, "f_a": fa, "f_b": fb, "sign_after": k,
                              "end": end, "f": f, "v": d["v"], "v_lo": d["v_lo"],
                              "v_hi": d["v_hi"],
                              "per_period": (c["collisions_per_s"] / f) if c is not None
@@ -84,7 +110,8 @@ def reversal_table(tables: Mapping[str, pd.DataFrame]) -> pd.DataFrame:
                                             "vx_within_1_hi")}})
     return pd.DataFrame(rows, columns=["alpha", "peak", "f_a", "f_b", "sign_after", "end", "f",
                                        "v", "v_lo", "v_hi", "per_period", "rho", "phase",
-                                       "vx_within_1", "vx_within_1_lo", "vx_within_1_hi"])
+                                       "vx_within_1", "vx_within_1_lo", "vx_within_1_hi",
+                                       "states"])
 
 
 def conveyor_reversals(committed: Mapping[str, pd.DataFrame]) -> pd.DataFrame:

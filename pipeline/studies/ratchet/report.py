@@ -50,6 +50,11 @@ def _ci(r, col: str, fmt: str = ".2f") -> str:
     return f"{v:{fmt}} [{lo:{fmt}}, {hi:{fmt}}]"
 
 
+def _states(r) -> str:
+    s = r.get("states")
+    return "not run" if s is None or (isinstance(s, float) and math.isnan(s)) or s == "" else s
+
+
 def _sign(k) -> str:
     return "− → +" if int(k) > 0 else "+ → −"
 
@@ -64,19 +69,24 @@ def reversal_lines(rev: pd.DataFrame | None) -> list[str]:
          "the floor phase at the collisions from 5 s on: 1 all at one phase, 0 spread evenly) "
          "and the lag-1 correlation of the post-collision vx about each particle's own mean "
          "(near +1: a particle keeps its horizontal velocity, a walking state; near 0 or "
-         "below: it loses it at each collision). Read from the collisions, not from a state "
-         "classifier.", ""]
+         "below: it loses it at each collision), and the states the particles end in there "
+         "(scene ratchet_states: every collision recorded from t = 0, each particle's last "
+         "0.5 s window labelled by the calibrated state classifier bbb.analysis.states; "
+         "shares ≥ 0.05; locked states repeat their offset in the cell, so a particle walking "
+         "a tooth per cycle is locked).", ""]
     if rev is None or rev.empty:
         return L + ["No current reversal on any off-centre line.", ""]
     L += ["| α | p | reversal (Hz) | sign | v (mm/s) at f_a; f_b | collisions / period | ρ | "
-          "vx lag-1 corr. (within) at f_a; f_b |", "| --- | --- | --- | --- | --- | --- | --- | --- |"]
+          "vx lag-1 corr. (within) at f_a; f_b | states at f_a; f_b |",
+          "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for (a, p, fa, fb), g in rev.groupby(["alpha", "peak", "f_a", "f_b"], sort=True):
         ends = g.sort_values("end").to_dict("records")
         L.append(f"| {a:g} | {p:g} | {fa:g}–{fb:g} | {_sign(ends[0]['sign_after'])} | "
                  + "; ".join(_ci(r, "v", ".3g") for r in ends) + " | "
                  + " → ".join(_num(float(r["per_period"]), ".3g") for r in ends) + " | "
                  + " → ".join(_num(float(r["rho"])) for r in ends) + " | "
-                 + "; ".join(_ci(r, "vx_within_1") for r in ends) + " |")
+                 + "; ".join(_ci(r, "vx_within_1") for r in ends) + " | "
+                 + "; ".join(_states(r) for r in ends) + " |")
     return L + [""]
 
 

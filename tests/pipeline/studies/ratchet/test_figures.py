@@ -1,6 +1,7 @@
-"""The ratchet study from a small real store (the draft scene cut to two frequencies and eight
-particles, run by real Dask into real Zarr): its figures as PNG + PDF files that draw what the
-table holds, and its section judged from the tables read back."""
+"""The ratchet study from small real stores (the draft scene cut to two frequencies and eight
+particles, and the draft states scene, run by real Dask into real Zarr): its figures as PNG +
+PDF files that draw what the table holds, the states table, and its section judged from the
+tables read back."""
 
 from __future__ import annotations
 
@@ -13,6 +14,7 @@ from pipeline.workflow.load import parse_workflow
 from pipeline.workflow.scenes import ROOT
 
 DRAFT = ROOT / "pipeline/studies/ratchet/scenes/draft/ratchet.toml"
+STATES = ROOT / "pipeline/studies/ratchet/scenes/draft/ratchet_states.toml"
 
 
 def _small(text: str) -> str:
@@ -28,14 +30,16 @@ def made(tmp_path_factory):
     from dask.distributed import Client, LocalCluster
 
     root = tmp_path_factory.mktemp("ratchet")
-    path = str(root / "ratchet.zarr")
+    stores = {"ratchet": str(root / "ratchet.zarr"), "ratchet_states": str(root / "states.zarr")}
+    texts = {"ratchet": (_small(DRAFT.read_text(encoding="utf-8")), DRAFT),
+             "ratchet_states": (STATES.read_text(encoding="utf-8"), STATES)}
     with LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
                       dashboard_address=None) as cluster, Client(cluster):
-        run_study(parse_workflow(_small(DRAFT.read_text(encoding="utf-8")), str(DRAFT)), path,
-                  scheduler=cluster.scheduler_address, progress=False, dashboard=False,
-                  echo=lambda m: None)
+        for name, (text, src) in texts.items():
+            run_study(parse_workflow(text, str(src)), stores[name],
+                      scheduler=cluster.scheduler_address, progress=False, dashboard=False,
+                      echo=lambda m: None)
     s = study("ratchet")
-    stores = {"ratchet": path}
     return s, stores, s.tables(stores, echo=lambda m: None), root / "out"
 
 
@@ -72,3 +76,16 @@ def test_the_figures_render_and_the_section_is_judged_from_the_tables_read_back(
     assert [r.id for r in rows] == ["R1", "R2", "R3", "R4"]
     for r in rows:
         assert f"| {r.id} |" in text and f"**{r.verdict}**" in text
+
+
+def test_the_states_table_gives_each_point_shares_summing_to_one_with_wilson_intervals(made):
+    from bbb.analysis.states import LABELS
+    from pipeline.studies.ratchet.reversal_states import states_table
+
+    t = states_table(made[1]["ratchet_states"])
+    assert list(t["f"]) == [56.0, 84.0] and (t["n_particles"] == 8).all()
+    shares = t[list(LABELS)].to_numpy(float)
+    assert np.allclose(shares.sum(axis=1), 1.0)
+    for lab in LABELS:  # each interval holds its share and is never of zero width
+        assert (t[f"{lab}_lo"] <= t[lab]).all() and (t[lab] <= t[f"{lab}_hi"]).all()
+        assert (t[f"{lab}_hi"] - t[f"{lab}_lo"] > 0).all()

@@ -76,3 +76,32 @@ def test_the_conveyors_reversals_are_found_per_line_with_the_same_sign_rules():
     assert (r60["f_a"], r60["f_b"], r60["sign_after"]) == (68.0, 72.0, -1)
     assert math.isnan(out[out["throw"] == 90.0].iloc[0]["f_a"])
     assert len(F) == 31
+
+
+def _states_row(**shares) -> dict:
+    from bbb.analysis.states import LABELS
+
+    row = {lab: 0.0 for lab in LABELS} | {"period_k": float("nan")}
+    return row | shares
+
+
+def test_the_states_text_names_the_states_of_at_least_5_percent_commonest_first():
+    from pipeline.studies.ratchet.mechanism import states_text
+
+    assert states_text(pd.Series(_states_row(diffusing=0.9, chaotic=0.06, stuck=0.04))) == \
+        "diffusing 0.90, chaotic 0.06"
+    assert states_text(pd.Series(_states_row(locked_k=0.75, locked_1=0.25, period_k=2.0))) == \
+        "locked_k (k = 2) 0.75, locked_1 0.25"
+    assert states_text(None) == ""
+
+
+def test_each_reversal_end_carries_the_states_reached_there_and_none_where_not_run():
+    t = map_table(g=lambda f: np.tanh((70.0 - f) / 3.0), peaks=(0.3, 0.5, 0.7))
+    imp, cnt = _impacts_counters(t)
+    sts = pd.DataFrame([{"alpha": 0.7, "peak": 0.3, "f": 68.0, **_states_row(locked_1=1.0)},
+                        {"alpha": 0.7, "peak": 0.3, "f": 72.0, **_states_row(diffusing=1.0)}])
+    rev = reversal_table({"ratchet_diffusion": t, "ratchet_impacts": imp,
+                          "ratchet_counters": cnt, "ratchet_states_classes": sts})
+    low = rev[rev["peak"] == 0.3].set_index("end")["states"]
+    assert (low["a"], low["b"]) == ("locked_1 1.00", "diffusing 1.00")
+    assert (rev[rev["peak"] == 0.7]["states"] == "").all()  # the states scene lacks p = 0.7

@@ -31,3 +31,15 @@ def test_the_shipped_scene_is_the_grid_the_claims_scope_names():
     assert tuple(float(a) for a in grid["alpha"]) == ALPHAS
     f = sorted({pt.f for pt in study.points})
     assert np.allclose(np.diff(f), F_STEP) and (f[0], f[-1]) == (40.0, 100.0)
+
+
+@pytest.mark.parametrize("fast", [False, True], ids=["scene", "draft"])
+def test_the_states_scene_records_every_collision_from_the_start_on_off_centre_teeth(fast):
+    from pipeline.studies.ratchet.reversal_states import STATES_SCENE, WINDOW
+
+    study = load_scene(STATES_SCENE, fast)
+    obs = study.observables
+    assert obs.collisions_from == 0.0 and obs.collisions_record >= 1000
+    assert all(pt.params.floor == "sawtooth" and pt.params.peak < CENTRE for pt in study.points)
+    assert [fam.mirror for fam in study.families] == [False]
+    assert study.accuracy.t_max >= 2 * WINDOW
