@@ -61,7 +61,8 @@ CAPTIONS = {
     "fig_ratchet_mechanism": (
         "What the collisions do around the ratchet's current reversals, on the off-centre "
         "lines with p < 0.5 (their mirror partners' are alike), one column per α: (top) "
-        "collisions per floor period; (middle) the phase locking ρ of the collisions (length "
+        "collisions per floor period (none where the particles rest: left out of the log "
+        "axis); (middle) the phase locking ρ of the collisions (length "
         "of the mean resultant of the floor phase at the collisions from 5 s on: 1 all at one "
         "phase, 0 spread evenly); (bottom) the lag-1 correlation of the post-collision vx "
         "about each particle's own mean (near +1: a walking state keeps its velocity). "
@@ -197,8 +198,10 @@ def figure_mechanism(tables: Mapping[str, pd.DataFrame], out_dir: str | os.PathL
                 if cnt is not None:
                     s = cnt[np.isclose(cnt["alpha"], a) & np.isclose(cnt["peak"], p)
                             ].sort_values("f")
-                    ax_n.plot(s["f"], s["collisions_per_s"] / s["f"], marker=".", ms=2.5,
-                              color=c, label=label, gid=f"per_period:{a:g}:{p:g}")
+                    per = (s["collisions_per_s"] / s["f"]).to_numpy(float, copy=True)
+                    per[per <= 0] = np.nan  # at rest: 0 has no place on the log axis (caption)
+                    ax_n.plot(s["f"], per, marker=".", ms=2.5, color=c, label=label,
+                              gid=f"per_period:{a:g}:{p:g}")
                 if imp is not None:
                     s = imp[np.isclose(imp["alpha"], a) & np.isclose(imp["peak"], p)
                             ].sort_values("f")

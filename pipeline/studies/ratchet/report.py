@@ -10,7 +10,10 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
+from bbb.analysis.stats.proportion import wilson
+
 from .claims import CENTRE, SCENE, TABLE, map_lines
+from .mechanism import STATES_TABLE
 
 __all__ = ["WORDS", "facts", "further"]
 
@@ -55,11 +58,42 @@ def _states(r) -> str:
     return "not run" if s is None or (isinstance(s, float) and math.isnan(s)) or s == "" else s
 
 
+def _span(t: pd.DataFrame) -> str:
+    """"all between 58 and 82 Hz, 10 + → −, 0 − → +" of rows with f_a, f_b, sign_after."""
+    if t.empty:
+        return "none"
+    down, up = int((t["sign_after"] < 0).sum()), int((t["sign_after"] > 0).sum())
+    return (f"all between {t['f_a'].min():g} and {t['f_b'].max():g} Hz, {down} + → −, "
+            f"{up} − → +")
+
+
+def states_summary(rev: pd.DataFrame, particles: float | None = None) -> str:
+    """How many reversal ends the states scene ran and what their particles end in, and the
+    ranges of the collisions' numbers there, from the reversal table."""
+    ran = rev[rev["states"].fillna("").astype(str) != ""]
+    n_iv = len(rev.drop_duplicates(["alpha", "peak", "f_a", "f_b"]))
+    rng = "; ".join(f"{name} {rev[c].min():.3g}–{rev[c].max():.3g}" for name, c in (
+        ("collisions per period", "per_period"), ("ρ", "rho"), ("vx lag-1 corr.", "vx_within_1"))
+        if rev[c].notna().any())
+    if ran.empty:
+        return (f"The states scene ran at none of the {n_iv} reversals' ends. At the ends: "
+                f"{rng}.")
+    top = ran["states"].astype(str).str.split(",").str[0].str.rsplit(" ", n=1).str[0]
+    counts = ", ".join(f"{k} at {v}" for k, v in top.value_counts().items())
+    n = int(particles) if particles else 0
+    ci = (f" ({n} particles per point: all {n} in one state is a share of 1 with the 95 % "
+          f"Wilson interval [{wilson(n, n)[1]:.3f}, 1]; every share's interval is in "
+          "ratchet_states_classes.csv)") if n else ""
+    return (f"The states scene ran at {len(ran)} of the {2 * n_iv} reversal ends (those of the "
+            f"lines p < 0.5; their mirror partners are their images): the commonest state "
+            f"there is {counts}{ci}. At all ends: {rng}.")
+
+
 def _sign(k) -> str:
     return "− → +" if int(k) > 0 else "+ → −"
 
 
-def reversal_lines(rev: pd.DataFrame | None) -> list[str]:
+def reversal_lines(rev: pd.DataFrame | None, states: pd.DataFrame | None = None) -> list[str]:
     """The table of the reversals with the collisions at both ends."""
     L = ["", "### The collisions at each current reversal", "",
          "Each reversal of an off-centre line (claim R4's intervals) with, at its two ends "
@@ -76,7 +110,9 @@ def reversal_lines(rev: pd.DataFrame | None) -> list[str]:
          "a tooth per cycle is locked).", ""]
     if rev is None or rev.empty:
         return L + ["No current reversal on any off-centre line.", ""]
-    L += ["| α | p | reversal (Hz) | sign | v (mm/s) at f_a; f_b | collisions / period | ρ | "
+    n = None if states is None or states.empty else float(states["n_particles"].min())
+    L += [states_summary(rev, n), "",
+          "| α | p | reversal (Hz) | sign | v (mm/s) at f_a; f_b | collisions / period | ρ | "
           "vx lag-1 corr. (within) at f_a; f_b | states at f_a; f_b |",
           "| --- | --- | --- | --- | --- | --- | --- | --- | --- |"]
     for (a, p, fa, fb), g in rev.groupby(["alpha", "peak", "f_a", "f_b"], sort=True):
@@ -99,16 +135,20 @@ def conveyor_lines(conv: pd.DataFrame | None, rev: pd.DataFrame | None) -> list[
                     "(transport_diffusion.csv, transport_reversal_diffusion.csv) are absent.", ""]
     found = conv.dropna(subset=["f_a"])
     quiet = len(conv) - len(found)
-    items = [f"φ = {r.tilt:g}°, ψ = {r.throw:g}°, {r.contact}: {r.f_a:g}–{r.f_b:g} Hz "
-             f"({_sign(r.sign_after)})" for r in found.itertuples(index=False)]
-    L.append(f"The conveyor (transport study, same sign rules): {len(found)} reversals along f "
-             f"on {conv.groupby(['source', 'tilt', 'throw', 'contact']).ngroups} lines "
-             f"({quiet} lines without one): " + ("; ".join(items) or "none") + ".")
+    parts = []
+    for src, g in found.groupby("source", sort=False):
+        parts.append(f"{src}: " + "; ".join(
+            f"φ = {r.tilt:g}°, ψ = {r.throw:g}°, {r.contact}: {r.f_a:g}–{r.f_b:g} Hz "
+            f"({_sign(r.sign_after)})" for r in g.itertuples(index=False)))
+    n_lines = conv.groupby(["source", "tilt", "throw", "contact"]).ngroups
+    L.append(f"The conveyor (the transport study's committed tables, the same sign rules): "
+             f"{len(found)} reversals along f on {n_lines} lines ({quiet} lines without one), "
+             + _span(found) + ". " + ". ".join(parts) + ".")
     if rev is not None and not rev.empty:
         r_iv = rev.drop_duplicates(["alpha", "peak", "f_a", "f_b"])
-        lo, hi = float(r_iv["f_a"].min()), float(r_iv["f_b"].max())
-        L.append(f"The ratchet (level, vibrated vertically): {len(r_iv)} reversals, all between "
-                 f"{lo:g} and {hi:g} Hz.")
+        L.append("")
+        L.append(f"The ratchet (level, vibrated vertically): {len(r_iv)} reversals, "
+                 + _span(r_iv) + ".")
     return L + [""]
 
 
@@ -121,5 +161,6 @@ def further(tables: Mapping[str, pd.DataFrame], verdicts=None) -> list[str]:
     lines = map_lines(t)
     off = [k for k in lines if not np.isclose(k[1], CENTRE)]
     rev = tables.get(f"{SCENE}_reversals")
-    return ([f"{len(off)} off-centre lines judged."] + reversal_lines(rev)
+    return (["", f"{len(off)} off-centre lines judged."]
+            + reversal_lines(rev, tables.get(STATES_TABLE))
             + conveyor_lines(tables.get(f"{SCENE}_conveyor"), rev))
