@@ -43,7 +43,7 @@ def made(tmp_path_factory):
     return s, stores, s.tables(stores, echo=lambda m: None), root / "out"
 
 
-def test_the_map_draws_the_tables_signed_drift_centred_at_zero_and_blank_stays_blank(made):
+def test_the_map_draws_the_tables_signed_drift_on_a_colour_map_centred_at_zero(made):
     s, stores, tables, out = made
     from pipeline.studies.ratchet.figures import figure_map
 
@@ -89,3 +89,14 @@ def test_the_states_table_gives_each_point_shares_summing_to_one_with_wilson_int
     for lab in LABELS:  # each interval holds its share and is never of zero width
         assert (t[f"{lab}_lo"] <= t[lab]).all() and (t[lab] <= t[f"{lab}_hi"]).all()
         assert (t[f"{lab}_hi"] - t[f"{lab}_lo"] > 0).all()
+
+
+def test_a_blank_drift_is_left_blank_in_the_map_never_drawn_as_zero():
+    from pipeline.studies.ratchet.cases import F, map_table
+    from pipeline.studies.ratchet.figures import figure_map
+
+    t = map_table()
+    t.loc[(t["peak"] == 0.3) & (t["f"] == 70.0), ["v", "v_lo", "v_hi"]] = np.nan
+    z = figure_map(t, None).axes[0].collections[0].get_array()
+    z = z.reshape(3, F.size)
+    assert z.mask[0, list(F).index(70.0)] and z.mask.sum() == 1
