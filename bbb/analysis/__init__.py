@@ -16,8 +16,10 @@ run by :func:`bbb.simulate`) made.  None of them is hashed into the kernel ident
 ``lyapunov``       largest Lyapunov exponent from two nearby trajectories
 ``moving``         which particles move: operational definitions of "moving particles"
 ``moving_d``       the share that moves and D of the moving particles, with intervals
+``states``         each time window's state: stuck/creeping, locked 1/1 or period-k, chaotic,
+                   diffusing
 ================== =========================================================================
 
 The calibrated rules ship beside their modules (transport_rules.json, gk_contrast_rule.json,
-stats/*_calibration.json).  Nothing is imported here: ``import bbb.analysis.X``.
+states_rule.json, stats/*_calibration.json).  Nothing is imported here: ``import bbb.analysis.X``.
 """

@@ -49,6 +49,8 @@ CALIBRATIONS: tuple[Calibration, ...] = (
                 ("--pairs", "128", "--pool", "1024", "--curves", "2000")),
     Calibration("pipeline/studies/transport/hopping.json", "pipeline.studies.transport.hopping_calibration"),
     Calibration("pipeline/studies/transport/liftoffs.json", "benchmarks.calibrations.hopping_liftoffs"),
+    Calibration("bbb/analysis/states_rule.json", "benchmarks.calibrations.states_calibration",
+                ("--particles", "64")),
     Calibration("tests/bbb/data/checker_calibration.json", "benchmarks.calibrations.checker_calibration",
                 ("--random", "400")),
 )

@@ -9,7 +9,8 @@ hopping, with the share of the run in flight (``reversal``: where v changes sign
 along ψ, each change located as an interval, and the sliding/hopping boundary against
 conveyor theory's throw number Γ_v = Γ sin ψ / cos φ = 1, its threshold checked on flat
 floors by ``hopping_calibration``).  The figures (``figures``) and the claims as data
-(``claims``, the sign rules in ``signs``) read each line's table (``claims.line_tables``).
+(``claims``, the sign rules in :mod:`pipeline.claims.signs`) read each line's table
+(``claims.line_tables``).
 
 The study record: :data:`STUDY`.
 """

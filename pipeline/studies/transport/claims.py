@@ -9,9 +9,9 @@ map; T6 on transport_reversal.
 Rules, fixed before the data (calibrated on synthetic curves in
 tests/pipeline/studies/transport/test_claims.py):
 
-significant v   :mod:`.signs`: v ≠ 0 at a point of a curve when |v| exceeds z_n standard
-                errors, z_n = Φ⁻¹(1 − α / (2 n)) Bonferroni over the n points of the curve,
-                α = 0.05, and |v| > V_MIN = 1e-6 mm/s.
+significant v   :mod:`pipeline.claims.signs`: v ≠ 0 at a point of a curve when |v| exceeds
+                z_n standard errors, z_n = Φ⁻¹(1 − α / (2 n)) Bonferroni over the n points of
+                the curve, α = 0.05, and |v| > V_MIN = 1e-6 mm/s.
 steady only     every rule uses the frequencies whose drift is steady (bbb.analysis.transport: not
                 steady when the CI of v(second half) − v(first half) lies beyond ±(5 % of |v|
                 + k SE(v) + 1e-6 mm/s), k calibrated on synthetic steady and accelerating
@@ -27,10 +27,10 @@ diffusive only  an extremum of v(f) or of D_drift(f) at a frequency whose D abou
                 average a population that does not mix.  The rows name them.
 reversal        a sign change between consecutive significant points (those in between not
                 significant), located as the interval between the last significant point of
-                one sign and the first of the other (:mod:`.signs`).  T3 counts them along f on
-                every conveyor line (:data:`GEOMETRIES`) and along ψ at each fixed f on the
-                tilted floors (the cuts of the lines sharing tilt and contact model, ψ from 90°
-                down); it agrees with ≥ 1.
+                one sign and the first of the other (:mod:`pipeline.claims.signs`).  T3 counts
+                them along f on every conveyor line (:data:`GEOMETRIES`) and along ψ at each
+                fixed f on the tilted floors (the cuts of the lines sharing tilt and contact
+                model, ψ from 90° down); it agrees with ≥ 1.
 hopping         T6, per line of transport_reversal: the sliding/hopping boundary, from the last
                 frequency whose airborne share (1 − time held − time sliding) is significantly
                 below H to the first significantly above it (H read from hopping.json, checked
@@ -102,6 +102,7 @@ from ...claims.claim import (
     Quantity,
     measure,
 )
+from ...claims.signs import V_MIN, reversals, significant_signs, steady_rows
 from ..map_lines import split_lines
 from .cases import (
     d_extrema_cases,
@@ -131,7 +132,6 @@ from .reversal import (
     throw_number_frequency,
     throw_reversals,
 )
-from .signs import V_MIN, reversals, significant_signs, steady_rows
 
 __all__ = ["SCENES", "MAP", "SLIDING_MAP", "LINES", "HOPPING", "COMBINED", "CONVEYORS",
            "LABELS", "SLIDING", "SLIDING_LABELS", "SLIDING_GEOMETRY", "GEOMETRIES",

@@ -20,9 +20,10 @@ hopping boundary along f at a fixed floor and contact model: the first frequency
                  from ``hopping.json``, written by :mod:`.hopping_calibration`, which checks
                  it on flat floors (R = ∞: lift-off from rest exactly at Γ_v = 1) before any
                  map is looked at.
-sign changes     :mod:`.signs` along f on each line (:func:`f_reversals`) and along ψ at each
-                 fixed (floor, contact model, f) (:func:`throw_cuts`, :func:`throw_reversals`),
-                 steady points only, Bonferroni over each curve's points.
+sign changes     :mod:`pipeline.claims.signs` along f on each line (:func:`f_reversals`) and
+                 along ψ at each fixed (floor, contact model, f) (:func:`throw_cuts`,
+                 :func:`throw_reversals`), steady points only, Bonferroni over each curve's
+                 points.
 """
 
 from __future__ import annotations
@@ -38,7 +39,7 @@ import pandas as pd
 from bbb import Params
 
 from ...claims.claim import Band, Quantity, judge
-from .signs import reversal_intervals, significant_signs, steady_rows
+from ...claims.signs import reversal_intervals, significant_signs, steady_rows
 
 __all__ = ["REVERSAL_MAP", "REVERSAL_TILT", "REVERSAL_THROWS", "REVERSAL_MODELS",
            "REVERSAL_LINES", "MODEL_LABELS", "HOPPING_CALIBRATION", "AIRBORNE_MIN", "F_STEP",

@@ -7,6 +7,7 @@ import numpy as np
 import pandas as pd
 
 from pipeline.claims.claim import evaluate
+from pipeline.claims.signs import significant_signs
 from pipeline.studies.transport.claims import (
     CLAIMS,
     COMBINED,
@@ -17,7 +18,6 @@ from pipeline.studies.transport.claims import (
     SLIDING_GEOMETRY,
     sliding_liftoff,
 )
-from pipeline.studies.transport.signs import significant_signs
 from pipeline.workflow.scenes import load_scene
 
 #: the rules these tests turn, in the order they were written for: T1, T2, T3b (the reversal

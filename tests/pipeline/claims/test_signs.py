@@ -1,11 +1,12 @@
-"""The sign rules of the transport claims (pipeline/studies/transport/signs.py) on synthetic
+"""The sign rules of the drift claims (pipeline/claims/signs.py) on synthetic
 v(f) curves with known answers, fixed before any transport store was reduced."""
 
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
-from pipeline.studies.transport.signs import (
+from pipeline.claims.signs import (
     reversal_intervals,
     reversals,
     significant_signs,
@@ -73,3 +74,12 @@ def test_steady_rows_leave_out_the_unsteady_frequencies_and_say_which():
     assert list(out["f"]) == [50.0, 52.0, 54.0, 56.0, 58.0]
     assert out.attrs["unsteady"] == list(F[5:])
     assert steady_rows(t.drop(columns="v")) is None and steady_rows(None) is None
+
+
+def test_a_sums_interval_adds_each_sides_standard_errors_in_quadrature():
+    from pipeline.claims.signs import sum_interval
+
+    s, lo, hi = sum_interval([1.0], [0.7], [1.4], [-1.0], [-1.4], [-0.6])
+    assert s[0] == 0.0
+    assert lo[0] == pytest.approx(-np.hypot(0.3, 0.4)) and hi[0] == pytest.approx(np.hypot(0.4, 0.4))
+    assert np.isnan(sum_interval([1.0], [np.nan], [1.2], [0.0], [0.0], [0.0])[1][0])

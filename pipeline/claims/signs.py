@@ -1,6 +1,6 @@
 """The sign of a drift curve: where v is significantly positive or negative, and where it
-changes sign -- the rules of the transport claims (:mod:`.claims`), fixed before the data
-and calibrated on synthetic curves (tests/pipeline/studies/transport/test_claims.py).
+changes sign -- the rules of the transport and ratchet claims, fixed before the data and
+calibrated on synthetic curves (tests/pipeline/claims/test_signs.py and each study's cases).
 
 significant v   v ≠ 0 at a point of a curve when |v| exceeds z_n standard errors (read off its
                 CI side towards 0, as bbb.analysis.extrema does), z_n = Φ⁻¹(1 − α / (2 n))
@@ -14,6 +14,9 @@ reversal        a sign change between consecutive significant points (those in b
                 throw ψ at a fixed floor and f.
 steady only     a curve holds only the points whose drift is steady (bbb.analysis.transport,
                 the table's ``steady`` column): :func:`steady_rows`.
+a sum           v1 + v2 of two estimates (a drift and its mirror image's), its interval from
+                the two CIs' sides in quadrature (:func:`sum_interval`): the estimates taken
+                as independent.
 """
 
 from __future__ import annotations
@@ -23,7 +26,7 @@ from statistics import NormalDist
 import numpy as np
 import pandas as pd
 
-__all__ = ["ALPHA", "V_MIN", "significant_signs", "reversals", "reversal_intervals",
+__all__ = ["ALPHA", "V_MIN", "significant_signs", "reversals", "reversal_intervals", "sum_interval",
            "steady_rows"]
 
 ALPHA = 0.05
@@ -72,3 +75,15 @@ def steady_rows(t: pd.DataFrame | None) -> pd.DataFrame | None:
     out = t[ok].dropna(subset=["v_lo", "v_hi"]).copy()
     out.attrs["unsteady"] = t["f"][~ok].tolist()
     return out
+
+
+def sum_interval(v1, lo1, hi1, v2, lo2, hi2, ci: float = 0.95
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """(s, lo, hi): the sum s = v1 + v2 of two estimates with a ``ci`` interval whose sides
+    are each side's standard errors (read off the CIs as :func:`significant_signs` does) in
+    quadrature -- the two estimates taken as independent.  NaN where either is blank."""
+    v1, lo1, hi1, v2, lo2, hi2 = (np.asarray(a, dtype=float) for a in (v1, lo1, hi1, v2, lo2, hi2))
+    s = v1 + v2
+    below = np.hypot(v1 - lo1, v2 - lo2)
+    above = np.hypot(hi1 - v1, hi2 - v2)
+    return s, s - below, s + above
