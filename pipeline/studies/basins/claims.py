@@ -60,7 +60,7 @@ def dmix_peak(claim: Claim, ctx) -> Measured:
     return Measured(parts, note=note)
 
 
-_REG = "2026-11-28 PENDING"
+_REG = "2026-11-28 d5e357d"
 CLAIMS = [
     Claim("Local maximum of D(f) around f = 54, re-judged as a mixture of the attractors: "
           "some stated ensemble and run length T whose D_mix(f, T) = Σ share(T)·D of its "
