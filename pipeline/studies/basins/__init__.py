@@ -12,7 +12,7 @@ from ...claims.section import Section
 from ..interface import Study
 from .claims import CLAIMS, context
 from .figures import CAPTIONS, draw
-from .report import WORDS, facts
+from .report import WORDS, facts, further
 from .tables import SCENE, make_tables
 
 FILES = {k: f"basins_{k}.csv" for k in ("states", "shares", "dmix", "peak", "entropy")}
@@ -30,6 +30,7 @@ STUDY = Study(
     make_tables=make_tables,
     files=FILES,
     facts=facts,
+    further=further,
 )
 
 __all__ = ["STUDY"]

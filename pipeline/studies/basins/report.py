@@ -6,7 +6,7 @@ from collections.abc import Mapping
 
 import pandas as pd
 
-__all__ = ["WORDS", "facts", "FULL"]
+__all__ = ["WORDS", "facts", "FULL", "further"]
 
 #: cells per grid of the study's scene (scenes/basins.toml: 256 x 256)
 FULL = 256 * 256
@@ -46,3 +46,31 @@ WORDS = ("Each particle of two grids of initial conditions on the paper's floor 
          "(stuck, locked 1/1, locked period-k, irregular) by its share at time T and its own "
          "measured D; claim B1 re-judges claim 2 (a maximum near 54 Hz) on it, claim 2's verdict "
          "staying as judged. pipeline/studies/basins/claims.py states the rule.")
+
+
+def further(tables: Mapping[str, pd.DataFrame], verdicts=None) -> list[str]:
+    """A paragraph read off the states table: how the shares and D of the irregular
+    particles change through 52-57 Hz (what D_mix is made of there)."""
+    t = tables.get("states")
+    if t is None or t.empty:
+        return []
+    parts = []
+    for fam, g in t.groupby("family", sort=False):
+        g = g.set_index("f")
+        at = [f for f in (52.0, 54.0, 56.0, 57.0) if f in g.index]
+        if not at:
+            continue
+        stuck = ", ".join(f"{g.loc[f, 'final_stuck']:.0%} at {f:g}" for f in at)
+        d = ", ".join(f"{g.loc[f, 'D_irregular']:.0f}" for f in at)
+        parts.append(f"{fam}: ending stuck/creeping {stuck} Hz; D of the irregular particles "
+                     f"{d} mm²/s there")
+    if not parts:
+        return []
+    locked = float(t[["final_locked_1", "final_locked_k"]].to_numpy().max())
+    lock = ("Neither locked state survives the run anywhere on these grids (final shares 0)"
+            if locked == 0 else f"Locked states end at most {locked:.1%} of a grid")
+    return ["What D_mix is made of near 54 Hz (tables basins_states.csv, fig_basins_dmix): "
+            + "; ".join(parts) + f". {lock}; where the share that ends stuck grows and D of the "
+            "particles still irregular falls, every mixture of these states falls with them "
+            "(claim B1's verdict says whether any peaks near 54 Hz); the protocol study's "
+            "curves are grey in fig_basins_dmix.", ""]
