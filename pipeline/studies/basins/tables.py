@@ -29,7 +29,8 @@ from bbb.analysis import basins as bs
 from bbb.analysis import states as st
 from bbb.analysis.stats.proportion import wilson
 
-__all__ = ["SCENE", "BOX", "PEAK_TIMES", "make_tables", "store_tables", "grids", "dmix_boot"]
+__all__ = ["SCENE", "BOX", "PEAK_TIMES", "COLUMN_UNITS", "make_tables", "store_tables", "grids",
+           "dmix_boot"]
 
 SCENE = "basins"
 #: cells per side of a basin-entropy box
@@ -37,6 +38,12 @@ BOX = 4
 #: the run lengths (s) at which D_mix's maximum along f is located (claim B1's ensembles)
 PEAK_TIMES = (5.0, 10.0, 20.0)
 _LABELS = [name for code, name in enumerate(st.LABELS)]
+#: units of the study's own columns (the states table's are the observable's)
+COLUMN_UNITS = {
+    "T": "s", "state": "", "share": "1", "n": "1", "D_mix": "mm^2/s", "dmix_status": "",
+    "f_max": "Hz", "D_max": "mm^2/s", "at_edge": "", "peak_status": "", "S_b": "1", "S_bb": "1",
+    "boundary_boxes": "1", "boxes": "1", "fractal": "", "entropy_status": "",
+}
 
 
 def make_tables(stores, echo=print) -> dict[str, pd.DataFrame]:
