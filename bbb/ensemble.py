@@ -27,8 +27,8 @@ import numpy as np
 from .params import Params, real
 from .surface import floor_depth
 
-__all__ = ["CELL_MAX", "FAMILIES", "InitialState", "SPEED_CAP_FACTOR", "initial_state", "mirrored",
-           "mirror_pairs", "mirror_pair_units", "speed_cap"]
+__all__ = ["CELL_MAX", "FAMILIES", "InitialState", "SPEED_CAP_FACTOR", "initial_state",
+           "lattice_state", "mirrored", "mirror_pairs", "mirror_pair_units", "speed_cap"]
 
 FAMILIES = ("rest", "dropped", "launched")
 
@@ -202,6 +202,48 @@ def initial_state(
                     "speed_cap less the floor's peak speed")
     # (0, hi]: a launch speed of exactly 0 would be a particle at rest, not launched
     u = hi - rng.uniform(0.0, hi - lo, n)
+    return InitialState(cell, d, surface, vx, floor_v + u, s, np.zeros(n, bool), np.ones(n, bool))
+
+
+def lattice_state(p: Params, family: str, index: np.ndarray, shape: tuple[int, int],
+                  offset: float, *, drop_height: tuple[float, float] = (0.0, 2.0),
+                  launch_speed: tuple[float, float] = (0.0, 200.0)) -> InitialState:
+    """The states of a grid of initial conditions (no randomness): particle ``index`` (int,
+    0 ≤ index < n_phase·n_value, ``shape`` = (n_phase, n_value)) sits at row i = index //
+    n_value, column j = index % n_value: floor time s = (i + ½)/n_phase of a period and, for
+    ``dropped``, a release height lo + (j + ½)(hi − lo)/n_value (mm) in ``drop_height``, for
+    ``launched`` an upward launch speed in ``launch_speed`` likewise (mm/s, relative to the
+    floor), all at the offset ``offset`` (mm, |offset| ≤ S/2) in cell 0.  The level floor
+    vibrated vertically only (a grid of a basin of attraction: every cell's centre)."""
+    if family not in ("dropped", "launched"):
+        raise ValueError(f"a lattice of initial states is 'dropped' or 'launched', got {family!r}")
+    if p.transport:
+        raise ValueError("a lattice of initial states needs a level floor vibrated vertically "
+                         "(tilt = 0, throw = 90)")
+    n_phase, n_value = (int(v) for v in shape)
+    index = np.asarray(index, dtype=np.int64)
+    if n_phase < 1 or n_value < 1 or np.any((index < 0) | (index >= n_phase * n_value)):
+        raise ValueError(f"lattice index out of range: shape {shape}, allowed 0 ≤ index < "
+                         f"{n_phase * n_value}")
+    if not abs(offset) <= 0.5 * p.S:
+        raise ValueError(f"lattice offset = {offset!r} mm is out of range; allowed: |offset| ≤ "
+                         f"S/2 = {0.5 * p.S:g} mm")
+    n = index.size
+    i, j = index // n_value, index % n_value
+    s = (i + 0.5) / n_phase / p.f
+    d = np.full(n, float(offset))
+    surface = -p.A * np.sin(p.omega * s) - floor_depth(p, d)
+    cell, vx = np.zeros(n, dtype=np.int64), np.zeros(n)
+    if family == "dropped":
+        cap = speed_cap(p)
+        lo, hi = _range("drop_height", drop_height, cap**2 / (2.0 * p.g), "mm",
+                        "the height a particle at speed_cap rises to")
+        h = lo + (j + 0.5) * (hi - lo) / n_value
+        return InitialState(cell, d, surface + h, vx, np.zeros(n), s, np.zeros(n, bool), h == 0.0)
+    lo, hi = _range("launch_speed", launch_speed, speed_cap(p) - p.A * p.omega, "mm/s",
+                    "speed_cap less the floor's peak speed")
+    u = lo + (j + 0.5) * (hi - lo) / n_value
+    floor_v = -p.A * p.omega * np.cos(p.omega * s)
     return InitialState(cell, d, surface, vx, floor_v + u, s, np.zeros(n, bool), np.ones(n, bool))
 
 

@@ -87,10 +87,19 @@ def compute_chunk(store: StudyStore, fi: int, mi: int, ci: int, fail: bool = Fal
 
 def _initial(study: Study, point, fam, ci: int) -> dict:
     """bbb.simulate's initial-condition keywords for one chunk of ``point``
-    (:class:`pipeline.workflow.study.Point`): the family's draw from the chunk's seed, or,
+    (:class:`pipeline.workflow.study.Point`): a lattice family's cells of the chunk
+    (bbb.ensemble.lattice_state: particles ci·chunk_size …), the family's draw from the
+    chunk's seed, or,
     with mirror pairs (Study.pairing), half of it followed by the partners
     (bbb.ensemble.mirror_pairs)."""
     kw = fam.simulate_kwargs()
+    if fam.lattice is not None:
+        from bbb.ensemble import lattice_state
+
+        n = study.accuracy.chunk_size
+        kw.pop("initial")
+        return {"initial": lattice_state(point.params, fam.initial, np.arange(ci * n, (ci + 1) * n),
+                                         fam.lattice, fam.offset or 0.0, **kw)}
     if study.pairing(fam, point) != "pairs":
         return kw
     from bbb.ensemble import mirror_pairs

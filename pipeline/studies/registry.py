@@ -32,7 +32,7 @@ __all__ = ["STUDIES", "TOOLS", "study", "studies", "claims", "claim", "all_claim
 
 #: the studies, in the order make figures runs them and REPORT.md shows their sections
 STUDIES = ("klages2004", "mechanisms", "transport", "contact", "protocol", "dissipation",
-           "impacts", "onset", "ratchet")
+           "impacts", "onset", "basins", "ratchet")
 #: study folders that are tools, not part of the figure run (``bbb accuracy``)
 TOOLS = ("accuracy",)
 HERE = Path(__file__).resolve().parent

@@ -125,10 +125,12 @@ PLACEHOLDERS: dict[str, str] = {
     "<axis>": "|".join(k for k in PARAM_UNITS), "<family>": r"[A-Za-z][A-Za-z0-9_-]*",
     "<n>": r"\d+|inf", "<counter>": r"[a-z]+", "<s>": r"(?:_coll)?", "<side>": r"(?:dn|up)",
     "<sub>": r"(?:_move|_conf)?",
+    "<state>": r"stuck|locked_1|locked_k|chaotic|diffusing|unknown",
+    "<class>": r"stuck|locked_1|locked_k|irregular",
 }
 #: a placeholder's stand-in when the row's unit is looked up (:func:`row_unit`)
 _EXAMPLES = {"<family>": "rest", "<n>": "0", "<counter>": "collisions", "<s>": "",
-             "<side>": "dn", "<sub>": ""}
+             "<side>": "dn", "<sub>": "", "<state>": "stuck", "<class>": "stuck"}
 _AXIS = ("a [grid] scene's axis: the point's value of that [params] key (the long table has "
          "one column per axis, after f)")
 _WHICH = (("f", "floor frequency"), ("<axis>", _AXIS))

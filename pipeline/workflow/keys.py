@@ -215,12 +215,35 @@ class Family:
                               "partners of the other half (antithetic drift estimates)",
                               omit_default=True, default_doc="true on a level floor vibrated "
                               "vertically (tilt = 0, throw = 90), else false")
+    lattice: tuple[float, float] | None = key(
+        None, "a grid of initial conditions instead of random draws: [n_phase, n_value] "
+        "floor phases × drop heights (dropped) or launch speeds (launched), each cell's "
+        "centre, n_phase·n_value = n_particles (bbb.ensemble.lattice_state)", units="cells",
+        ge=1, omit_default=True, default_doc="none: random draws")
+    offset: float | None = key(None, "the lattice's offset from the arc's centre", units="mm",
+                               omit_default=True, default_doc="none (0 with a lattice)")
     description: str = key("", "free text", identity=False, omit_default=True)
 
     @property
     def key(self) -> int:
         """A stable 32-bit number for the seed: depends on the name only, not on its position."""
         return family_key(self.name)
+
+    def lattice_problem(self, n_particles: int) -> tuple[str, str, str] | None:
+        """(key, problem, allowed) when a lattice does not fit: cells not whole numbers, not
+        one particle per cell, not dropped or launched, an offset without a lattice."""
+        if self.lattice is None:
+            return None if self.offset is None else (
+                "offset", "is a lattice's offset", "offset only with lattice = [n_phase, n_value]")
+        a, b = self.lattice
+        if a != int(a) or b != int(b):
+            return "lattice", f"{list(self.lattice)} are not whole numbers", "integers ≥ 1"
+        if int(a) * int(b) != n_particles:
+            return ("lattice", f"{int(a)} × {int(b)} cells for n_particles = {n_particles}",
+                    "n_phase · n_value = [accuracy] n_particles")
+        if self.initial not in ("dropped", "launched"):
+            return "lattice", f"a lattice of {self.initial!r} states", 'initial = "dropped" or "launched"'
+        return None
 
     def simulate_kwargs(self) -> dict[str, Any]:
         kw: dict[str, Any] = {"initial": self.initial}

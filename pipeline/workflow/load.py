@@ -138,7 +138,7 @@ def parse_workflow(text: str, source: str = "<workflow>") -> Study:
     acc = _accuracy(r, doc)
     obs = _observables(r, doc, acc)
     study = Study(name=name, source=source, seed=st["seed"], preset=preset, overrides=overrides,
-                  frequencies=freqs, families=_families(r, doc), accuracy=acc,
+                  frequencies=freqs, families=_families(r, doc, acc.n_particles), accuracy=acc,
                   observables=obs, analysis=_analysis(r, doc), refine=refine, grid=grid,
                   invalid=invalid, grid_refine=grid_refine, text=text)
     if grid and refine is not None:
@@ -259,7 +259,7 @@ def _mhz(r: Reader, v: float, path: tuple[str, ...], allowed: str) -> int:
     return m
 
 
-def _families(r: Reader, doc: dict) -> tuple[Family, ...]:
+def _families(r: Reader, doc: dict, n_particles: int) -> tuple[Family, ...]:
     if "families" not in doc:
         return (Family("rest", "rest"),)
     fams = doc["families"]
@@ -276,6 +276,8 @@ def _families(r: Reader, doc: dict) -> tuple[Family, ...]:
         if not isinstance(tbl, dict):
             r.fail(path, f"must be a table, got {tname(tbl)}", "[families.NAME] initial = ...")
         out.append(Family(name, **r.table(tbl, path, Family)))
+        if (bad := out[-1].lattice_problem(n_particles)) is not None:  # one particle per cell
+            r.fail((*path, bad[0]), bad[1], bad[2])
     keys = [f.key for f in out]
     if len(set(keys)) != len(keys):  # crc32 collision: astronomically rare, but checked
         r.fail(("families",), "two family names hash to the same seed key; rename one")

@@ -52,6 +52,8 @@ def study_from_dict(cls: type, d: dict[str, Any], text: str = ""):
             drop_height=_tuple_or_none(fd.get("drop_height")),
             launch_speed=_tuple_or_none(fd.get("launch_speed")),
             mirror=fd.get("mirror"),
+            lattice=_tuple_or_none(fd.get("lattice")),
+            offset=None if fd.get("offset") is None else float(fd["offset"]),
             description=fd.get("description", ""),
         )
         for fd in d["families"]

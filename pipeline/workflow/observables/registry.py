@@ -20,13 +20,14 @@ from .impacts import Impacts
 from .jumps import Jumps
 from .lyapunov import Lyapunov
 from .positions import Positions
+from .states import States
 
 __all__ = ["OBSERVABLES", "selected", "by_name", "scene_tables", "growing_dims", "feeds",
            "own_tables"]
 
 OBSERVABLES: tuple[Observable, ...] = (
     Positions(), Collisions(), Counters(), Contact(), Jumps(), Lyapunov(), CollisionJumps(),
-    Impacts(),
+    Impacts(), States(),
 )
 
 

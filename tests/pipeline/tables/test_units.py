@@ -14,6 +14,7 @@ from pipeline.api import open_study, reduced
 from pipeline.execute.task import compute_chunk
 from pipeline.store.study_store import StudyStore
 from pipeline.studies.accuracy.study import COLUMN_UNITS as ACCURACY_UNITS
+from pipeline.studies.basins.tables import COLUMN_UNITS as BASINS_UNITS
 from pipeline.studies.dissipation.cuts import CUT_UNITS
 from pipeline.studies.klages2004.finescale import EXTREMA_UNITS
 from pipeline.studies.protocol.tables import COLUMN_UNITS as PROTOCOL_UNITS
@@ -27,8 +28,8 @@ from ..helpers import TINY
 
 FIGURES = Path(__file__).resolve().parents[3] / "figures"
 #: the studies' own columns (accuracy study, the fine-scale extrema, the protocol study, the
-#: dissipation study's cuts)
-STUDY_UNITS = {**ACCURACY_UNITS, **EXTREMA_UNITS, **PROTOCOL_UNITS, **CUT_UNITS}
+#: dissipation study's cuts, the basins study)
+STUDY_UNITS = {**ACCURACY_UNITS, **EXTREMA_UNITS, **PROTOCOL_UNITS, **CUT_UNITS, **BASINS_UNITS}
 #: TINY with every observable, so the store has every table (and locking by name); tilt = 0
 #: (a conveyor at no tilt: the level floor's motion) adds the transport columns v, D_drift, ...
 EVERY = (TINY.replace('name = "tiny"', 'name = "every"')

@@ -45,7 +45,7 @@ def test_every_array_and_coordinate_of_an_observable_names_a_known_unit():
 def test_the_observables_own_table_columns_have_units_in_the_one_map():
     for o in OBSERVABLES:
         for name, _, u, _ in o.columns:
-            probe = name.replace("<n>", "3")
+            probe = name.replace("<n>", "3").replace("<state>", "stuck").replace("<class>", "stuck")
             assert unit(probe) == u != UNKNOWN, (o.name, name)
 
 
