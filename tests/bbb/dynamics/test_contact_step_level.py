@@ -1,5 +1,5 @@
-"""The contact models (slide, coulomb) against analytic mechanics, symmetry and the
-independent trajectory checker."""
+"""The contact models (slide, coulomb) on the paper's floor (bbb.dynamics.contact_step, frame
+None) against analytic mechanics, symmetry and the independent trajectory checker."""
 
 import math
 
