@@ -116,7 +116,7 @@ class Params:
              default 90, the paper's vertical vibration): the floor moves by
              A·(cos ψ, sin ψ)·(−sin 2πft)
     contact -- sustained-contact model: "stick" (default), "slide" or "coulomb" (also on a
-             tilted or thrown floor: bbb.dynamics.contact_conveyor); only "stick" with vertical cusp
+             tilted or thrown floor: bbb.dynamics.contact_step); only "stick" with vertical cusp
              walls, R < S/2 · (1 + 1e-9) (sliding there never ends: Zeno)
     mu    -- Coulomb friction coefficient (0 ≤ mu ≤ 1e12; only with contact = "coulomb", else 0)
     floor -- the floor's shape (FLOORS): "arc" (default, the paper's arcs of radius R), "flat"

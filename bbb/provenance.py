@@ -39,12 +39,12 @@ __all__ = ["KERNEL_SOURCES", "kernel_hash", "kernel_identity", "normalised", "py
 
 #: the bbb modules (file names) that determine a simulated trajectory
 KERNEL_SOURCES = ("dynamics/__init__.py", "dynamics/bounds_conveyor.py", "dynamics/bounds_level.py",
-                  "dynamics/collide.py", "dynamics/contact_conveyor.py",
-                  "dynamics/contact_level.py", "dynamics/events.py", "dynamics/evolve.py",
+                  "dynamics/collide.py", "dynamics/contact_step.py", "dynamics/events.py",
+                  "dynamics/evolve.py",
                   "dynamics/floors/__init__.py", "dynamics/floors/arc.py",
                   "dynamics/floors/sawtooth.py", "dynamics/floors/sine.py",
                   "dynamics/liftoff.py", "dynamics/motion.py", "dynamics/options.py",
-                  "dynamics/search.py", "dynamics/slide.py",
+                  "dynamics/search.py", "dynamics/slide.py", "dynamics/static_friction.py",
                   "ensemble.py", "numerics.py", "params.py", "record.py", "simulate.py", "surface.py")
 
 

@@ -12,8 +12,9 @@ branches, so each floor compiles to its own code.  Modules, one idea each:
 - bounds_level / bounds_conveyor: each floor's gap and certificates (lower bounds, start step)
 - search: the certified collision search, one driver and one refine_root for both floors
 - slide: the contact phase's integrator with certified events (both floors)
-- contact_level / contact_conveyor: a contact step per floor; the contact start
-  (enter_contact) and a stretch's end (stretch_end) once for both, in contact_conveyor
+- static_friction: when static friction holds a particle at rest (both floors)
+- contact_step: one contact step (a slip from rest, a slide, its event) and the contact
+  start (enter_contact), once for both floors
 - evolve: the map itself, evolve and evolve_ensemble
 """
 

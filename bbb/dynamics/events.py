@@ -4,8 +4,13 @@ rows, position samples and the counters a run hands back."""
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 from numba import njit
+
+#: one recorded row: time t (s), position x (mm, the lab's), height y (mm), velocity (vx, vy)
+#: (mm/s) and the floor's phase (in periods); its event code travels beside it
+Row = namedtuple("Row", "t x y vx vy phase")
 
 # event codes of a 7-column record (bbb.record.EVENT_CODES)
 EV_COLLISION = 0.0
@@ -73,34 +78,37 @@ def row_due(rec, n_rec, rec_from, t, t_max, event_only):
 
 
 @njit(cache=True, inline="always")
-def write_row(rec, n_rec, t, x, y, vx, vy, phase, code):
-    # one recorded row (the event code in a 7-column record); returns the rows now written
+def write_row(rec, n_rec, row, code):
+    # one recorded row (a Row; the event code in a 7-column record); returns the rows now written
     if rec.shape[1] > 6:
         rec[n_rec, 6] = code
-    rec[n_rec, 0] = t
-    rec[n_rec, 1] = x
-    rec[n_rec, 2] = y
-    rec[n_rec, 3] = vx
-    rec[n_rec, 4] = vy
-    rec[n_rec, 5] = phase
+    rec[n_rec, 0] = row.t
+    rec[n_rec, 1] = row.x
+    rec[n_rec, 2] = row.y
+    rec[n_rec, 3] = row.vx
+    rec[n_rec, 4] = row.vy
+    rec[n_rec, 5] = row.phase
     return n_rec + 1
 
 
 @njit(cache=True, inline="always")
-def put_row(rec, n_rec, rec_from, t, t_max, x, y, vx, vy, phase, code, event_only):
-    # one recorded row if it is due (row_due)
-    if row_due(rec, n_rec, rec_from, t, t_max, event_only):
-        return write_row(rec, n_rec, t, x, y, vx, vy, phase, code)
+def put_row(rec, n_rec, run, row, code, event_only):
+    # one recorded row (a Row) if it is due (row_due; run: bbb.dynamics.options.Run)
+    if row_due(rec, n_rec, run.rec_from, row.t, run.t_max, event_only):
+        return write_row(rec, n_rec, row, code)
     return n_rec
 
 
 @njit(cache=True, inline="always")
-def write_counters(counters, times, n_coll, n_stick, n_lift, n_rec, n_anom, t_held, t_slid):
-    # a particle's counters (bbb.record.COUNTER_NAMES) and contact times (CONTACT_TIME_NAMES)
+def write_counters(counters, times, counts, held_slid):
+    # a particle's counters (bbb.record.COUNTER_NAMES: counts = (collisions, sticking episodes,
+    # lift-offs, recorded rows, anomalies)) and contact times (CONTACT_TIME_NAMES: held_slid =
+    # (time held at rest, time sliding), s)
+    n_coll, n_stick, n_lift, n_rec, n_anom = counts
     counters[0] = n_coll
     counters[1] = n_stick
     counters[2] = n_lift
     counters[3] = n_rec
     counters[4] = n_anom
-    times[0] = t_held
-    times[1] = t_slid
+    times[0] = held_slid[0]
+    times[1] = held_slid[1]

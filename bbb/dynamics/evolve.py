@@ -20,8 +20,7 @@ import numpy as np
 from numba import njit
 
 from .collide import collide, wall_met
-from .contact_conveyor import DONE, HELD, STALLED, contact_c, enter_contact
-from .contact_level import contact_level
+from .contact_step import DONE, HELD, STALLED, contact_step, enter_contact
 from .events import (
     EV_COLLISION,
     EV_CONTACT,
@@ -31,6 +30,7 @@ from .events import (
     SEARCH_RATE,
     STOP_SEARCH,
     STOP_STEPS,
+    Row,
     count_event,
     row_due,
     wrap_period,
@@ -44,18 +44,6 @@ from .options import Contact
 from .search import SEARCH_SPENT, STACK_DEPTH, next_collision
 
 __all__ = ["evolve", "evolve_ensemble"]
-
-
-@njit(cache=True, inline="always")
-def contact_step(st, s0, fl, run, frame, mu, retry, io):
-    # one step of sustained contact (st: a Contact) on the floor ``frame`` selects; io =
-    # (sample_times, pos, rec); returns (verdict, Contact, Tally)
-    if frame is None:
-        return contact_level(st, s0, fl, run, mu, io)
-    # held at rest until the lift-off the stuck branch would take (in a cusp: both arcs let
-    # go), unless static friction lets go first
-    t_n = liftoff_wait(st.s, st.d, fl, frame, retry) if st.stuck else 0.0
-    return contact_c(st, s0, t_n, fl, run, frame, mu, io)
 
 
 @njit(cache=True)
@@ -187,7 +175,7 @@ def evolve(init, fl, run, frame, friction, sample_times, out, stack):
         retry = False
         if lifting and row_due(rec, n_rec, rec_from, t_now, t_max, True):
             # a 7-column record also keeps lift-offs (event 1): the state the flight starts from
-            n_rec = write_row(rec, n_rec, t_now, x0, y, vx, vy, s / T, EV_LIFTOFF)
+            n_rec = write_row(rec, n_rec, Row(t_now, x0, y, vx, vy, s / T), EV_LIFTOFF)
         isamp = fill_flight(pos, isamp, sample_times, t_now + tau, x0, vx, t_now, frame)
         # free flight, Eqs. (1)-(4)
         cell, d, vx, vy = fly(cell, d, vx, vy, s, tau, j, g, w, R, S, frame)
@@ -226,14 +214,14 @@ def evolve(init, fl, run, frame, friction, sample_times, out, stack):
                 code = EV_CONTACT
         t_c = tp * T + (s - s0)
         if row_due(rec, n_rec, rec_from, t_c, t_max, False):
-            n_rec = write_row(rec, n_rec, t_c, lab_x(cell, d, s, S, w, frame), y, vx, vy, s / T,
+            n_rec = write_row(rec, n_rec, Row(t_c, lab_x(cell, d, s, S, w, frame), y, vx, vy, s / T),
                               code)
         from_surface = True
         lifting = False
     if status.shape[0] > 4:
         status[4] = SEARCH_BURST - low
     fill_carried(pos, isamp, sample_times, math.inf, cell * S + d, s, tp * T + (s - s0), w, frame)
-    write_counters(counters, times, n_coll, n_stick, n_lift, n_rec, n_anom, t_held, t_slid)
+    write_counters(counters, times, (n_coll, n_stick, n_lift, n_rec, n_anom), (t_held, t_slid))
 
 
 @njit(cache=True)

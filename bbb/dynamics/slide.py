@@ -37,10 +37,16 @@ missed: an excursion of the event function shallower than L·tol_t/2 (e.g. N bel
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 from numba import njit
 
 from .floors import is_flat
+
+#: a contact stretch's state (slide's argument and result): the angle θ from the arc's top (rad;
+#: the offset d in mm on a flat floor) q, the tangential speed v (mm/s) relative to the floor,
+#: floor time s (s) in its period count tp, the cell, the next position sample isamp
+Stretch = namedtuple("Stretch", "q v s tp cell isamp")
 
 LIFT = 1
 CUSP = 2
@@ -201,10 +207,10 @@ def clear_of_cusp(q, v, dv, h, J, R, q_c):
 
 @njit(cache=True)
 def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
-    """Integrate one contact stretch from st = (θ or d = q, v, floor time s, period count tp,
-    cell, next sample isamp) until an event, on the floor fl (bbb.dynamics.options.Floor) that
-    ``frame`` selects; s0 (s) is the particle's start in its floor period, ``run`` gives
-    t_max and tol_t.  Writes x (mm) at the sample times into ``pos``, io = (sample_times, pos).
+    """Integrate one contact stretch from st (a :data:`Stretch`) until an event, on the floor
+    fl (bbb.dynamics.options.Floor) that ``frame`` selects; s0 (s) is the particle's start in
+    its floor period, ``run`` gives t_max and tol_t.  Writes x (mm) at the sample times into
+    ``pos``, io = (sample_times, pos).
 
     ``frame`` is None on the paper's floor (the branches it decides are pruned at compile
     time, here and in the helpers it passes it to); on a conveyor (a Frame) the forces split
@@ -215,11 +221,11 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
     ``start_dir`` (±1) is the direction of a start from rest where the caller knows it (a slip
     up a cusp's wall, or where the pull is ~0 at the slip: μN ≈ 0); 0: the pull's sign then.
 
-    Returns ((q, v, s, tp, cell, isamp), event, (elapsed time in s, the step debt's peak)).  A
-    flat floor's q is the offset d, wrapped into [-S/2, S/2) with ``cell``.  The step debt
-    counts tried steps less PAYBACK per nominal step's worth of time covered; above
-    :data:`STRETCH_BUDGET` it ends the stretch with the event BUDGET (the caller stops the
-    particle, bbb.simulate raises): no input makes a stretch crawl without end."""
+    Returns (Stretch, event, (elapsed time in s, the step debt's peak)).  A flat floor's q is
+    the offset d, wrapped into [-S/2, S/2) with ``cell``.  The step debt counts tried steps
+    less PAYBACK per nominal step's worth of time covered; above :data:`STRETCH_BUDGET` it
+    ends the stretch with the event BUDGET (the caller stops the particle, bbb.simulate
+    raises): no input makes a stretch crawl without end."""
     q, v, s, tp, cell, isamp = st
     sample_times, pos = io
     g, A = frame_forces(fl, frame)
@@ -249,9 +255,9 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
     t_start = tp * T + (s - s0)
     n_a = normal_force(q, v, s, fl, frame)
     if n_a <= 0.0:
-        return (q, v, s, tp, cell, isamp), LIFT, (0.0, 0.0)
+        return Stretch(q, v, s, tp, cell, isamp), LIFT, (0.0, 0.0)
     if not flat and abs(q) >= q_c and q * v > 0.0:
-        return (q, v, s, tp, cell, isamp), CUSP, (0.0, 0.0)
+        return Stretch(q, v, s, tp, cell, isamp), CUSP, (0.0, 0.0)
     h = h_nom  # the next step to try
     hunting = False  # an event lies within h of the current state: bisect, never grow
     t_hit = math.inf  # the earliest end (s) of a tried step that met an event
@@ -270,12 +276,12 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
     while True:
         t_now = tp * T + (s - s0)
         if t_max - t_now <= tol_t:
-            return (q, v, s, tp, cell, isamp), END, (t_now - t_start, worst)
+            return Stretch(q, v, s, tp, cell, isamp), END, (t_now - t_start, worst)
         debt += 1.0
         if debt > worst:
             worst = debt
             if debt > STRETCH_BUDGET:
-                return (q, v, s, tp, cell, isamp), BUDGET, (t_now - t_start, worst)
+                return Stretch(q, v, s, tp, cell, isamp), BUDGET, (t_now - t_start, worst)
         hs = h
         cap = h_nom
         if not flat:
@@ -297,8 +303,8 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
         lift = nb <= 0.0
         cusp = (not flat) and abs(qb + lost) >= q_c
         if frame is not None:
-            # on a conveyor a particle may leave a cusp from rest (bbb.dynamics.contact_conveyor): θ then
-            # stays at ±θ_c to rounding for a while, which is no arrival at the cusp
+            # on a conveyor a particle may leave a cusp from rest (bbb.dynamics.contact_step):
+            # θ then stays at ±θ_c to rounding for a while, which is no arrival at the cusp
             cusp = cusp and qb * vb > 0.0
         stop = mu > 0.0 and sgn * vb <= 0.0
         amax, J, L = step_bounds(v, vb, hs, fl, frame, mu, sin_c)
@@ -314,7 +320,7 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
             up = q + v * hs / R + reach < q_c
             down = -q - v * hs / R + reach < q_c
             if frame is not None:
-                # a particle leaving a cusp from rest (bbb.dynamics.contact_conveyor) starts with
+                # a particle leaving a cusp from rest (bbb.dynamics.contact_step) starts with
                 # v = v̇ = 0: the quadratic bound then admits steps of only ~v/a_max and
                 # it crawls out in steps of tol_t; the cubic one grows them geometrically
                 up = up or clear_of_cusp(q, v, dva, hs, J, R, q_c)
@@ -356,11 +362,11 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
                 isamp += 1
         t_el = tp * T + (s - s0) - t_start
         if lift:
-            return (q, v, s, tp, cell, isamp), LIFT, (t_el, worst)
+            return Stretch(q, v, s, tp, cell, isamp), LIFT, (t_el, worst)
         if cusp:
-            return (math.copysign(q_c, q), v, s, tp, cell, isamp), CUSP, (t_el, worst)
+            return Stretch(math.copysign(q_c, q), v, s, tp, cell, isamp), CUSP, (t_el, worst)
         if stop:
-            return (q, 0.0, s, tp, cell, isamp), STOP, (t_el, worst)
+            return Stretch(q, 0.0, s, tp, cell, isamp), STOP, (t_el, worst)
         if hs > 0.0:
             h = hs if hunting else min(h_nom, 2.0 * hs)
             if hunting and frame is not None:

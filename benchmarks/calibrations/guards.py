@@ -11,7 +11,7 @@ This runs the inputs the project uses — the paper's floor under every contact 
 contact scenes, 46-99 Hz, from rest and launched), the transport scenes (tilt, throw, stick
 and Coulomb 0.3; the sliding scene at its own length where its debts peak), the conveyor
 contact rows of the soak, the extremes table — and random
-inputs of the hypothesis domain (tests/bbb/dynamics/test_contact_conveyor.py, every contact model on
+inputs of the hypothesis domain (tests/bbb/dynamics/test_contact_step_conveyor.py, every contact model on
 tilted and thrown floors), and prints the largest step debt, events per window and draw on the
 search budget each met.
 Writes the maxima to benchmarks/results/guards-<date>.json (--json), which

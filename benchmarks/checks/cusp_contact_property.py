@@ -1,5 +1,5 @@
 """A focused property run of Coulomb contact near steep cusps: the project's no-miss test
-(tests/bbb/dynamics/test_contact_level.py, the independent trajectory checker and the
+(tests/bbb/dynamics/test_contact_step_level.py, the independent trajectory checker and the
 brute-force gap grid) over many random scenes where the cusp walls are nearly vertical.
 
     nice .venv/bin/python -m benchmarks.checks.cusp_contact_property [--examples 2000] [--seed 0] [--jobs 2]
@@ -62,7 +62,7 @@ def draw(rng: np.random.Generator, n: int) -> list[dict]:
 
 
 def one(kw: dict) -> tuple[dict, str | None]:
-    from tests.bbb.dynamics.test_contact_level import (
+    from tests.bbb.dynamics.test_contact_step_level import (
         test_no_event_is_missed_and_no_particle_goes_below_the_surface_under_the_contact_models as test,
     )
 
@@ -114,7 +114,8 @@ def run(args, label: str | None) -> None:
           f"{platform.python_version()}  tests of commit {head}, bbb of "
           f"{label or head + (' + uncommitted bbb changes' if dirty else '')}")
     print(f"# ranges: {RANGES}, families {FAMILIES}; draw seed {args.seed}, {args.jobs} processes")
-    print("# each example: tests/bbb/dynamics/test_contact_level.py's no-miss test (3 particles, 60/f s)")
+    print("# each example: tests/bbb/dynamics/test_contact_step_level.py's no-miss test "
+          "(3 particles, 60/f s)")
     for kw, err in failures:
         print(f"FAILED {kw}\n       {err}")
     print(f"examples: {len(examples)}  failures: {len(failures)}  wall: {wall:.0f} s")

@@ -53,7 +53,7 @@ G = 9800.0
 S = 2.0
 V_STICK = 1e-3  # the model's sticking threshold (mm/s), the kernel's default
 #: the four examples of the focused property run (Coulomb near steep cusps) and the strict
-#: xfail's, as the no-miss test takes them (tests/bbb/dynamics/test_contact_level.py)
+#: xfail's, as the no-miss test takes them (tests/bbb/dynamics/test_contact_step_level.py)
 EXAMPLES = [
     dict(f=128.0, A=0.9219666711070154, radius=1.2025988186809293, alpha=0.08455653926320933,
          beta=0.46157377184696957, mu=0.06366547442083818, family="dropped", seed=3931057938),

@@ -508,7 +508,7 @@ def held_where_it_rests_and_never_slides(p: Params, st: InitialState, run: SimRu
 FLAT = math.inf
 CASES: list[Case] = [
     # no slide/coulomb at R = S/2: Params refuses them there (vertical cusp walls make sliding
-    # a Zeno ping-pong; tests/bbb/dynamics/test_contact_level.py, test_sliding_contact_is_refused_...)
+    # a Zeno ping-pong; tests/bbb/dynamics/test_contact_step_level.py, test_sliding_contact_is_refused_...)
     # 50 Hz: at 54 Hz no particle was ever held in a cusp (the claim passed on nothing)
     Case("slide at 50 Hz from rest: held only at tops and cusps", params(f=50.0, contact="slide"),
          "rest", held_only_where_the_model_can_hold, t_max=2.0,

@@ -16,7 +16,7 @@ from bbb import Numerics, Params, simulate
 from bbb.dynamics.events import EVENT_BUDGET, SEARCH_BURST, SEARCH_RATE, STOP_OK, STOP_SEARCH, STOP_STEPS
 from bbb.dynamics.evolve import evolve_ensemble
 from bbb.dynamics.options import Floor, Run
-from bbb.dynamics.slide import BUDGET, PAYBACK, STRETCH_BUDGET, slide
+from bbb.dynamics.slide import BUDGET, PAYBACK, STRETCH_BUDGET, Stretch, slide
 from bbb.ensemble import InitialState, initial_state
 from bbb.simulate import _raise_on_guard
 
@@ -68,8 +68,8 @@ def test_a_contact_stretch_that_makes_no_progress_ends_with_the_budget_event():
     ~STRETCH_BUDGET × tol_t of its 1 s."""
     fl = Floor(9800.0, 0.1, 2 * math.pi * 60.0, 15.0, 2.0, 0.8, 1.0)
     run = Run(1.0, 0.0, 1e-12, 1e-3, 1.0)
-    _, event, (elapsed, worst) = slide((0.01, math.nan, 0.0, 0, 0, 0), 0.0, fl, None, 0.3, run,
-                                       (np.zeros(0), np.zeros(0)))
+    _, event, (elapsed, worst) = slide(Stretch(0.01, math.nan, 0.0, 0, 0, 0), 0.0, fl, None, 0.3,
+                                       run, (np.zeros(0), np.zeros(0)))
     assert event == BUDGET and worst > STRETCH_BUDGET
     assert elapsed < 2.0 * STRETCH_BUDGET * 1e-12
 

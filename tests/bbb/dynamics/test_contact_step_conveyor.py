@@ -1,5 +1,5 @@
-"""Sliding and Coulomb contact on the conveyor (bbb.conveyor_contact) against analytic
-mechanics, the mirror symmetry, and the independent checker on random inputs."""
+"""Sliding and Coulomb contact on the conveyor (bbb.dynamics.contact_step with a Frame) against
+analytic mechanics, the mirror symmetry, and the independent checker on random inputs."""
 
 import math
 from datetime import timedelta

@@ -1,5 +1,5 @@
-"""The contact models (slide, coulomb) against analytic mechanics, symmetry and the
-independent trajectory checker."""
+"""The contact models (slide, coulomb) on the paper's floor (bbb.dynamics.contact_step, frame
+None) against analytic mechanics, symmetry and the independent trajectory checker."""
 
 import math
 
@@ -195,7 +195,7 @@ def test_a_contact_start_in_a_cusp_below_v_stick_is_rest_there(off_cusp, speed, 
     """enter_contact at d = S/2 − off_cusp (R = 1.05, S = 2, μ = 0.3, v_stick = 1e-3 mm/s), with
     the relative tangential speed up the wall given: in the cusp a speed below v_stick is
     held (0 returned), above it slides; a hair off the cusp it slides at any speed."""
-    from bbb.dynamics.contact_conveyor import enter_contact
+    from bbb.dynamics.contact_step import enter_contact
     from bbb.dynamics.options import Floor
 
     R, S, A, f = 1.05, 2.0, 0.3, 100.0
