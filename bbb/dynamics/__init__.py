@@ -9,7 +9,7 @@ branches, so each floor compiles to its own code.  Modules, one idea each:
 - motion: positions, floor velocity and flights (Eqs. 1-4) on either floor
 - collide: the collision rule, Eqs. (5)-(6), once for both floors
 - liftoff: when a particle held at rest lifts off, once for both floors
-- bounds_level / bounds_conveyor: each floor's gap and certificates (lower bounds, start step)
+- bounds: the gap and its certificates (lower bound, start step), each rule once for both floors
 - search: the certified collision search, one driver and one refine_root for both floors
 - slide: the contact phase's integrator with certified events (both floors)
 - contact_level / contact_conveyor: a contact step per floor; the contact start

@@ -11,7 +11,7 @@ import math
 from numba import njit
 
 from ..surface import floor_a, floor_v
-from .bounds_conveyor import cusp_side, times_or_zero
+from .bounds import cusp_side, times_or_zero
 from .floors import curvature, normal, slope
 from .floors.arc import arc_normal
 

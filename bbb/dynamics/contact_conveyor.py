@@ -26,7 +26,7 @@ import math
 
 from numba import njit
 
-from .bounds_conveyor import cusp_side
+from .bounds import cusp_side
 from .collide import collide, floor_velocity_at
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, put_row, wrap_period
 from .floors import is_flat, normal

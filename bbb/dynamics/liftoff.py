@@ -10,7 +10,7 @@ import math
 
 from numba import njit
 
-from .bounds_conveyor import cusp_side
+from .bounds import cusp_side
 from .floors import normal
 from .floors.arc import arc_normal
 

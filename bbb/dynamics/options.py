@@ -29,7 +29,7 @@ Contact = namedtuple("Contact", "cell d y vx vy s tp isamp stuck sliding q vt ki
 #: what a contact step did: collisions, sticking episodes, lift-offs, time slid (s), and the
 #: stretch's peak step debt (bbb.dynamics.slide)
 Tally = namedtuple("Tally", "collisions sticks lifts slid worst")
-#: a conveyor (bbb.dynamics.bounds_conveyor's module doc): gravity (−gx, −gy) (mm/s²) and floor
+#: a conveyor (bbb.dynamics.bounds's module doc): gravity (−gx, −gy) (mm/s²) and floor
 #: amplitudes (Ax, Ay) (mm) along and normal to the floor's plane
 Frame = namedtuple("Frame", "gx gy Ax Ay")
 
