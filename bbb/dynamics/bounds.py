@@ -32,6 +32,7 @@ import math
 from numba import njit
 
 from .floors import concavity, curvature, curvature_max, depth, depth_min, slope
+from .options import heave
 
 #: a carried particle within CUSP_REACH·S of a cusp rests in it: both arcs hold it, and it
 #: lifts off only when both let go (docs/physics.md, "Transport"); 1e-9 S is far above the
@@ -66,14 +67,6 @@ def cusp_side(d, R, S):
     if math.isinf(R) or 0.5 * S - abs(d) > CUSP_REACH * S:
         return 0
     return 1 if d > 0.0 else -1
-
-
-@njit(cache=True, inline="always")
-def heave(fl, frame):
-    # gravity and floor amplitude normal to the floor's plane, as the gap reads them
-    if frame is None:
-        return fl.g, fl.A
-    return frame.gy, frame.Ay
 
 
 @njit(cache=True, inline="always")

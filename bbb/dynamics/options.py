@@ -44,6 +44,15 @@ def conveyor_frame(g, A, tilt, throw):
     return gx, gy, -A * math.sin(dev), A * math.cos(dev)
 
 
+@njit(cache=True, inline="always")
+def heave(fl, frame):
+    """(gravity (mm/s²), floor amplitude (mm)) normal to the floor's plane: the paper's (g, A)
+    for frame None, the conveyor's (gy, Ay)."""
+    if frame is None:
+        return fl.g, fl.A
+    return frame.gy, frame.Ay
+
+
 def frame_of(g: float, A: float, tilt: float, throw: float) -> Frame:
     """The conveyor's Frame, computed by the jitted arithmetic the kernel always used."""
     return Frame(*conveyor_frame(g, A, tilt, throw))
