@@ -178,7 +178,7 @@ def depth_ends(ea, eb, rg, fli, fl, frame):
             depth(fl.R, rg[1]))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def lower_bound(a, b, ea, eb, fli, fl, frame):
     """Rigorous lower bound (mm) of G on [a, b] (s), from ``ea``, ``eb`` = :func:`gap` at
     its ends: the best of three.  The level floor's interval lies in one cell; the
@@ -237,7 +237,7 @@ def rest_step(sigma, gn, ae, h_max, fli, fl):
     return sigma
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def start_step(h_max, ea, fli, fl, frame):
     """A flight step σ (s) > 0 on which G > 0, for a flight that starts on the surface
     (G(0) = 0; ``ea`` = :func:`gap` there), at most h_max (s).
