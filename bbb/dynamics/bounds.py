@@ -192,9 +192,11 @@ def lower_bound(a, b, ea, eb, fli, fl, frame):
     M = curvature_cap(ea, eb, rg, fli, fl, frame)
     lb = min(Ga, Gb) - max(M, 0.0) * h * h * 0.125
     # Taylor from a with G'' ≥ −K: a concave quadratic, minimal at the ends
-    q = Ga + G1a * h - 0.5 * pull_cap(G1a, rg, fli, fl, frame) * h * h
-    if frame is None or q == q:
-        lb = max(lb, min(Ga, q))
+    K = pull_cap(G1a, rg, fli, fl, frame)
+    if frame is None or K == K:
+        q = Ga + G1a * h - 0.5 * K * h * h
+        if frame is None or q == q:
+            lb = max(lb, min(Ga, q))
     # depth at least its minimum over the range of d; the rest (Eq. 2 minus the floor) has
     # curvature ≤ −gn + |an| ω².  Carries the vertical cusps of R = S/2 and a sawtooth's
     # peak, where the curvature bound is infinite (a vertical flight over the level floor
@@ -282,7 +284,7 @@ def start_step(h_max, ea, fli, fl, frame):
     return min(a, b)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def circle_step(h_max, G1, circle, d10, fli, fl, frame):
     """The conveyor's start_step on one circle: the flight starts at offset e0 (mm) from its
     centre, G(0) = 0, G'(0) = G1, d'(0) = d10, and the bounds hold while |d − d0| ≤ r (mm);
