@@ -12,6 +12,10 @@ process stopped after its warm-up call (import, numba cache load, one tiny ensem
 collision counts must agree.  numba compiles for the CPU valgrind emulates (its name and
 features, read once under valgrind), natively and before the counted run, so that valgrind
 loads the cache instead of compiling: the counts are of that code, not of the host's.
+Caveat: whatever the full run loads or compiles beyond the warm-up call counts as kernel (seen
+once: +31e6 instructions in one tree's 4-particle run, and a cache holding other scenes' code
+changes the warm-up's count by ~1e8): compare trees at the same size, with fresh caches (as
+here), and check that instr/coll is stable across two sizes before trusting a difference.
 Prints a table; commit it under benchmarks/results/ with the date and CPU.
 """
 
