@@ -38,8 +38,8 @@ from importlib import metadata, resources
 __all__ = ["KERNEL_SOURCES", "kernel_hash", "kernel_identity", "normalised", "python_minor"]
 
 #: the bbb modules (file names) that determine a simulated trajectory
-KERNEL_SOURCES = ("dynamics/__init__.py", "dynamics/bounds_conveyor.py", "dynamics/bounds_level.py",
-                  "dynamics/collide.py", "dynamics/contact_step.py", "dynamics/events.py",
+KERNEL_SOURCES = ("dynamics/__init__.py", "dynamics/bounds.py", "dynamics/collide.py",
+                  "dynamics/contact_step.py", "dynamics/events.py",
                   "dynamics/evolve.py",
                   "dynamics/floors/__init__.py", "dynamics/floors/arc.py",
                   "dynamics/floors/sawtooth.py", "dynamics/floors/sine.py",

@@ -43,6 +43,8 @@ MOVED = {
     "bbb.contact": "bbb.dynamics.slide", "bbb.conveyor_contact": "bbb.dynamics.contact_step",
     "bbb.dynamics.contact_level": "bbb.dynamics.contact_step",
     "bbb.dynamics.contact_conveyor": "bbb.dynamics.contact_step",
+    "bbb.dynamics.bounds_level": "bbb.dynamics.bounds", "bbb.dynamics.bounds_conveyor": "bbb.dynamics.bounds",
+    "pipeline.studies.transport.signs": "pipeline.claims.signs",
     "pipeline.cluster": "pipeline.execute.cluster", "pipeline.reduce": "pipeline.tables.reduce",
     "pipeline.run": "pipeline.execute.run", "pipeline.identity": "pipeline.workflow.identity",
     "pipeline.studies.figure_style": "pipeline.plot.style",

@@ -4,7 +4,7 @@ somewhere on the floor feels the floor let go.
 A particle carried at rest on an arc at angle θ from its top (normal n = (sin θ, cos θ)) is
 pressed on by n·(G + a ω² sin ωs) per unit mass, with gravity G = g (sin φ, cos φ) in the
 floor's coordinates (tilt φ) and the floor's acceleration amplitude a = A (−sin δ, cos δ),
-δ = ψ − 90° (throw ψ; the conventions of :mod:`bbb.dynamics.bounds_conveyor`).  So the load is
+δ = ψ − 90° (throw ψ; the conventions of :mod:`bbb.dynamics.bounds`).  So the load is
 g cos(θ − φ) + A ω² cos(θ + δ) sin ωs, and it turns negative at some phase once
 ω² > g cos(θ − φ) / (A |cos(θ + δ)|).  Its θ-derivative has the fixed sign of sin(δ + φ), so
 over the arc's angles [−θc, θc] (sin θc = S / 2R) the lowest threshold sits at an edge: at a

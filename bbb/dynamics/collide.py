@@ -11,9 +11,8 @@ import math
 from numba import njit
 
 from ..surface import floor_a, floor_v
-from .bounds_conveyor import cusp_side, times_or_zero
+from .bounds import cusp_side, times_or_zero
 from .floors import curvature, normal, slope
-from .floors.arc import arc_normal
 
 
 @njit(cache=True, inline="always")
@@ -100,8 +99,8 @@ def wall_met(cell, d, vx, vy, s, fl, frame):
     cw = w * math.cos(w * s)
     ux = vx + Ax * cw
     uy = vy + Ay * cw
-    nx, ny = arc_normal(d, R)
-    mx, my = arc_normal(d - side * S, R)
+    nx, ny = normal(R, d)
+    mx, my = normal(R, d - side * S)
     own = ux * nx + uy * ny
     other = ux * mx + uy * my
     if own >= 0.0 and other < 0.0:

@@ -17,7 +17,7 @@ import math
 
 from numba import njit
 
-from .bounds_conveyor import cusp_side
+from .bounds import cusp_side
 from .collide import collide, floor_velocity_at
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, Row, put_row, wrap_period
 from .floors import is_flat, normal
@@ -130,7 +130,7 @@ def leave_rest(st, s0, fl, run, frame, mu, retry, samples):
     if not t_f < t_n - run.tol_t or t_f >= run.t_max - t_now:
         return False, st, 0.0
     # carried with the floor until static friction lets go
-    isamp = fill_carried(pos, isamp, sample_times, t_now + t_f, cell * S + d, s, t_now, w, frame)
+    isamp = fill_carried((sample_times, pos), isamp, t_now + t_f, cell * S + d, s, t_now, w, frame)
     s, tp = wrap_period(s + t_f, tp, T)
     start_dir = 0.0
     side = 0 if flat else cusp_side(d, R, S)

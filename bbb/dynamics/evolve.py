@@ -136,7 +136,7 @@ def evolve(init, fl, run, frame, friction, sample_times, out, stack):
             wait = liftoff_wait(s, d, fl, frame, retry)
             t_lift = t_now + wait
             t_held += min(wait, t_max - t_now)
-            isamp = fill_carried(pos, isamp, sample_times, t_lift, cell * S + d, s, t_now, w,
+            isamp = fill_carried((sample_times, pos), isamp, t_lift, cell * S + d, s, t_now, w,
                                  frame)
             if t_lift >= t_max:
                 break
@@ -164,7 +164,7 @@ def evolve(init, fl, run, frame, friction, sample_times, out, stack):
                 status[0] = STOP_SEARCH
                 status[3] = t_now
                 break
-            isamp = fill_flight(pos, isamp, sample_times, math.inf, x0, vx, t_now, frame)
+            isamp = fill_flight((sample_times, pos), isamp, math.inf, x0, vx, t_now, frame)
             break
         if lifting and tau == 0.0:
             # the floor did not let go after all (rounding at the edge of the window)
@@ -176,9 +176,9 @@ def evolve(init, fl, run, frame, friction, sample_times, out, stack):
         if lifting and row_due(rec, n_rec, rec_from, t_now, t_max, True):
             # a 7-column record also keeps lift-offs (event 1): the state the flight starts from
             n_rec = write_row(rec, n_rec, Row(t_now, x0, y, vx, vy, s / T), EV_LIFTOFF)
-        isamp = fill_flight(pos, isamp, sample_times, t_now + tau, x0, vx, t_now, frame)
+        isamp = fill_flight((sample_times, pos), isamp, t_now + tau, x0, vx, t_now, frame)
         # free flight, Eqs. (1)-(4)
-        cell, d, vx, vy = fly(cell, d, vx, vy, s, tau, j, g, w, R, S, frame)
+        cell, d, vx, vy = fly((cell, d, vx, vy, s), tau, j, fl, frame)
         s, tp = wrap_period(s + tau, tp, T)
         met = True
         if frame is not None:
@@ -220,7 +220,8 @@ def evolve(init, fl, run, frame, friction, sample_times, out, stack):
         lifting = False
     if status.shape[0] > 4:
         status[4] = SEARCH_BURST - low
-    fill_carried(pos, isamp, sample_times, math.inf, cell * S + d, s, tp * T + (s - s0), w, frame)
+    fill_carried((sample_times, pos), isamp, math.inf, cell * S + d, s, tp * T + (s - s0), w,
+                 frame)
     write_counters(counters, times, (n_coll, n_stick, n_lift, n_rec, n_anom), (t_held, t_slid))
 
 

@@ -10,7 +10,7 @@ import math
 
 from numba import njit
 
-from .bounds_conveyor import cusp_side
+from .bounds import cusp_side
 from .floors import normal
 from .floors.arc import arc_normal
 
@@ -80,7 +80,7 @@ def liftoff_wait(s, d, fl, frame, retry):
     contact force per unit mass, n·(a_floor + (gx, gy)) = An ω² sin ωs + gn, turns negative
     (An, gn: the floor amplitude and gravity along the floor's normal n; on the paper's floor
     ``frame = None``: sin ωs < −1/Γ).  inf if never; ``retry``: the let-go at s was just
-    tried and failed.  On the conveyor in a cusp (bbb.dynamics.bounds_conveyor.cusp_side) both
+    tried and failed.  On the conveyor in a cusp (bbb.dynamics.bounds.cusp_side) both
     arcs must let go."""
     w = fl.w
     if frame is not None:

@@ -14,7 +14,7 @@ import math
 from numba import njit
 
 from ..surface import floor_v, floor_y
-from .bounds_conveyor import round_half_away
+from .bounds import round_half_away
 from .floors import depth, is_flat
 
 
@@ -51,8 +51,10 @@ def on_arc_velocity(vt, nx, ny, vfx, vfy, frame):
 
 
 @njit(cache=True, inline="always")
-def fill_flight(pos, isamp, sample_times, t_end, x0, vx, t_now, frame):
-    # x at the sample times before t_end of a flight from x0 at t_now (Eq. 1)
+def fill_flight(samples, isamp, t_end, x0, vx, t_now, frame):
+    # x at the sample times before t_end of a flight from x0 at t_now (Eq. 1); samples =
+    # (sample_times, pos)
+    sample_times, pos = samples
     ns = sample_times.shape[0]
     while isamp < ns and sample_times[isamp] < t_end:
         dt = sample_times[isamp] - t_now
@@ -65,8 +67,10 @@ def fill_flight(pos, isamp, sample_times, t_end, x0, vx, t_now, frame):
 
 
 @njit(cache=True, inline="always")
-def fill_carried(pos, isamp, sample_times, t_end, base, s, t_now, w, frame):
-    # x at the sample times before t_end of a particle held at rest at base = cell·S + d
+def fill_carried(samples, isamp, t_end, base, s, t_now, w, frame):
+    # x at the sample times before t_end of a particle held at rest at base = cell·S + d;
+    # samples = (sample_times, pos)
+    sample_times, pos = samples
     ns = sample_times.shape[0]
     while isamp < ns and sample_times[isamp] < t_end:
         if frame is None:
@@ -78,9 +82,12 @@ def fill_carried(pos, isamp, sample_times, t_end, base, s, t_now, w, frame):
 
 
 @njit(cache=True, inline="always")
-def fly(cell, d, vx, vy, s, tau, j, g, w, R, S, frame):
-    # Eqs. (1)-(4): the flight's end, τ later over the arc j cells on (conveyor: the nearest
-    # arc of the offset relative to the floor, bbb.dynamics.bounds_conveyor's module doc)
+def fly(st, tau, j, fl, frame):
+    # Eqs. (1)-(4): the end (cell, d, vx, vy) of the flight from st = (cell, d, vx, vy, s), τ
+    # later over the arc j cells on (conveyor: the nearest arc of the offset relative to the
+    # floor, bbb.dynamics.bounds's module doc)
+    cell, d, vx, vy, s = st
+    w, R, S = fl.w, fl.R, fl.S
     if frame is None:
         d = d + vx * tau - j * S
         cell += j
@@ -90,7 +97,7 @@ def fly(cell, d, vx, vy, s, tau, j, g, w, R, S, frame):
             cell += int(k)
         else:
             d = min(max(d, -0.5 * S), 0.5 * S)
-        return cell, d, vx, vy - g * tau
+        return cell, d, vx, vy - fl.g * tau
     d = d + vx * tau - 0.5 * frame.gx * tau * tau + frame.Ax * (math.sin(w * (s + tau))
                                                                 - math.sin(w * s))
     k = round_half_away(d / S)

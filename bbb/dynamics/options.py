@@ -20,7 +20,7 @@ Floor = namedtuple("Floor", "g A w R S alpha beta")
 #: one run: t_max (s), recording from rec_from (s), root tolerance tol_t (s), sticking speed
 #: v_stick (mm/s), longest search step h_max_periods (floor periods)
 Run = namedtuple("Run", "t_max rec_from tol_t v_stick h_max_periods")
-#: a particle in sustained contact (bbb.dynamics.contact_level, contact_conveyor): its cell,
+#: a particle in sustained contact (bbb.dynamics.contact_step): its cell,
 #: offset d (mm), height y (mm), velocity (vx, vy) (mm/s), floor time s (s) in its period
 #: count tp, the next position sample isamp, held at rest (stuck) or sliding, the contact
 #: angle q (rad; d on a flat floor), the tangential speed vt (mm/s) relative to the floor,
@@ -29,7 +29,7 @@ Contact = namedtuple("Contact", "cell d y vx vy s tp isamp stuck sliding q vt ki
 #: what a contact step did: collisions, sticking episodes, lift-offs, time slid (s), and the
 #: stretch's peak step debt (bbb.dynamics.slide)
 Tally = namedtuple("Tally", "collisions sticks lifts slid worst")
-#: a conveyor (bbb.dynamics.bounds_conveyor's module doc): gravity (−gx, −gy) (mm/s²) and floor
+#: a conveyor (bbb.dynamics.bounds's module doc): gravity (−gx, −gy) (mm/s²) and floor
 #: amplitudes (Ax, Ay) (mm) along and normal to the floor's plane
 Frame = namedtuple("Frame", "gx gy Ax Ay")
 
@@ -42,6 +42,15 @@ def conveyor_frame(g, A, tilt, throw):
     # from ψ − 90° so that ψ → 180° − ψ flips Ax's sign bit-exactly and ψ = 90 gives Ay = A
     dev = math.radians(throw - 90.0)
     return gx, gy, -A * math.sin(dev), A * math.cos(dev)
+
+
+@njit(cache=True, inline="always")
+def heave(fl, frame):
+    """(gravity (mm/s²), floor amplitude (mm)) normal to the floor's plane: the paper's (g, A)
+    for frame None, the conveyor's (gy, Ay)."""
+    if frame is None:
+        return fl.g, fl.A
+    return frame.gy, frame.Ay
 
 
 def frame_of(g: float, A: float, tilt: float, throw: float) -> Frame:

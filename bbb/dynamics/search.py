@@ -3,9 +3,9 @@
 
 The gap G(τ) = y_particle − y_surface along a flight is only declared positive on an
 interval when a rigorous lower bound is positive there; a root is refined by Newton
-safeguarded by bisection to ``tol_t``.  The gap and its certificates are each floor's own
-(:mod:`bbb.dynamics.bounds_level`, :mod:`bbb.dynamics.bounds_conveyor`); ``frame`` (None:
-the paper's floor) selects them at compile time.  The paper's floor splits a flight at the
+safeguarded by bisection to ``tol_t``.  The gap and its certificates are
+:mod:`bbb.dynamics.bounds`'s; ``frame`` (None: the paper's floor) selects each floor's variant
+at compile time.  The paper's floor splits a flight at the
 cusps it crosses (one arc per piece); the conveyor's bounds hold across them.  On the level
 floor ``R`` is any floor shape (bbb.dynamics.floors: the arc's radius or a shape's record),
 whose cells the search crosses one at a time; the conveyor's is the arc's radius.
@@ -18,8 +18,7 @@ from collections import namedtuple
 
 from numba import njit
 
-from .bounds_conveyor import gap_c, lower_bound_c, offset_range, start_step_c, upper_curvature
-from .bounds_level import curvature_bound, gap, lower_bound, start_step
+from .bounds import curvature_cap, gap, lower_bound, reach, start_step
 from .floors import is_flat, valley_depth
 
 NO_COLLISION = -1.0
@@ -35,25 +34,6 @@ Flight = namedtuple("Flight", "y vy vx d0 s sin_s Dx lifting")
 
 
 @njit(cache=True, inline="always")
-def gap_at(t, fli, fl, frame):
-    # Eq. (2): G, G' and the offset d, d' (relative to the arc d0 refers to) at flight time t
-    if frame is None:
-        G, G1 = gap(t, fli.y, fli.vy, fli.s, fli.d0, fli.vx, fl.g, fl.A, fl.w, fl.R, 0.5 * fl.S)
-        return G, G1, 0.0, fli.vx
-    return gap_c(t, fli.y, fli.vy, fli.s, fli.d0, fli.vx, fli.sin_s, frame.gx, frame.gy, frame.Ax,
-                 frame.Ay, fl.w, fl.R, fl.S)
-
-
-@njit(cache=True, inline="always")
-def offset(t, fli, d, frame):
-    # the offset at flight time t for a bound: the paper floor's d0 + vx t afresh (a value not
-    # carried through the search loop), the conveyor's d as gap_c returned it
-    if frame is None:
-        return fli.d0 + fli.vx * t
-    return d
-
-
-@njit(cache=True, inline="always")
 def newton_ok(G1, frame):
     # a Newton step from slope G1 is taken (the conveyor's G' is infinite at a vertical wall)
     if frame is None:
@@ -63,38 +43,9 @@ def newton_ok(G1, frame):
 
 @njit(cache=True, inline="always")
 def slope_cap(a, b, ea, eb, fli, fl, frame):
-    # an upper bound of G'' on [a, b] (ea, eb: gap_at there): G' < 0 throughout if
+    # an upper bound of G'' on [a, b] (ea, eb: gap there): G' < 0 throughout if
     # G'(a) + max(M, 0) (b − a) < 0
-    da = offset(a, fli, ea[2], frame)
-    db = offset(b, fli, eb[2], frame)
-    if frame is None:
-        return curvature_bound(da, db, fli.vx, fl.g, fl.A, fl.w, fl.R)
-    h = b - a
-    amax, _amin, _cusp = offset_range(da, db, h, fli.Dx, fl.S)
-    D1 = max(abs(ea[3]), abs(eb[3])) + 0.5 * fli.Dx * h
-    return upper_curvature(amax, D1, fli.Dx, frame.gy, frame.Ay, fl.w, fl.R)
-
-
-@njit(cache=True, inline="always")
-def gap_lower_bound(a, b, ea, eb, fli, fl, frame):
-    # a rigorous lower bound of G on [a, b] (ea, eb: gap_at there), the floor's own certificate
-    h = b - a
-    da = offset(a, fli, ea[2], frame)
-    db = offset(b, fli, eb[2], frame)
-    if frame is None:
-        return lower_bound(h, ea[0], ea[1], eb[0], da, db, fli.vx, fl.g, fl.A, fl.w, fl.R)
-    return lower_bound_c(h, ea[0], ea[1], eb[0], da, db, ea[3], eb[3], fli.Dx, frame.gy,
-                         frame.Ay, fl.w, fl.R, fl.S)
-
-
-@njit(cache=True, inline="always")
-def first_step(h_max, ea, fli, fl, frame):
-    # a step σ > 0 with G > 0 on (0, σ] for a flight from the surface (ea: gap_at there), 0 if
-    # none certified
-    if frame is None:
-        return start_step(h_max, ea[1], fli.vx, fli.s, fl.g, fl.A, fl.w, fl.R, fli.lifting)
-    return start_step_c(h_max, ea[1], ea[2], ea[3], fli.s, frame.gx, frame.gy, frame.Ax,
-                        frame.Ay, fl.w, fl.R, fl.S, fli.Dx, fli.lifting)
+    return curvature_cap(ea, eb, reach(b - a, ea, eb, fli, fl, frame), fli, fl, frame)
 
 
 @njit(cache=True)
@@ -104,7 +55,7 @@ def refine_root(a, b, Ga, Gb, fli, fl, frame, tol_t):
     if not (a < t < b):
         t = 0.5 * (a + b)
     for _ in range(200):
-        G, G1, _d, _d1 = gap_at(t, fli, fl, frame)
+        G, G1, _d, _d1 = gap(t, fli, fl, frame)
         if G > 0.0:
             a = t
             Ga = G
@@ -134,18 +85,18 @@ def search_piece(pa, pb, fli, from_surface, fl, frame, srch, left):
     ``from_surface``: the flight starts on the surface at pa; srch = (tol_t, h_max, stack)."""
     tol_t, h_max, stack = srch
     a = pa
-    Ga, G1a, da, d1a = gap_at(a, fli, fl, frame)
+    Ga, G1a, da, d1a = gap(a, fli, fl, frame)
     if from_surface:
         if pb <= pa:
             # zero-length piece (a cusp at τ = 0): only an approach into this arc counts
             return (a if G1a < 0.0 else NO_COLLISION), left
-        sigma = first_step(min(h_max, pb - pa), (Ga, G1a, da, d1a), fli, fl, frame)
+        sigma = start_step(min(h_max, pb - pa), (Ga, G1a, da, d1a), fli, fl, frame)
         if sigma <= 0.0:
             return a, left
         a = a + sigma
         if a >= pb:
             return NO_COLLISION, left
-        Ga, G1a, da, d1a = gap_at(a, fli, fl, frame)
+        Ga, G1a, da, d1a = gap(a, fli, fl, frame)
         if Ga <= 0.0:
             # separation below rounding: the particle is back on the surface at a > 0
             return a, left
@@ -155,7 +106,7 @@ def search_piece(pa, pb, fli, from_surface, fl, frame, srch, left):
     h = h_max
     b = min(a + h, pb)
     while True:
-        Gb, G1b, db, d1b = gap_at(b, fli, fl, frame)
+        Gb, G1b, db, d1b = gap(b, fli, fl, frame)
         width = b - a
         if Gb <= 0.0:
             # unique root when G' < 0 on all of [a, b]: G'(a) + M⁺(b-a) < 0
@@ -163,7 +114,7 @@ def search_piece(pa, pb, fli, from_surface, fl, frame, srch, left):
             if G1a + max(M, 0.0) * width < 0.0 or width <= tol_t:
                 return refine_root(a, b, Ga, Gb, fli, fl, frame, tol_t), left
         else:
-            lb = gap_lower_bound(a, b, (Ga, G1a, da, d1a), (Gb, G1b, db, d1b), fli, fl, frame)
+            lb = lower_bound(a, b, (Ga, G1a, da, d1a), (Gb, G1b, db, d1b), fli, fl, frame)
             # below tol_t a dip is at most M tol_t²/8 deep: far below rounding of y
             if lb > 0.0 or width <= tol_t:
                 a = b

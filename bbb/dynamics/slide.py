@@ -216,7 +216,7 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
     time, here and in the helpers it passes it to); on a conveyor (a Frame) the forces split
     into the along-plane (gx, Ax) and the normal (gy, Ay), the g, A of the helpers
     (frame_forces); q, v are relative to the moving floor and the
-    positions written are the lab's, cell·S + d + X_f (bbb.dynamics.bounds_conveyor).
+    positions written are the lab's, cell·S + d + X_f (bbb.dynamics.bounds).
 
     ``start_dir`` (±1) is the direction of a start from rest where the caller knows it (a slip
     up a cusp's wall, or where the pull is ~0 at the slip: μN ≈ 0); 0: the pull's sign then.

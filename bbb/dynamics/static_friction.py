@@ -3,7 +3,7 @@
 
 On the paper's floor (``frame`` None) that depends on where it rests only: at an arc's top,
 in a cusp (held by both walls), on a flat floor, or where |tan θ| ≤ μ.  On the conveyor
-(frame and symbols as in :mod:`bbb.dynamics.bounds_conveyor`: floor coordinates, gravity
+(frame and symbols as in :mod:`bbb.dynamics.bounds`: floor coordinates, gravity
 (−gx, −gy), floor displacement (Ax, Ay)(−sin ωt)) a particle in contact feels the effective
 gravity −(Gx, Gy), Gx = gx + Ax ω² sin ωs, Gy = gy + Ay ω² sin ωs (mm/s²); at rest on its arc,
 at angle θ from the top (normal n = (sin θ, cos θ)), friction holds it while |F_t| ≤ μN with
@@ -24,7 +24,7 @@ import math
 
 from numba import njit
 
-from .bounds_conveyor import cusp_side
+from .bounds import cusp_side
 from .floors.arc import arc_normal
 
 TWO_PI = 2.0 * math.pi
@@ -128,7 +128,7 @@ def slip_wait(d, s, fl, frame, mu, flat):
     time s, the wall it then slides on: 0 its own arc, ±1 the neighbour on that side).
 
     On one arc: until |F_t| > μN (which includes N turning ≤ 0: the caller compares with the
-    floor's letting go).  In a cusp (within CUSP_REACH, bbb.dynamics.bounds_conveyor.cusp_side: where
+    floor's letting go).  In a cusp (within CUSP_REACH, bbb.dynamics.bounds.cusp_side: where
     the floor lets go only when both arcs do) it slides up the wall whose pull beats friction
     while that wall presses (wall_slip); the two cannot hold at once (up both walls the pull
     would have to point into both, N < 0 on each)."""
@@ -172,7 +172,7 @@ def held_at_rest(d, s, fl, frame, mu, flat):
 @njit(cache=True, inline="always")
 def in_cusp(d, R, S, frame):
     # at a cusp, where both walls hold a particle: exactly there on the paper's floor,
-    # within CUSP_REACH on the conveyor (bbb.dynamics.bounds_conveyor.cusp_side)
+    # within CUSP_REACH on the conveyor (bbb.dynamics.bounds.cusp_side)
     if frame is None:
         return abs(d) >= 0.5 * S
     return cusp_side(d, R, S) != 0

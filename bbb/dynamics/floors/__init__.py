@@ -8,7 +8,7 @@ shape is a small record (the arc's is its radius R, a float; :class:`~.sine.Sine
 
 - ``depth(sh, d)``, ``slope(sh, d)`` = c'(d), ``curvature(sh, d)`` = c''(d),
   ``normal(sh, d)``: the outward unit normal (c', 1)/√(1 + c'²) of y = −c(d)
-- the certificates the collision search proves with (bbb.dynamics.bounds_level), each
+- the certificates the collision search proves with (bbb.dynamics.bounds), each
   rigorous over an interval [da, db] inside one cell: ``curvature_max(sh, da, db)`` ≥ c''
   there (inf across a convex kink), ``concavity(sh)`` with c'' ≥ −concavity in every cell,
   ``depth_min(sh, da, db, ca, cb)`` ≤ c there (ca, cb: c at the ends)

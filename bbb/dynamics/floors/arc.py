@@ -1,8 +1,8 @@
 """The paper's floor shape: circular arcs of radius R (mm) centred at the cell centres, cusps
 at the cell edges (Fig. 1); R = inf is the flat floor.  The kernel carries the arc as its
-radius, a float, so that the paper's floor compiles to exactly the expressions it always had
-(the arc_* functions here, which the conveyor's modules call directly).  Offsets d (mm) are
-from the arc's centre, |d| ≤ S/2."""
+radius, a float, so that the paper's floor compiles to exactly the expressions it always had;
+``arc_normal(d, R)`` is the normal in the argument order the conveyor's modules call it with.
+Offsets d (mm) are from the arc's centre, |d| ≤ S/2."""
 
 from __future__ import annotations
 
@@ -18,63 +18,46 @@ def root_r2_d2(d, R):
     return math.sqrt(max(0.0, (R - ad) * (R + ad)))
 
 
-@njit(cache=True, inline="always")
-def arc_depth(d, R):
-    # Fig. 1 geometry: R - sqrt(R²-d²) written as d²/(R+sqrt(R²-d²)), free of cancellation
-    if math.isinf(R):
-        return 0.0
-    return d * d / (R + root_r2_d2(d, R))
-
-
-@njit(cache=True, inline="always")
-def arc_slope(d, R):
-    # dc/dd; infinite at a vertical cusp (R = S/2, |d| = R)
-    if math.isinf(R):
-        return 0.0
-    q = root_r2_d2(d, R)
-    if q == 0.0:
-        return math.copysign(math.inf, d)
-    return d / q
-
-
-@njit(cache=True, inline="always")
-def arc_curvature(d, R):
-    # d²c/dd² = R²/(R²-d²)^(3/2), increasing in |d|
-    if math.isinf(R):
-        return 0.0
-    q = root_r2_d2(d, R)
-    if q == 0.0:
-        return math.inf
-    return R * R / (q * q * q)
-
-
-@njit(cache=True, inline="always")
-def arc_normal(d, R):
-    # outward unit normal of the arc at offset d (Fig. 1's v_perp direction)
-    if math.isinf(R):
-        return 0.0, 1.0
-    return d / R, root_r2_d2(d, R) / R
-
-
-# ---- the shape interface (bbb.dynamics.floors) on the arc's radius ----------------------
-
 #: the record type of an arc: its radius R (mm), a float (``sh`` below)
 RECORD = float
 
 
 @njit(cache=True, inline="always")
 def depth(sh, d):
-    return arc_depth(d, sh)
+    # Fig. 1 geometry: R - sqrt(R²-d²) written as d²/(R+sqrt(R²-d²)), free of cancellation
+    if math.isinf(sh):
+        return 0.0
+    return d * d / (sh + root_r2_d2(d, sh))
 
 
 @njit(cache=True, inline="always")
 def slope(sh, d):
-    return arc_slope(d, sh)
+    # dc/dd; infinite at a vertical cusp (R = S/2, |d| = R)
+    if math.isinf(sh):
+        return 0.0
+    q = root_r2_d2(d, sh)
+    if q == 0.0:
+        return math.copysign(math.inf, d)
+    return d / q
 
 
 @njit(cache=True, inline="always")
 def curvature(sh, d):
-    return arc_curvature(d, sh)
+    # d²c/dd² = R²/(R²-d²)^(3/2), increasing in |d|
+    if math.isinf(sh):
+        return 0.0
+    q = root_r2_d2(d, sh)
+    if q == 0.0:
+        return math.inf
+    return sh * sh / (q * q * q)
+
+
+@njit(cache=True, inline="always")
+def arc_normal(d, R):
+    # outward unit normal of the arc of radius R at offset d (Fig. 1's v_perp direction)
+    if math.isinf(R):
+        return 0.0, 1.0
+    return d / R, root_r2_d2(d, R) / R
 
 
 @njit(cache=True, inline="always")
@@ -85,7 +68,7 @@ def normal(sh, d):
 @njit(cache=True, inline="always")
 def curvature_max(sh, da, db):
     # c'' grows with |d| within a cell
-    return arc_curvature(max(abs(da), abs(db)), sh)
+    return curvature(sh, max(abs(da), abs(db)))
 
 
 @njit(cache=True, inline="always")
@@ -102,7 +85,7 @@ def depth_min(sh, da, db, ca, cb):
 
 @njit(cache=True, inline="always")
 def valley_depth(sh, S):
-    return arc_depth(0.5 * S, sh)
+    return depth(sh, 0.5 * S)
 
 
 @njit(cache=True, inline="always")
