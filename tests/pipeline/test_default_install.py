@@ -71,4 +71,5 @@ def test_the_default_install_reduces_to_csv_and_says_once_that_parquet_needs_pya
     red, cwd = ran[1], ran[2]
     assert red.returncode == 0, red.stderr[-2000:]
     assert red.stderr.count(NO_PARQUET) == 1 and "pip install 'bbb[parquet]'" in NO_PARQUET
-    assert sorted(p.name for p in (cwd / "tables").iterdir()) == ["counters.csv", "diffusion.csv"]
+    assert sorted(p.name for p in (cwd / "tables").iterdir()) == [
+        "counters.csv", "counters.csv-metadata.json", "diffusion.csv", "diffusion.csv-metadata.json"]

@@ -40,12 +40,16 @@ from .claims import CENTRE, SCENE, line_reversals, map_lines
 from .reversal_states import STATES_SCENE
 
 __all__ = ["BINS", "STATES_TABLE", "resultant", "states_text", "reversal_table",
-           "conveyor_reversals", "CONVEYOR_FILES"]
+           "conveyor_reversals", "CONVEYOR_FILES", "REVERSAL_UNITS"]
 
 #: the key of the states scene's table (:func:`.reversal_states.states_table`)
 STATES_TABLE = f"{STATES_SCENE}_classes"
 
 BINS = 24
+#: the units of the reversal and conveyor tables' columns the units map does not hold ("": not
+#: a quantity; a reversal lies between f_a and f_b; sign_after is -1 or +1; phase in degrees)
+REVERSAL_UNITS = {"source": "", "f_a": "Hz", "f_b": "Hz", "sign_after": "1", "end": "",
+                  "per_period": "1", "rho": "1", "phase": "degree", "states": ""}
 #: the transport study's committed map tables read for the comparison, and their line axes
 CONVEYOR_FILES = {"transport_reversal_diffusion.csv": ("tilt", "throw", "contact"),
                   "transport_diffusion.csv": ("tilt", "throw")}

@@ -25,13 +25,15 @@ from bbb.record import COLLISION_FIELDS
 
 from ...tables.collisions import as_store, field_names
 
-__all__ = ["STATES_SCENE", "WINDOW", "states_table", "STATE_COLUMNS"]
+__all__ = ["STATES_SCENE", "WINDOW", "states_table", "STATE_COLUMNS", "STATE_UNITS"]
 
 STATES_SCENE = "ratchet_states"
 #: s: the classifier's window (at least 4 floor periods, longer than any flight here)
 WINDOW = 0.5
 STATE_COLUMNS = ["alpha", "peak", "f", "n_particles",
                  *(f"{lab}{s}" for lab in LABELS for s in ("", "_lo", "_hi")), "period_k"]
+#: the units of the columns the units map does not hold (shares and a cycle length: "1")
+STATE_UNITS = {**{f"{lab}{s}": "1" for lab in LABELS for s in ("", "_lo", "_hi")}, "period_k": "1"}
 
 
 def states_table(store: str | os.PathLike) -> pd.DataFrame:

@@ -16,8 +16,10 @@ from benchmarks.calibrations.compare import differences
 
 ROOT = Path(__file__).resolve().parents[3]
 #: committed JSONs under bbb/ and pipeline/ that are not calibrations: the claims registry's
-#: frozen rule hashes (pipeline/studies/<study>/frozen.json, written by the registry itself)
-NOT_CALIBRATIONS = ("frozen.json",)
+#: frozen rule hashes (pipeline/studies/<study>/frozen.json, written by the registry itself) and
+#: the onset study's no-fit predictions (predictions.json: theory, no threshold; its remake is
+#: checked by tests/pipeline/studies/onset/test_predictions.py)
+NOT_CALIBRATIONS = ("frozen.json", "predictions.json")
 
 
 def committed_jsons() -> set[str]:

@@ -18,6 +18,8 @@ from pipeline.studies.basins.tables import COLUMN_UNITS as BASINS_UNITS
 from pipeline.studies.dissipation.cuts import CUT_UNITS
 from pipeline.studies.klages2004.finescale import EXTREMA_UNITS
 from pipeline.studies.protocol.tables import COLUMN_UNITS as PROTOCOL_UNITS
+from pipeline.studies.ratchet.mechanism import REVERSAL_UNITS
+from pipeline.studies.ratchet.reversal_states import STATE_UNITS
 from pipeline.tables.catalog import TABLES, table_names, tables
 from pipeline.tables.reduce import reduce_store, table_metadata
 from pipeline.tables.units import D_UNIT, DIMENSIONLESS, UNITS, column_unit, unit
@@ -28,8 +30,9 @@ from ..helpers import TINY
 
 FIGURES = Path(__file__).resolve().parents[3] / "figures"
 #: the studies' own columns (accuracy study, the fine-scale extrema, the protocol study, the
-#: dissipation study's cuts, the basins study)
-STUDY_UNITS = {**ACCURACY_UNITS, **EXTREMA_UNITS, **PROTOCOL_UNITS, **CUT_UNITS, **BASINS_UNITS}
+#: dissipation study's cuts, the basins study, the ratchet's reversals and states)
+STUDY_UNITS = {**ACCURACY_UNITS, **EXTREMA_UNITS, **PROTOCOL_UNITS, **CUT_UNITS, **BASINS_UNITS,
+               **REVERSAL_UNITS, **STATE_UNITS}
 #: TINY with every observable, so the store has every table (and locking by name); tilt = 0
 #: (a conveyor at no tilt: the level floor's motion) adds the transport columns v, D_drift, ...
 EVERY = (TINY.replace('name = "tiny"', 'name = "every"')
