@@ -101,6 +101,16 @@ def rate_in(tree: str, cache: str, f: float, family: str, n: int, t_max: float,
     return int(n_coll), float(cpu)
 
 
+def has_conveyor(tree: str) -> bool:
+    """Whether the bbb in ``tree`` takes a tilted floor and a contact model (the wave-1 kernel
+    does not: its conveyor and contact rows cannot be run side by side)."""
+    env = dict(os.environ, PYTHONPATH=tree, PYTHONDONTWRITEBYTECODE="1")
+    probe = ("from bbb import Params; "
+             "Params.preset('klages2004', f=60.0, tilt=5.0, throw=60.0, contact='coulomb', mu=0.3)")
+    return subprocess.run([sys.executable, "-c", probe], env=env, capture_output=True,
+                          cwd=tree).returncode == 0
+
+
 def compare(reference: str, label: str, n: int, t_max: float, repeats: int) -> None:
     """The default kernel of this checkout against the bbb package in ``reference``, then
     this checkout's conveyor and contact-model rates."""
@@ -135,6 +145,9 @@ def compare(reference: str, label: str, n: int, t_max: float, repeats: int) -> N
                 print(f"{f:7.1f} {family:>9} {0:5g} {90:5g} {counts['this']:11d} {r:10.3e} "
                       f"{t:10.3e} {t / r:8.3f} {br:10.3e} {bt:10.3e} {bt / br:8.3f}")
         print()
+        if not has_conveyor(reference):
+            print(f"conveyor and contact models: not measured ({label} has neither)")
+            return
         print(f"conveyor (launched; ref and this alternating, {repeats} each; median)")
         print(f"{'f (Hz)':>7} {'tilt':>5} {'throw':>5} {'collisions':>11} {'ref c/s':>10} "
               f"{'this c/s':>10} {'this/ref':>8}")
