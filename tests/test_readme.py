@@ -229,6 +229,19 @@ def test_the_conveyor_example_gives_v_of_f_with_cis_as_a_new_user_gets_it(tmp_pa
     tilt, throw, unit, sizes = run_python(code, tmp_path).strip().split(" ", 3)
     assert (float(tilt), float(throw)) == (doc["params"]["tilt"], doc["params"]["throw"])
     assert unit == "mm/s" and sizes == str({"frequency": len(fs), "alpha": 2})
+    # the figures a talk needs: titled with the scene and its tilt, v in a diverging map at 0
+    from matplotlib.collections import QuadMesh
+
+    from pipeline import reduced_dataset
+    from pipeline.plot.figures import talk_figures
+
+    figs = dict(talk_figures(reduced_dataset(tmp_path / "runs" / f"{name}.zarr"),
+                             ("curve_v_vs_frequency_by_alpha", "map_v_frequency-alpha")))
+    assert len(figs) == 2
+    for fig in figs.values():
+        assert name in fig.get_suptitle() and "tilt" in fig.get_suptitle(), fig.get_suptitle()
+    mesh = next(m for m in figs["map_v_frequency-alpha"].findobj(QuadMesh) if m.get_gid() == "map")
+    assert mesh.get_cmap().name == "RdBu_r" and mesh.norm(0.0) == 0.5
 
 
 def test_the_from_python_block_runs_on_a_dask_client_and_writes_netcdf(tmp_path):
