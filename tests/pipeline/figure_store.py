@@ -132,6 +132,25 @@ def assert_png_drawn(path, min_size=(400, 300)) -> None:
 # The new floor shapes, level and vibrated vertically: a sawtooth whose peak sits 0.3 or 0.5 of
 # the period from its left valley (the off-centre teeth drive a drift v without tilt: a signed
 # map), and a sine without a grid (a D(f) curve).  Three frequencies: a map drawn to scale.
+#: what the tiny floor scenes share after their [params] (and [grid])
+FLOOR_TAIL = """
+[frequencies]
+values = [60.0, 70.0, 80.0]
+
+[families.rest]
+initial = "rest"
+
+[accuracy]
+preset = "draft"
+n_particles = 8
+chunk_size = 8
+t_max = 10.0
+n_resamples = 50
+
+[observables.positions]
+"""
+
+
 TINY_FLOORS = {
     "sawtooth": """\
 [study]
@@ -145,22 +164,7 @@ depth = 0.3
 
 [grid]
 peak = [0.3, 0.5]
-
-[frequencies]
-values = [60.0, 70.0, 80.0]
-
-[families.rest]
-initial = "rest"
-
-[accuracy]
-preset = "draft"
-n_particles = 8
-chunk_size = 8
-t_max = 10.0
-n_resamples = 50
-
-[observables.positions]
-""",
+""" + FLOOR_TAIL,
     "sine": """\
 [study]
 name = "tiny_sine"
@@ -170,22 +174,7 @@ seed = 4
 preset = "klages2004"
 floor = "sine"
 depth = 0.3
-
-[frequencies]
-values = [60.0, 70.0, 80.0]
-
-[families.rest]
-initial = "rest"
-
-[accuracy]
-preset = "draft"
-n_particles = 8
-chunk_size = 8
-t_max = 10.0
-n_resamples = 50
-
-[observables.positions]
-"""}
+""" + FLOOR_TAIL}
 
 
 def tiny_floor(tmp_path_factory, floor: str) -> str:
