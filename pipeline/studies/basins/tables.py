@@ -161,12 +161,17 @@ def dmix_boot(lab: np.ndarray, x: np.ndarray, window: float, rng: np.random.Gene
     return out[0], out[1:], status
 
 
+#: the peak table's columns (also when no run reaches a time of PEAK_TIMES: a draft's table is
+#: empty but keeps them, so its CSV reads back)
+PEAK_COLUMNS = ["family", "T", "f_max", "f_max_lo", "f_max_hi", "D_max", "at_edge", "peak_status"]
+
+
 def peak_table(dmix: pd.DataFrame, boots: dict, edges: np.ndarray, ci: float) -> pd.DataFrame:
     """Per (family, T in PEAK_TIMES): D_mix's largest value along f, where, and the percentile
     interval of that location over the resamples."""
     rows = []
     if dmix.empty:
-        return pd.DataFrame(rows)
+        return pd.DataFrame(rows, columns=PEAK_COLUMNS)
     fs = np.array(sorted(dmix["f"].unique()))
     for fam in dmix["family"].unique():
         for T in PEAK_TIMES:
@@ -191,7 +196,7 @@ def peak_table(dmix: pd.DataFrame, boots: dict, edges: np.ndarray, ci: float) ->
             rows.append({**row, "f_max": float(fs[i]), "f_max_lo": float(lo),
                          "f_max_hi": float(hi), "D_max": float(est[i]),
                          "at_edge": bool(i in (0, fs.size - 1)), "peak_status": why})
-    return pd.DataFrame(rows)
+    return pd.DataFrame(rows, columns=PEAK_COLUMNS)
 
 
 def grids(store) -> dict[tuple[float, str], np.ndarray]:
