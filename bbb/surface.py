@@ -15,26 +15,26 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from .jit import inlined
 from .params import Params
 
 __all__ = ["depth", "floor_depth", "floor_height", "shape_of", "surface_height", "surface_normal",
            "cell_of"]
 
 
-@njit(cache=True, inline="always")
+@inlined
 def floor_y(s, A, w):
     # Sec. 2: y_f = -A sin(2πft)
     return -A * math.sin(w * s)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def floor_v(s, A, w):
     return -A * w * math.cos(w * s)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def floor_a(s, A, w):
     return A * w * w * math.sin(w * s)
 

@@ -29,8 +29,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from ..jit import inlined
 from .floors import concavity, curvature, curvature_max, depth, depth_min, slope
 from .options import heave
 
@@ -41,26 +40,26 @@ from .options import heave
 CUSP_REACH = 1e-9
 
 
-@njit(cache=True, inline="always")
+@inlined
 def round_half_away(u):
     # nearest integer, ties away from 0: odd in u bit for bit, so a mirrored run (x → −x)
     # takes mirrored decisions everywhere
     return math.floor(u + 0.5) if u >= 0.0 else -math.floor(0.5 - u)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def nearest(d, S):
     # offset from the nearest arc centre
     return d - round_half_away(d / S) * S
 
 
-@njit(cache=True, inline="always")
+@inlined
 def times_or_zero(a, b):
     # a·b with 0·inf = 0: a bound term that vanishes with its factor
     return 0.0 if a == 0.0 or b == 0.0 else a * b
 
 
-@njit(cache=True, inline="always")
+@inlined
 def cusp_side(d, R, S):
     """±1 when the offset d (mm, |d| ≤ S/2) lies within CUSP_REACH·S of the cusp on that
     side (a carried particle there rests in the cusp, held by both arcs), else 0."""
@@ -69,7 +68,7 @@ def cusp_side(d, R, S):
     return 1 if d > 0.0 else -1
 
 
-@njit(cache=True, inline="always")
+@inlined
 def heave_bound(fl, frame):
     # (gravity, |amplitude|) normal to the floor's plane, as the bounds read them: the floor's
     # pull on G'' lies within −gn ± |an| ω²
@@ -78,7 +77,7 @@ def heave_bound(fl, frame):
     return frame.gy, abs(frame.Ay)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def gap(t, fli, fl, frame):
     # Eq. (2): G and dG/dτ at flight time t, with the offset d and d' they were taken at (the
     # level floor's d from the centre of the cell searched, the conveyor's unwrapped and
@@ -104,7 +103,7 @@ def gap(t, fli, fl, frame):
     return G, G1, d, d1
 
 
-@njit(cache=True, inline="always")
+@inlined
 def offset_range(da, db, h, Dx, S):
     # |nearest offset| over [a, b]: (max, min, cusp inside?) from d ∈ chord ± Dx h²/8
     e = Dx * h * h * 0.125
@@ -121,7 +120,7 @@ def offset_range(da, db, h, Dx, S):
     return min(amax, 0.5 * S), amin, cusp
 
 
-@njit(cache=True, inline="always")
+@inlined
 def reach(h, ea, eb, fli, fl, frame):
     # where the conveyor's offset goes on [a, a+h]: (max and min |nearest offset|, a cusp
     # inside?, a bound of |d'|); the level floor's bounds read the ends' offsets instead
@@ -131,7 +130,7 @@ def reach(h, ea, eb, fli, fl, frame):
     return amax, amin, cusp, max(abs(ea[3]), abs(eb[3])) + 0.5 * fli.Dx * h
 
 
-@njit(cache=True, inline="always")
+@inlined
 def curvature_cap(ea, eb, rg, fli, fl, frame):
     # M ≥ G'' = −gn − an ω² sin + c''(d) d'² + c'(d) d'' on [a, b] (rg: reach there)
     gn, an = heave_bound(fl, frame)
@@ -147,7 +146,7 @@ def curvature_cap(ea, eb, rg, fli, fl, frame):
     return m
 
 
-@njit(cache=True, inline="always")
+@inlined
 def pull_cap(G1a, rg, fli, fl, frame):
     # K with G'' ≥ −K on [a, b], where the Taylor bound from a applies; NaN where it does not
     # (the conveyor across a cusp's concave kink, or from a vertical wall)
@@ -166,7 +165,7 @@ def pull_cap(G1a, rg, fli, fl, frame):
     return k + times_or_zero(slope(fl.R, amax), fli.Dx)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def depth_ends(ea, eb, rg, fli, fl, frame):
     # (c at a, c at b, a lower bound of c between): the floor's depth, whose kinks the
     # depth bound carries
@@ -178,7 +177,7 @@ def depth_ends(ea, eb, rg, fli, fl, frame):
             depth(fl.R, rg[1]))
 
 
-@njit(cache=True, inline="always")
+@inlined
 def lower_bound(a, b, ea, eb, fli, fl, frame):
     """Rigorous lower bound (mm) of G on [a, b] (s), from ``ea``, ``eb`` = :func:`gap` at
     its ends: the best of three.  The level floor's interval lies in one cell; the
@@ -209,7 +208,7 @@ def lower_bound(a, b, ea, eb, fli, fl, frame):
     return lb
 
 
-@njit(cache=True, inline="always")
+@inlined
 def quartic_step(sigma, G2, G3, K, h_max):
     # a flight from G = G' = 0 with G'' = G2 >= 0, G''' = G3, |G''''| <= K: G > 0 on (0, t] where
     # G2/2 + G3 t/6 - K t^2/24 > 0 (Taylor to 4th order); the longest h_max/2^k so, if > sigma
@@ -221,7 +220,7 @@ def quartic_step(sigma, G2, G3, K, h_max):
     return sigma
 
 
-@njit(cache=True, inline="always")
+@inlined
 def rest_step(sigma, gn, ae, h_max, fli, fl):
     # the step of a flight from G = G' = 0 over a flat floor of gravity gn (mm/s²) and
     # amplitude ae (mm) normal to it, which bounds G from below: Taylor to 4th order with
@@ -239,7 +238,7 @@ def rest_step(sigma, gn, ae, h_max, fli, fl):
     return sigma
 
 
-@njit(cache=True, inline="always")
+@inlined
 def start_step(h_max, ea, fli, fl, frame):
     """A flight step σ (s) > 0 on which G > 0, for a flight that starts on the surface
     (G(0) = 0; ``ea`` = :func:`gap` there), at most h_max (s).
@@ -284,7 +283,7 @@ def start_step(h_max, ea, fli, fl, frame):
     return min(a, b)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def circle_step(h_max, G1, circle, d10, fli, fl, frame):
     """The conveyor's start_step on one circle: the flight starts at offset e0 (mm) from its
     centre, G(0) = 0, G'(0) = G1, d'(0) = d10, and the bounds hold while |d − d0| ≤ r (mm);

@@ -8,14 +8,13 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from ..jit import inlined, jitted
 from ..surface import floor_a, floor_v
 from .bounds import cusp_side, times_or_zero
 from .floors import curvature, normal, slope
 
 
-@njit(cache=True, inline="always")
+@inlined
 def restitute(ux, uy, nx, ny, alpha, beta):
     # Eqs. (5)-(6): outgoing normal and tangential speeds of the velocity (ux, uy) relative to
     # the floor at the normal (nx, ny); |un|: a grazing contact rounded to un ≥ 0 still
@@ -25,7 +24,7 @@ def restitute(ux, uy, nx, ny, alpha, beta):
     return alpha * abs(un), beta * ut
 
 
-@njit(cache=True, inline="always")
+@inlined
 def floor_velocity_at(s, w, fl, frame):
     # the floor's velocity (vfx, vfy) (mm/s), each floor in the expression order its bits
     # were made with: −(A ω) cos ωs on the paper's floor, −Ay (ω cos ωs) on the conveyor
@@ -35,7 +34,7 @@ def floor_velocity_at(s, w, fl, frame):
     return -frame.Ax * cw, -frame.Ay * cw
 
 
-@njit(cache=True, inline="always")
+@inlined
 def plus_floor(vf, v, frame):
     # vf + v, but v on the paper's floor, which does not move along x (vf = 0 there, and
     # 0 + v would turn a −0 into +0)
@@ -44,7 +43,7 @@ def plus_floor(vf, v, frame):
     return vf + v
 
 
-@njit(cache=True, inline="always")
+@inlined
 def pressing(d, s, w, fl, frame):
     # the gap's G'' at G = G' = 0 but for the tangential motion's c'' d'² term (mm/s²), as
     # (normal part, tilt part): −g − ÿ_f on the paper's floor; −gy − ÿ_f and c' (−gx − ẍ_f)
@@ -55,7 +54,7 @@ def pressing(d, s, w, fl, frame):
     return -frame.gy - frame.Ay * sw, times_or_zero(slope(fl.R, d), -frame.gx - frame.Ax * sw)
 
 
-@njit(cache=True)
+@jitted
 def collide(vx, vy, d, s, fl, frame, v_stick, allow_kick):
     """Eqs. (5)-(6): restitution in the floor's normal/tangential frame at offset d, relative
     to the floor's velocity, on the floor shape fl.R (bbb.dynamics.floors) of the floor
@@ -83,7 +82,7 @@ def collide(vx, vy, d, s, fl, frame, v_stick, allow_kick):
             un_out, False)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def wall_met(cell, d, vx, vy, s, fl, frame):
     """(cell, d, met) of the wall a collision at offset d meets: at a cusp (within CUSP_REACH)
     the one the particle approaches, relative normal speed < 0 — the nearest arc by rounding

@@ -15,8 +15,7 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from ..jit import inlined, jitted
 from .bounds import cusp_side
 from .collide import collide, floor_velocity_at
 from .events import EV_COLLISION, EV_CONTACT, EV_CONTACT_LIFT, EV_CUSP, EV_STOP, Row, put_row, wrap_period
@@ -37,7 +36,7 @@ HELD = 2  # held at rest until lift-off: the stuck branch (bbb.dynamics.evolve) 
 STALLED = 3  # bbb.dynamics.slide's step budget ran out: the particle stops (bbb.simulate raises)
 
 
-@njit(cache=True)
+@jitted
 def enter_contact(vx, vy, d, s, fl, frame, mu, v_stick):
     """After a collision that ended a bouncing cascade (outgoing normal speed < v_stick), on
     the floor ``frame`` selects (None: the paper's): the tangential speed v (mm/s) relative to
@@ -64,7 +63,7 @@ def enter_contact(vx, vy, d, s, fl, frame, mu, v_stick):
     return v, q, True
 
 
-@njit(cache=True, inline="always")
+@inlined
 def stretch_end(q, vt, s, ev, fl, frame, flat):
     # the state at the end of a slide (bbb.dynamics.slide: angle q, tangential speed vt, at
     # floor time s, event ev) on the floor ``frame`` selects: (d, (nx, ny), y, (vx, vy)), the
@@ -81,7 +80,7 @@ def stretch_end(q, vt, s, ev, fl, frame, flat):
                                                                                  vfy, frame)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def kick_kept(kicked, frame):
     # whether the last collision's kick still counts after a contact step: kept on the paper's
     # floor, forgotten on the conveyor (each floor as its bits were made)
@@ -90,14 +89,14 @@ def kick_kept(kicked, frame):
     return False
 
 
-@njit(cache=True, inline="always")
+@inlined
 def slide_from_rest(st, q, frame):
     # st (a Contact) set sliding from rest at angle q
     return Contact(st.cell, st.d, st.y, st.vx, st.vy, st.s, st.tp, st.isamp, False, True, q, 0.0,
                    kick_kept(st.kicked, frame), st.n_rec)
 
 
-@njit(cache=True)
+@jitted
 def leave_rest(st, s0, fl, run, frame, mu, retry, samples):
     """A particle held at rest (st: a Contact, stuck): (whether it slides before the floor lets
     go of it, the Contact it slides from, the direction it starts in: ±1, or 0 for the pull's
@@ -154,7 +153,7 @@ def leave_rest(st, s0, fl, run, frame, mu, retry, samples):
                          st.n_rec), start_dir
 
 
-@njit(cache=True)
+@jitted
 def contact_step(st, s0, fl, run, frame, mu, retry, io):
     """One step of sustained contact (module doc) for a particle held at rest (``stuck``) or
     sliding (angle q, tangential speed vt relative to the floor): a slip from rest, a stretch
@@ -209,7 +208,7 @@ def contact_step(st, s0, fl, run, frame, mu, retry, io):
         Tally(0, 1 if held else 0, 0, el, worst)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def cusp_met(st, t_c, fl, run, frame, mu, rec, spent):
     # a slide reached a cusp (st: a Contact at the cusp point, at time t_c; spent: the slide's
     # (time slid, peak step debt)): the neighbouring arc's wall, Eqs. (5)-(6) with its normal

@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 from collections import namedtuple
 
-from numba import njit
+from ..jit import inlined
 
 #: one recorded row: time t (s), position x (mm, the lab's), height y (mm), velocity (vx, vy)
 #: (mm/s) and the floor's phase (in periods); its event code travels beside it
@@ -38,7 +38,7 @@ SEARCH_BURST = 2**22
 SEARCH_RATE = 2**16
 
 
-@njit(cache=True, inline="always")
+@inlined
 def count_event(t_now, t_mark, n_win, win, status):
     # the event guard: (t_mark, n_win) of the window t_now falls in, and whether it is spent
     if t_now - t_mark >= win:
@@ -54,7 +54,7 @@ def count_event(t_now, t_mark, n_win, win, status):
     return t_mark, n_win, False
 
 
-@njit(cache=True, inline="always")
+@inlined
 def wrap_period(s, tp, T):
     # keep the floor time within [0, T): sin of a small argument stays exact for long runs
     if s >= T:
@@ -69,7 +69,7 @@ def wrap_period(s, tp, T):
     return s, tp
 
 
-@njit(cache=True, inline="always")
+@inlined
 def row_due(rec, n_rec, rec_from, t, t_max, event_only):
     # whether a row at time t is recorded; contact events (``event_only``) only in a 7-column
     # record.  The hot path asks first, so that a row's ingredients are computed only when due
@@ -77,7 +77,7 @@ def row_due(rec, n_rec, rec_from, t, t_max, event_only):
             and (rec.shape[1] > 6 or not event_only))
 
 
-@njit(cache=True, inline="always")
+@inlined
 def write_row(rec, n_rec, row, code):
     # one recorded row (a Row; the event code in a 7-column record); returns the rows now written
     if rec.shape[1] > 6:
@@ -91,7 +91,7 @@ def write_row(rec, n_rec, row, code):
     return n_rec + 1
 
 
-@njit(cache=True, inline="always")
+@inlined
 def put_row(rec, n_rec, run, row, code, event_only):
     # one recorded row (a Row) if it is due (row_due; run: bbb.dynamics.options.Run)
     if row_due(rec, n_rec, run.rec_from, row.t, run.t_max, event_only):
@@ -99,7 +99,7 @@ def put_row(rec, n_rec, run, row, code, event_only):
     return n_rec
 
 
-@njit(cache=True, inline="always")
+@inlined
 def write_counters(counters, times, counts, held_slid):
     # a particle's counters (bbb.record.COUNTER_NAMES: counts = (collisions, sticking episodes,
     # lift-offs, recorded rows, anomalies)) and contact times (CONTACT_TIME_NAMES: held_slid =

@@ -7,7 +7,7 @@ so that x = cell·S + d (on the conveyor d is relative to the moving floor); hei
 and the number of whole periods ``tp``.  Options come as the records of
 :mod:`bbb.dynamics.options`; ``frame`` (None: the paper's floor) and ``friction`` (None: the
 stick model) are compile-time choices, each pruned by numba where it is None.  Everything
-is flat functions over scalars; numba nopython, cache=True, no fastmath.
+is flat functions over scalars, compiled as bbb.jit says (nopython, cached, no fastmath).
 
 The collision search (bbb.dynamics.search) never misses a collision.
 """
@@ -17,8 +17,8 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit
 
+from ..jit import allocating, jitted
 from .collide import collide, wall_met
 from .contact_step import DONE, HELD, STALLED, contact_step, enter_contact
 from .events import (
@@ -46,7 +46,7 @@ from .search import SEARCH_SPENT, STACK_DEPTH, next_collision
 __all__ = ["evolve", "evolve_ensemble"]
 
 
-@njit(cache=True)
+@jitted
 def evolve(init, fl, run, frame, friction, sample_times, out, stack):
     """Run one particle from its initial state ``init`` = (cell, d, y, vx, vy, s, stuck,
     from_surface) (module doc) to run.t_max (s, from its own start).
@@ -225,7 +225,7 @@ def evolve(init, fl, run, frame, friction, sample_times, out, stack):
     write_counters(counters, times, (n_coll, n_stick, n_lift, n_rec, n_anom), (t_held, t_slid))
 
 
-@njit(cache=True)
+@allocating
 def evolve_ensemble(init, fl, run, frame, friction, sample_times, out):
     """Run every particle of an ensemble independently: ``init`` = arrays (cell, d, y, vx, vy,
     s, stuck, from_surface) of initial states, ``out`` = (pos, rec, counters, times, status)

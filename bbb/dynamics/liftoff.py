@@ -8,14 +8,13 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from ..jit import inlined, jitted
 from .bounds import cusp_side
 from .floors import normal
 from .floors.arc import arc_normal
 
 
-@njit(cache=True, inline="always")
+@inlined
 def phase_wait(th, th_l, w):
     # time (s) from the phase th to the next phase th_l (rad, both in [0, 2π)); a whole
     # period if th is th_l: the let-go there was just tried
@@ -24,14 +23,14 @@ def phase_wait(th, th_l, w):
     return (th_l + 2.0 * math.pi - th) / w
 
 
-@njit(cache=True, inline="always")
+@inlined
 def normal_load(nx, ny, gx, gy, Ax, Ay, w):
     # the normal force per unit mass that carries a particle with the floor, n·(a_floor +
     # (gx, gy)) = k sin ωs + gn (mm/s²): returns (k, gn)
     return (nx * Ax + ny * Ay) * w * w, nx * gx + ny * gy
 
 
-@njit(cache=True)
+@jitted
 def letgo_delay(th, k, gn, w):
     """Time (s) from the phase th (rad) until k sin θ + gn next turns negative (a downward
     crossing, 0 if at th); inf if it never is negative, −1 if it is at all but isolated θ."""
@@ -51,7 +50,7 @@ def letgo_delay(th, k, gn, w):
     return phase_wait(th, th_l, w)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def let_go(s, d, fl, frame):
     # (k, c, th): the floor lets go where k sin ωs < c |k| turns true, i.e. where the normal
     # load k sin ωs + gn turns negative, c = −gn/|k|; th = ωs shifted by π where k < 0.
@@ -74,7 +73,7 @@ def let_go(s, d, fl, frame):
     return k, -gn / abs(k), th
 
 
-@njit(cache=True)
+@jitted
 def liftoff_wait(s, d, fl, frame, retry):
     """Time (s) until a particle carried by the floor at offset d lifts off: the normal
     contact force per unit mass, n·(a_floor + (gx, gy)) = An ω² sin ωs + gn, turns negative
@@ -104,7 +103,7 @@ def liftoff_wait(s, d, fl, frame, retry):
     return phase_wait(th, math.pi - math.asin(c), w)
 
 
-@njit(cache=True)
+@jitted
 def liftoff_wait_cusp(s, d, side, fl, frame, retry):
     """liftoff_wait on the conveyor (``frame``) in a cusp: the first time both arcs' normal
     loads are negative (the particle's free motion relative to the floor then leaves both),

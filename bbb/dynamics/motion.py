@@ -11,14 +11,13 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from ..jit import inlined
 from ..surface import floor_v, floor_y
 from .bounds import round_half_away
 from .floors import depth, is_flat
 
 
-@njit(cache=True, inline="always")
+@inlined
 def lab_x(cell, d, s, S, w, frame):
     # x (mm) of the state (cell, d) at floor time s
     if frame is None:
@@ -26,7 +25,7 @@ def lab_x(cell, d, s, S, w, frame):
     return cell * S + d - frame.Ax * math.sin(w * s)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def surface_y(s, d, A, w, R, frame):
     # Sec. 2: the surface's height under offset d, y_f − c(d)
     if frame is None:
@@ -34,7 +33,7 @@ def surface_y(s, d, A, w, R, frame):
     return -frame.Ay * math.sin(w * s) - depth(R, d)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def floor_velocity(s, A, w, frame):
     # the floor's velocity (mm/s): what a particle held at rest moves with
     if frame is None:
@@ -42,7 +41,7 @@ def floor_velocity(s, A, w, frame):
     return -frame.Ax * w * math.cos(w * s), -frame.Ay * w * math.cos(w * s)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def on_arc_velocity(vt, nx, ny, vfx, vfy, frame):
     # sliding with tangential speed vt relative to the floor on the arc of normal (nx, ny)
     if frame is None:
@@ -50,7 +49,7 @@ def on_arc_velocity(vt, nx, ny, vfx, vfy, frame):
     return vfx + vt * ny, vfy - vt * nx
 
 
-@njit(cache=True, inline="always")
+@inlined
 def fill_flight(samples, isamp, t_end, x0, vx, t_now, frame):
     # x at the sample times before t_end of a flight from x0 at t_now (Eq. 1); samples =
     # (sample_times, pos)
@@ -66,7 +65,7 @@ def fill_flight(samples, isamp, t_end, x0, vx, t_now, frame):
     return isamp
 
 
-@njit(cache=True, inline="always")
+@inlined
 def fill_carried(samples, isamp, t_end, base, s, t_now, w, frame):
     # x at the sample times before t_end of a particle held at rest at base = cell·S + d;
     # samples = (sample_times, pos)
@@ -81,7 +80,7 @@ def fill_carried(samples, isamp, t_end, base, s, t_now, w, frame):
     return isamp
 
 
-@njit(cache=True, inline="always")
+@inlined
 def fly(st, tau, j, fl, frame):
     # Eqs. (1)-(4): the end (cell, d, vx, vy) of the flight from st = (cell, d, vx, vy, s), τ
     # later over the arc j cells on (conveyor: the nearest arc of the offset relative to the

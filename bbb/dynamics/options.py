@@ -12,7 +12,7 @@ from __future__ import annotations
 import math
 from collections import namedtuple
 
-from numba import njit
+from ..jit import inlined, jitted
 
 #: the paper's floor (Sec. 2): gravity g (mm/s²), amplitude A (mm), angular frequency w
 #: (rad/s), arc radius R and spacing S (mm), restitution alpha, beta (Eqs. 5-6)
@@ -34,7 +34,7 @@ Tally = namedtuple("Tally", "collisions sticks lifts slid worst")
 Frame = namedtuple("Frame", "gx gy Ax Ay")
 
 
-@njit(cache=True)
+@jitted
 def conveyor_frame(g, A, tilt, throw):
     """(gx, gy, Ax, Ay) of a floor tilted by ``tilt`` and thrown at ``throw`` (degrees)."""
     gx = g * math.sin(math.radians(tilt))
@@ -44,7 +44,7 @@ def conveyor_frame(g, A, tilt, throw):
     return gx, gy, -A * math.sin(dev), A * math.cos(dev)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def heave(fl, frame):
     """(gravity (mm/s²), floor amplitude (mm)) normal to the floor's plane: the paper's (g, A)
     for frame None, the conveyor's (gy, Ay)."""

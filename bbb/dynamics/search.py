@@ -16,8 +16,7 @@ from __future__ import annotations
 import math
 from collections import namedtuple
 
-from numba import njit
-
+from ..jit import inlined, jitted
 from .bounds import curvature_cap, gap, lower_bound, reach, start_step
 from .floors import is_flat, valley_depth
 
@@ -33,7 +32,7 @@ STACK_DEPTH = 96
 Flight = namedtuple("Flight", "y vy vx d0 s sin_s Dx lifting")
 
 
-@njit(cache=True, inline="always")
+@inlined
 def newton_ok(G1, frame):
     # a Newton step from slope G1 is taken (the conveyor's G' is infinite at a vertical wall)
     if frame is None:
@@ -41,14 +40,14 @@ def newton_ok(G1, frame):
     return G1 != 0.0 and math.isfinite(G1)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def slope_cap(a, b, ea, eb, fli, fl, frame):
     # an upper bound of G'' on [a, b] (ea, eb: gap there): G' < 0 throughout if
     # G'(a) + max(M, 0) (b − a) < 0
     return curvature_cap(ea, eb, reach(b - a, ea, eb, fli, fl, frame), fli, fl, frame)
 
 
-@njit(cache=True)
+@jitted
 def refine_root(a, b, Ga, Gb, fli, fl, frame, tol_t):
     """Newton safeguarded by bisection on a bracket with G(a) > 0 ≥ G(b)."""
     t = b - Gb * (b - a) / (Gb - Ga) if Ga != Gb else 0.5 * (a + b)
@@ -78,7 +77,7 @@ def refine_root(a, b, Ga, Gb, fli, fl, frame, tol_t):
     return min(max(t, a), b)
 
 
-@njit(cache=True)
+@jitted
 def search_piece(pa, pb, fli, from_surface, fl, frame, srch, left):
     """(first root of G in [pa, pb] of the Flight ``fli``, or NO_COLLISION if none, and
     ``left`` less the bracketing steps taken); SEARCH_SPENT once ``left`` runs out.
@@ -146,7 +145,7 @@ def search_piece(pa, pb, fli, from_surface, fl, frame, srch, left):
         b = 0.5 * (a + b)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def flight_windows(y, vy, g, top, bottom):
     # the flight's times below the surface's top, (w0a, w0b) and (w1a, w1b) (empty: w1b < 0):
     # above the top no collision is possible, below the bottom one must already have happened
@@ -168,7 +167,7 @@ def flight_windows(y, vy, g, top, bottom):
     return w0a, w0b, w1a, w1b
 
 
-@njit(cache=True, inline="always")
+@inlined
 def search_cells(wa, wb, fli, from_surface, fl, srch, left):
     """The paper floor's search over [wa, wb] of the Flight ``fli`` (d0: its offset in the
     current cell), one arc at a time: (τ, cell offset j of the arc hit, the step budget left),
@@ -215,7 +214,7 @@ def search_cells(wa, wb, fli, from_surface, fl, srch, left):
     return NO_COLLISION, 0, left
 
 
-@njit(cache=True)
+@jitted
 def next_collision(state, from_surface, lifting, fl, frame, tau_limit, srch, left):
     """Time τ (s) of the first collision after the current state = (y, vy, vx, d, s) (a
     flight from the surface if ``from_surface``, from a lift-off if ``lifting``) on the floor

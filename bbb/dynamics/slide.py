@@ -39,8 +39,7 @@ from __future__ import annotations
 import math
 from collections import namedtuple
 
-from numba import njit
-
+from ..jit import inlined, jitted
 from .floors import is_flat
 
 #: a contact stretch's state (slide's argument and result): the angle θ from the arc's top (rad;
@@ -67,13 +66,13 @@ PAYBACK = 64.0
 STRETCH_BUDGET = 2.0**24
 
 
-@njit(cache=True, inline="always")
+@inlined
 def g_eff(s, g, A, w):
     # g + ÿ_f with y_f = -A sin(ωs) (Sec. 2): the floor frame's gravity
     return g + A * w * w * math.sin(w * s)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def frame_forces(fl, frame):
     # (g, A) of the module doc's equations: the paper's; the conveyor's normal (gy, Ay)
     # (its along-plane (gx, Ax) the functions here read from the frame)
@@ -82,7 +81,7 @@ def frame_forces(fl, frame):
     return frame.gy, frame.Ay
 
 
-@njit(cache=True, inline="always")
+@inlined
 def normal_force(q, v, s, fl, frame):
     """N (mm/s²) per unit mass on the floor fl (bbb.dynamics.options.Floor): g_eff cos θ − v²/R
     (g_eff on a flat floor); on a conveyor (``frame`` a Frame, module doc) gx_eff sin θ +
@@ -100,7 +99,7 @@ def normal_force(q, v, s, fl, frame):
         - v * v / R
 
 
-@njit(cache=True, inline="always")
+@inlined
 def rates(q, v, s, fl, frame, mu, sgn):
     # contact equation R θ̈ = g_eff sin θ − μ N sgn(v) (docs/physics.md, "Contact models");
     # on a conveyor R θ̈ = g_eff sin θ − gx_eff cos θ − μ N sgn(v) ("Transport")
@@ -122,7 +121,7 @@ def rates(q, v, s, fl, frame, mu, sgn):
     return v / R, ge * sq - gxe * cq - mu * n * sgn
 
 
-@njit(cache=True, inline="always")
+@inlined
 def tangential_force(q, s, fl, frame):
     """The tangential force per unit mass at rest (mm/s², positive towards +x), friction
     aside: g_eff sin θ − gx_eff cos θ (−gx_eff on a flat floor)."""
@@ -137,7 +136,7 @@ def tangential_force(q, s, fl, frame):
     return g_eff(s, g, A, w) * math.sin(q) - gxe * math.cos(q)
 
 
-@njit(cache=True)
+@jitted
 def rk4(q, v, s, h, fl, frame, mu, sgn):
     """One classic RK4 step of length h (s) from floor time s; returns the increments (δq, δv)
     (the caller adds them: q + δq is the same rounding as before the split)."""
@@ -148,7 +147,7 @@ def rk4(q, v, s, h, fl, frame, mu, sgn):
     return h * (k1q + 2.0 * k2q + 2.0 * k3q + k4q) / 6.0, h * (k1v + 2.0 * k2v + 2.0 * k3v + k4v) / 6.0
 
 
-@njit(cache=True)
+@jitted
 def step_bounds(va, vb, h, fl, frame, mu, sin_c):
     """Bounds on a step of length h (s) from speeds va to vb: (a_max ≥ sup|v̇|,
     J ≥ sup|v̈|, L_N ≥ sup|Ṅ|), all on the exact solution through the step."""
@@ -190,7 +189,7 @@ def step_bounds(va, vb, h, fl, frame, mu, sin_c):
     return amax, J, L
 
 
-@njit(cache=True, inline="always")
+@inlined
 def clear_of_cusp(q, v, dv, h, J, R, q_c):
     """Whether θ does not reach θ_c from below in (0, h] (s), by the cubic bound R θ(τ) ≤
     R θ_a + v_a τ + v̇_a τ²/2 + J τ³/6 (J ≥ sup|v̈| on the step) from θ_a = q (rad): θ(τ) < θ_c
@@ -205,7 +204,7 @@ def clear_of_cusp(q, v, dv, h, J, R, q_c):
     return q < q_c or kh < 0.0
 
 
-@njit(cache=True)
+@jitted
 def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
     """Integrate one contact stretch from st (a :data:`Stretch`) until an event, on the floor
     fl (bbb.dynamics.options.Floor) that ``frame`` selects; s0 (s) is the particle's start in

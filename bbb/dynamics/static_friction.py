@@ -22,15 +22,14 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
-
+from ..jit import inlined, jitted
 from .bounds import cusp_side
 from .floors.arc import arc_normal
 
 TWO_PI = 2.0 * math.pi
 
 
-@njit(cache=True, inline="always")
+@inlined
 def forces_at_rest(nx, ny, frame, w):
     """(F_t, dF_t/du, N, dN/du) (mm/s²) at rest where the normal is (nx, ny), u = sin ωs."""
     gx, gy, Ax, Ay = frame
@@ -38,7 +37,7 @@ def forces_at_rest(nx, ny, frame, w):
     return gy * nx - gx * ny, (Ay * nx - Ax * ny) * w2, gx * nx + gy * ny, (Ax * nx + Ay * ny) * w2
 
 
-@njit(cache=True, inline="always")
+@inlined
 def cut(lo, hi, c, k):
     # intersect [lo, hi] with {u : c + k u ≤ 0}
     if k > 0.0:
@@ -50,7 +49,7 @@ def cut(lo, hi, c, k):
     return lo, hi
 
 
-@njit(cache=True)
+@jitted
 def hold_interval(d, fl, frame, mu):
     """The interval [lo, hi] of u = sin ωs in which static friction holds a particle at rest
     on one arc at offset d, |F_t| ≤ μN (empty: lo > hi; N ≥ |F_t|/μ ≥ 0 there)."""
@@ -60,7 +59,7 @@ def hold_interval(d, fl, frame, mu):
     return cut(lo, hi, -ft - mu * n, -ftu - mu * nu)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def above(lo, hi, c, k):
     # intersect (lo, hi) with {u : c + k u > 0}
     if k > 0.0:
@@ -72,7 +71,7 @@ def above(lo, hi, c, k):
     return math.inf, -math.inf
 
 
-@njit(cache=True)
+@jitted
 def wall_slip(nx, ny, up, frame, w, mu):
     """The open interval (lo, hi) of u = sin ωs in which a particle at rest in a cusp slides
     up the wall of normal (nx, ny) (``up`` = ±1: the x direction up that wall, away from the
@@ -83,7 +82,7 @@ def wall_slip(nx, ny, up, frame, w, mu):
     return above(lo, hi, up * ft - mu * n, up * ftu - mu * nu)
 
 
-@njit(cache=True)
+@jitted
 def exit_wait(s, w, lo, hi):
     """Time (s) until u = sin ω(s+τ) first leaves [lo, hi]: 0 if outside now, inf if never."""
     u0 = math.sin(w * s)
@@ -100,7 +99,7 @@ def exit_wait(s, w, lo, hi):
     return best
 
 
-@njit(cache=True)
+@jitted
 def enter_wait(s, w, lo, hi):
     """Time (s) until u = sin ω(s+τ) first lies in the open (lo, hi): 0 if it does now, inf
     if never.  An interval narrower than 16 ε is empty: its ends are one boundary rounded two
@@ -122,7 +121,7 @@ def enter_wait(s, w, lo, hi):
     return best
 
 
-@njit(cache=True)
+@jitted
 def slip_wait(d, s, fl, frame, mu, flat):
     """(time in s until static friction lets go of a particle at rest at offset d from floor
     time s, the wall it then slides on: 0 its own arc, ±1 the neighbour on that side).
@@ -149,7 +148,7 @@ def slip_wait(d, s, fl, frame, mu, flat):
     return t_own, 0
 
 
-@njit(cache=True)
+@jitted
 def holds_at_rest(d, R, S, mu, flat):
     """Whether a particle at rest at offset d stays at rest while g_eff > 0: on a flat
     floor, in a cusp (held by both walls), at an arc's top, or where static friction
@@ -160,7 +159,7 @@ def holds_at_rest(d, R, S, mu, flat):
     return abs(nx) <= mu * ny
 
 
-@njit(cache=True, inline="always")
+@inlined
 def held_at_rest(d, s, fl, frame, mu, flat):
     # whether a particle at rest relative to the floor at offset d stays at rest now: on the
     # paper's floor holds_at_rest, on the conveyor until static friction lets go (slip_wait)
@@ -169,7 +168,7 @@ def held_at_rest(d, s, fl, frame, mu, flat):
     return slip_wait(d, s, fl, frame, mu, flat)[0] > 0.0
 
 
-@njit(cache=True, inline="always")
+@inlined
 def in_cusp(d, R, S, frame):
     # at a cusp, where both walls hold a particle: exactly there on the paper's floor,
     # within CUSP_REACH on the conveyor (bbb.dynamics.bounds.cusp_side)

@@ -23,9 +23,10 @@ a module like :mod:`.sine` plus one line in :data:`SHAPES`.
 from __future__ import annotations
 
 import numpy as np
-from numba import njit, types
+from numba import types
 from numba.extending import overload
 
+from ...jit import allocating
 from . import arc, sawtooth, sine
 
 #: every floor shape's module but the arc's (whose record is a float, its radius)
@@ -99,7 +100,7 @@ overload(valley_depth)(lambda sh, S: _impl(sh, "valley_depth"))
 overload(is_flat)(lambda sh: _impl(sh, "is_flat"))
 
 
-@njit(cache=True)
+@allocating
 def depths(sh, d):
     """c (mm) at every offset of the array d (mm): the numpy face of :func:`depth`."""
     out = np.empty(d.shape[0])
@@ -108,7 +109,7 @@ def depths(sh, d):
     return out
 
 
-@njit(cache=True)
+@allocating
 def normals(sh, d):
     """The outward unit normals (nx, ny) at every offset of the array d (mm)."""
     nx = np.empty(d.shape[0])

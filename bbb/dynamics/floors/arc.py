@@ -8,10 +8,10 @@ from __future__ import annotations
 
 import math
 
-from numba import njit
+from ...jit import inlined
 
 
-@njit(cache=True, inline="always")
+@inlined
 def root_r2_d2(d, R):
     # (R-|d|)(R+|d|) instead of R²-d²: exact to rounding at the cusps when R = S/2
     ad = abs(d)
@@ -22,7 +22,7 @@ def root_r2_d2(d, R):
 RECORD = float
 
 
-@njit(cache=True, inline="always")
+@inlined
 def depth(sh, d):
     # Fig. 1 geometry: R - sqrt(R²-d²) written as d²/(R+sqrt(R²-d²)), free of cancellation
     if math.isinf(sh):
@@ -30,7 +30,7 @@ def depth(sh, d):
     return d * d / (sh + root_r2_d2(d, sh))
 
 
-@njit(cache=True, inline="always")
+@inlined
 def slope(sh, d):
     # dc/dd; infinite at a vertical cusp (R = S/2, |d| = R)
     if math.isinf(sh):
@@ -41,7 +41,7 @@ def slope(sh, d):
     return d / q
 
 
-@njit(cache=True, inline="always")
+@inlined
 def curvature(sh, d):
     # d²c/dd² = R²/(R²-d²)^(3/2), increasing in |d|
     if math.isinf(sh):
@@ -52,7 +52,7 @@ def curvature(sh, d):
     return sh * sh / (q * q * q)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def arc_normal(d, R):
     # outward unit normal of the arc of radius R at offset d (Fig. 1's v_perp direction)
     if math.isinf(R):
@@ -60,34 +60,34 @@ def arc_normal(d, R):
     return d / R, root_r2_d2(d, R) / R
 
 
-@njit(cache=True, inline="always")
+@inlined
 def normal(sh, d):
     return arc_normal(d, sh)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def curvature_max(sh, da, db):
     # c'' grows with |d| within a cell
     return curvature(sh, max(abs(da), abs(db)))
 
 
-@njit(cache=True, inline="always")
+@inlined
 def concavity(sh):
     # c'' ≥ 0 everywhere: never concave
     return 0.0
 
 
-@njit(cache=True, inline="always")
+@inlined
 def depth_min(sh, da, db, ca, cb):
     # c grows with |d| within a cell: 0 over an interval holding the top, else at an end
     return 0.0 if da * db <= 0.0 else min(ca, cb)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def valley_depth(sh, S):
     return depth(sh, 0.5 * S)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def is_flat(sh):
     return math.isinf(sh)

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 from collections import namedtuple
 
-from numba import njit
+from ...jit import inlined
 
 #: the kernel's record of a sawtooth: depth h (mm), peak offset dp (mm), flank slopes kl, kr
 Sawtooth = namedtuple("Sawtooth", "h dp kl kr")
@@ -25,14 +25,14 @@ def record(depth: float, peak: float, S: float) -> Sawtooth:
     return Sawtooth(depth, dp, depth / (dp + 0.5 * S), depth / (0.5 * S - dp))
 
 
-@njit(cache=True, inline="always")
+@inlined
 def depth(sh, d):
     if d < sh.dp:
         return sh.kl * (sh.dp - d)
     return sh.kr * (d - sh.dp)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def slope(sh, d):
     # at the peak itself 0: a flight through it only turns upward there (convex kink)
     if d < sh.dp:
@@ -42,19 +42,19 @@ def slope(sh, d):
     return 0.0
 
 
-@njit(cache=True, inline="always")
+@inlined
 def curvature(sh, d):
     return 0.0
 
 
-@njit(cache=True, inline="always")
+@inlined
 def normal(sh, d):
     c1 = slope(sh, d)
     r = (1.0 + c1 * c1) ** 0.5
     return c1 / r, 1.0 / r
 
 
-@njit(cache=True, inline="always")
+@inlined
 def curvature_max(sh, da, db):
     # straight flanks; the peak's kink is an unbounded convex curvature
     if (da - sh.dp) * (db - sh.dp) <= 0.0:
@@ -62,23 +62,23 @@ def curvature_max(sh, da, db):
     return 0.0
 
 
-@njit(cache=True, inline="always")
+@inlined
 def concavity(sh):
     # within a cell c'' ≥ 0 (the concave kinks are the cell edges)
     return 0.0
 
 
-@njit(cache=True, inline="always")
+@inlined
 def depth_min(sh, da, db, ca, cb):
     # c grows away from the peak: 0 over an interval holding it, else at an end
     return 0.0 if (da - sh.dp) * (db - sh.dp) <= 0.0 else min(ca, cb)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def valley_depth(sh, S):
     return sh.h
 
 
-@njit(cache=True, inline="always")
+@inlined
 def is_flat(sh):
     return False

@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from collections import namedtuple
 
-from numba import njit
+from ...jit import inlined
 
 #: the kernel's record of a sine floor: amplitude a (mm) and wavenumber k = 2π/S (1/mm)
 Sine = namedtuple("Sine", "a k")
@@ -23,24 +23,24 @@ def record(depth: float, S: float) -> Sine:
     return Sine(0.5 * depth, 2.0 * math.pi / S)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def depth(sh, d):
     # a (1 − cos kd) as 2a sin²(kd/2): free of cancellation at the tops
     h = math.sin(0.5 * sh.k * d)
     return 2.0 * sh.a * h * h
 
 
-@njit(cache=True, inline="always")
+@inlined
 def slope(sh, d):
     return sh.a * sh.k * math.sin(sh.k * d)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def curvature(sh, d):
     return sh.a * sh.k * sh.k * math.cos(sh.k * d)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def normal(sh, d):
     # outward unit normal of y = −c(d): (c', 1)/√(1 + c'²)
     c1 = sh.a * sh.k * math.sin(sh.k * d)
@@ -48,7 +48,7 @@ def normal(sh, d):
     return c1 / r, 1.0 / r
 
 
-@njit(cache=True, inline="always")
+@inlined
 def curvature_max(sh, da, db):
     # c'' = a k² cos kd falls with |d| within a cell: largest at the smallest |d|
     top = sh.a * sh.k * sh.k
@@ -57,23 +57,23 @@ def curvature_max(sh, da, db):
     return top * math.cos(sh.k * min(abs(da), abs(db)))
 
 
-@njit(cache=True, inline="always")
+@inlined
 def concavity(sh):
     # c'' ≥ −a k² everywhere
     return sh.a * sh.k * sh.k
 
 
-@njit(cache=True, inline="always")
+@inlined
 def depth_min(sh, da, db, ca, cb):
     # c grows with |d| within a cell: 0 over an interval holding the top, else at an end
     return 0.0 if da * db <= 0.0 else min(ca, cb)
 
 
-@njit(cache=True, inline="always")
+@inlined
 def valley_depth(sh, S):
     return 2.0 * sh.a
 
 
-@njit(cache=True, inline="always")
+@inlined
 def is_flat(sh):
     return False
