@@ -7,9 +7,10 @@ instead of silently mixing chunks of two kernels.
 
 What is hashed (:data:`KERNEL_SOURCES`): every module of ``bbb`` that ``bbb.simulate`` runs
 or reads — the map of both floors, its collision search and its contact phase (every module
-of bbb/dynamics/, by its path), the floor (surface.py), the initial conditions (ensemble.py), how the kernel compiles (jit.py),
-the parameters and their presets (params.py), the numerical tolerances and their defaults
-(numerics.py), the driver (simulate.py) and what it records (record.py).
+of bbb/dynamics/, by its path), the floor (surface.py), the initial conditions (ensemble.py),
+how the kernel compiles (jit.py), the parameters and their presets (params.py), the numerical
+tolerances and their defaults (numerics.py), the driver (simulate.py) and what it records
+(record.py).
 Not hashed: ``bbb/__init__.py`` (it holds the version string; a version bump alone changes
 no trajectory) and the analyses (every module of bbb/analysis/: stats, transport, locking,
 extrema, ...), which never touch a stored trajectory.  A test checks that the list is exactly
@@ -45,7 +46,8 @@ KERNEL_SOURCES = ("dynamics/__init__.py", "dynamics/bounds.py", "dynamics/collid
                   "dynamics/floors/sawtooth.py", "dynamics/floors/sine.py",
                   "dynamics/liftoff.py", "dynamics/motion.py", "dynamics/options.py",
                   "dynamics/search.py", "dynamics/slide.py", "dynamics/static_friction.py",
-                  "ensemble.py", "jit.py", "numerics.py", "params.py", "record.py", "simulate.py", "surface.py")
+                  "ensemble.py", "jit.py", "numerics.py", "params.py", "record.py", "simulate.py",
+                  "surface.py")
 
 
 class _NoBareStrings(ast.NodeTransformer):
