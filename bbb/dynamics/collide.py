@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import math
 
-from ..jit import inlined, jitted
+from ..jit import inlined
 from ..surface import floor_a, floor_v
 from .bounds import cusp_side, times_or_zero
 from .floors import curvature, normal, slope
@@ -54,7 +54,7 @@ def pressing(d, s, w, fl, frame):
     return -frame.gy - frame.Ay * sw, times_or_zero(slope(fl.R, d), -frame.gx - frame.Ax * sw)
 
 
-@jitted
+@inlined
 def collide(vx, vy, d, s, fl, frame, v_stick, allow_kick):
     """Eqs. (5)-(6): restitution in the floor's normal/tangential frame at offset d, relative
     to the floor's velocity, on the floor shape fl.R (bbb.dynamics.floors) of the floor
