@@ -11,19 +11,31 @@ from pathlib import Path
 
 import pytest
 
+from bbb import jit
+
 ROOT = Path(__file__).resolve().parents[3]
 KERNEL = ROOT / "bbb" / "dynamics"
 MAX_ARGS = 8
 MAX_TUPLE = 4
+#: the decorators that make a function jitted: numba's, and bbb.jit's
+JIT_DECORATORS = {"njit", "jit", *jit.__all__}
 #: modules over MAX_ARGS being changed on another branch (the lead removes each once it is
 #: merged: test_the_pending_list_names_only_modules_still_over_the_limit fails until then)
 PENDING: set[str] = set()
 
 
 def jitted(source: str) -> list[ast.FunctionDef]:
-    """The functions of a source decorated with numba's njit/jit (called or not)."""
+    """The functions of a source decorated with numba's njit/jit (called or not) or with one of
+    bbb.jit's decorators."""
     return [node for node in ast.walk(ast.parse(source)) if isinstance(node, ast.FunctionDef)
-            and any("jit" in ast.unparse(d) for d in node.decorator_list)]
+            and any(decorator_name(d) in JIT_DECORATORS for d in node.decorator_list)]
+
+
+def decorator_name(d: ast.expr) -> str:
+    # the name a decorator is spelled with: njit, njit(...), numba.njit(...), inlined, ...
+    if isinstance(d, ast.Call):
+        d = d.func
+    return d.attr if isinstance(d, ast.Attribute) else getattr(d, "id", "")
 
 
 def too_many_arguments(source: str) -> list[tuple[str, int]]:
@@ -68,6 +80,12 @@ def test_a_jitted_function_with_nine_arguments_is_caught():
     src = "from numba import njit\n\n@njit(cache=True)\ndef f(a, b, c, d, e, g, h, i, j):\n    return a\n"
     assert too_many_arguments(src) == [("f", 9)]
     assert too_many_arguments(src.replace(", j)", ")")) == []
+
+
+def test_a_function_inlined_by_bbb_jit_is_checked_too():
+    src = "from bbb.jit import inlined\n\n@inlined\ndef f(a, b, c, d, e, g, h, i, j):\n    return a\n"
+    assert too_many_arguments(src) == [("f", 9)]
+    assert too_many_arguments(src.replace("@inlined", "@staticmethod")) == []
 
 
 def test_a_nested_wide_tuple_in_a_return_is_caught():
