@@ -21,18 +21,19 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 from matplotlib import colormaps, colors, rc_context
-from matplotlib.patches import Patch
+from matplotlib.patches import Patch, Rectangle
 
 from bbb.analysis import states as st
 from bbb.analysis.basins import LOG2
 
 from ...plot.style import PAGE, STYLE, family_color, figure_files, new_figure, save_figure
-from .tables import PEAK_TIMES, SCENE
+from .tables import NOT_COMPUTED, PEAK_TIMES, SCENE
 
 __all__ = ["CAPTIONS", "draw"]
 
 _STATE_COLORS = {"unknown": "#bbbbbb", "stuck": "#4d4d4d", "locked_1": "#1f77b4",
                  "locked_k": "#9467bd", "chaotic": "#ff7f0e", "diffusing": "#d62728"}
+_ABSENT_HATCH, _ABSENT_EDGE = "////", "#999999"
 _SHOW_F = (48.0, 52.0, 54.0, 56.0, 58.0, 60.0)
 
 CAPTIONS = {
@@ -79,6 +80,9 @@ def _grids(path: str, out: Path) -> list[Path]:
     if not fams or not fs:
         return []
     cmap = colors.ListedColormap([_STATE_COLORS[n] for n in st.LABELS])
+    # a cell whose chunk is not done has no state: left transparent over a hatch, never a colour
+    cmap.set_bad((0.0, 0.0, 0.0, 0.0))
+    absent = False
     fig, axes = _fig("fig_basins_grids", len(fams), len(fs),
                      (PAGE, 0.9 * PAGE * len(fams) / len(fs) + 0.6))
     for i, fam in enumerate(fams):
@@ -88,8 +92,13 @@ def _grids(path: str, out: Path) -> list[Path]:
             if grid is None:
                 ax.set_axis_off()
                 continue
-            ax.imshow(grid.T, origin="lower", cmap=cmap, vmin=-0.5, vmax=len(st.LABELS) - 0.5,
-                      extent=(0, 1, 0, 1), aspect="auto", interpolation="nearest")
+            missing = grid == NOT_COMPUTED
+            if missing.any():
+                absent = True
+                ax.add_patch(Rectangle((0, 0), 1, 1, fill=False, hatch=_ABSENT_HATCH,
+                                       edgecolor=_ABSENT_EDGE, lw=0, zorder=0))
+            ax.imshow(np.ma.masked_where(missing, grid).T, origin="lower", cmap=cmap, vmin=-0.5,
+                      vmax=len(st.LABELS) - 0.5, extent=(0, 1, 0, 1), aspect="auto", interpolation="nearest")
             ax.set_xticks([0, 0.5, 1])
             ax.set_yticks([])
             if i == 0:
@@ -100,6 +109,9 @@ def _grids(path: str, out: Path) -> list[Path]:
                 ax.set_ylabel("height 0–2 mm" if fam == "dropped" else "speed 0–200 mm/s"
                               if fam == "launched" else fam)
     handles = [Patch(color=_STATE_COLORS[n], label=n) for n in st.LABELS]
+    if absent:
+        handles.append(Patch(facecolor="white", edgecolor=_ABSENT_EDGE, hatch=_ABSENT_HATCH,
+                             label="not computed"))
     fig.legend(handles=handles, loc="outside lower center", ncol=len(handles), frameon=False)
     return _save(fig, out)
 

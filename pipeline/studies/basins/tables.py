@@ -29,12 +29,15 @@ from bbb.analysis import basins as bs
 from bbb.analysis import states as st
 from bbb.analysis.stats.proportion import wilson
 
-__all__ = ["SCENE", "BOX", "PEAK_TIMES", "COLUMN_UNITS", "make_tables", "store_tables", "grids",
-           "dmix_boot"]
+__all__ = ["SCENE", "BOX", "PEAK_TIMES", "COLUMN_UNITS", "NOT_COMPUTED", "make_tables",
+           "store_tables", "grids", "dmix_boot"]
 
 SCENE = "basins"
 #: cells per side of a basin-entropy box
 BOX = 4
+#: a grid cell whose chunk is not done: no state at all (not the classifier's 'unknown', which
+#: is a computed particle whose window could not be labelled)
+NOT_COMPUTED = -1
 #: the run lengths (s) at which D_mix's maximum along f is located (claim B1's ensembles)
 PEAK_TIMES = (5.0, 10.0, 20.0)
 _LABELS = [name for code, name in enumerate(st.LABELS)]
@@ -200,8 +203,8 @@ def peak_table(dmix: pd.DataFrame, boots: dict, edges: np.ndarray, ci: float) ->
 
 
 def grids(store) -> dict[tuple[float, str], np.ndarray]:
-    """{(f, family): final-state grid (n_phase, n_value)} of the lattice families (unknown
-    where a chunk is not done)."""
+    """{(f, family): final-state grid (n_phase, n_value)} of the lattice families: a state code
+    of bbb.analysis.states, :data:`NOT_COMPUTED` where a chunk is not done."""
     study, done = store.study, store.done()
     out = {}
     for fi, point in enumerate(study.points):
@@ -210,7 +213,7 @@ def grids(store) -> dict[tuple[float, str], np.ndarray]:
                 continue
             shape = tuple(int(v) for v in fam.lattice)
             lab, _x, idx = _arrays(store, fi, mi, done)
-            grid = np.full(shape[0] * shape[1], st.UNKNOWN, np.int8)
+            grid = np.full(shape[0] * shape[1], NOT_COMPUTED, np.int8)
             grid[idx] = st.final_state(lab)
             out[(point.f, fam.name)] = grid.reshape(shape)
     return out

@@ -6,14 +6,16 @@ and a bad lattice is refused in one line."""
 from __future__ import annotations
 
 import math
+import shutil
 
 import numpy as np
 import pytest
+import zarr
 
 from bbb.analysis import states as st
 from pipeline.execute.run import run_study
 from pipeline.store.study_store import StudyStore
-from pipeline.studies.basins.tables import dmix_boot, grids
+from pipeline.studies.basins.tables import NOT_COMPUTED, dmix_boot, grids
 from pipeline.studies.registry import study
 from pipeline.workflow.load import WorkflowError, parse_workflow
 from pipeline.workflow.scenes import ROOT, load_scene
@@ -48,6 +50,20 @@ def test_the_lattice_survives_the_store_and_fills_every_cell(made):
     g = grids(store)
     assert set(g) == {(46.0, "dropped"), (46.0, "launched"), (60.0, "dropped"), (60.0, "launched")}
     assert all(v.shape == (4, 4) and (v != st.UNKNOWN).all() for v in g.values())
+
+
+def test_cells_of_a_chunk_not_done_are_not_computed_never_a_state(made, tmp_path):
+    s, stores, _t, _o = made
+    copy = tmp_path / "partial.zarr"
+    shutil.copytree(stores["basins"], copy)
+    zarr.open_group(str(copy), mode="r+")["done"][0, 0, 1] = False
+    g = grids(StudyStore.open(str(copy)))[(46.0, "dropped")].ravel()
+    # chunk 1 of 8 particles: cells 8-15 of the 4 x 4 lattice, flattened as the particles
+    assert (g[8:] == NOT_COMPUTED).all() and (g[:8] != NOT_COMPUTED).all()
+    assert (g != st.UNKNOWN).all()
+    fig = s.draw(s.tables({"basins": str(copy)}, echo=lambda m: None), {"basins": str(copy)},
+                 tmp_path / "out")
+    assert any(p.name == "fig_basins_grids.png" for p in fig)
 
 
 def test_final_shares_are_those_of_the_grid(made):
