@@ -23,6 +23,11 @@ def facts(tables: Mapping[str, pd.DataFrame], verdicts=None) -> dict:
             else pd.DataFrame())
     fr = "; ".join(f"{fam}: {', '.join(f'{f:g}' for f in g['f'])} Hz"
                    for fam, g in frac.groupby("family")) if len(frac) else "none"
+    if not len(frac):
+        # a box holding two labels has an entropy of at most ln 2: the test is blind there
+        fr = ("none; S_bb > ln 2 needs boxes where three or more final states meet, so where two "
+              "basins interleave, however finely, this test cannot find a fractal boundary (the "
+              "uncertainty exponent is not measured)")
     n = int(t["n_particles"].max())
     variant = ("" if n >= FULL else f" (fewer than the scene's {FULL}: these tables come from "
                "the coarse variant scenes/coarse/basins.toml, run within a 30 min budget on a "

@@ -9,6 +9,7 @@ import math
 import shutil
 
 import numpy as np
+import pandas as pd
 import pytest
 import zarr
 
@@ -119,3 +120,13 @@ def test_the_scene_and_its_draft_are_lattices_of_the_papers_floor_across_46_to_6
     if not fast:  # the grid: at least 256 x 256 per frequency, >= 17 frequencies
         assert len(f) >= 17 and all(fam.lattice[0] * fam.lattice[1] >= 256 * 256
                                     for fam in s.families)
+
+
+def test_the_report_says_the_log2_test_is_blind_where_only_two_basins_meet():
+    from pipeline.studies.basins.report import facts
+
+    t = pd.DataFrame({"f": [54.0], "family": ["dropped"], "n_particles": [16]})
+    blind = pd.DataFrame({"f": [54.0], "family": ["dropped"], "fractal": [False]})
+    assert "cannot find a fractal boundary" in facts({"states": t, "entropy": blind})["fractal"]
+    found = blind.assign(fractal=[True])
+    assert facts({"states": t, "entropy": found})["fractal"] == "dropped: 54 Hz"
