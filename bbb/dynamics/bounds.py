@@ -22,16 +22,22 @@ intervals that cannot reach a cusp (|d''| ≤ Dx = |gx| + |Ax| ω² bounds where
 docs/physics.md, "Transport", derives the rest.
 
 The flight ``fli`` is bbb.dynamics.search's Flight record, the floor ``fl`` a
-:class:`~bbb.dynamics.options.Floor`; ``ea``, ``eb`` are :func:`gap` at an interval's ends.
+:class:`~bbb.dynamics.options.Floor`; ``ea``, ``eb`` are :func:`gap`'s :data:`Probe` at an
+interval's ends.
 """
 
 from __future__ import annotations
 
 import math
+from collections import namedtuple
 
 from ..jit import inlined
 from .floors import concavity, curvature, curvature_max, depth, depth_min, slope
 from .options import heave
+
+#: the gap at one flight time (:func:`gap`): G (mm) and G' (mm/s), the offset d (mm) and d'
+#: (mm/s) they were taken at, and the floor's depth c (mm) there, which the bounds reuse
+Probe = namedtuple("Probe", "G G1 d d1 c")
 
 #: a carried particle within CUSP_REACH·S of a cusp rests in it: both arcs hold it, and it
 #: lifts off only when both let go (docs/physics.md, "Transport"); 1e-9 S is far above the
@@ -79,9 +85,8 @@ def heave_bound(fl, frame):
 
 @inlined
 def gap(t, fli, fl, frame):
-    # Eq. (2): G and dG/dτ at flight time t, with the offset d and d' they were taken at (the
-    # level floor's d from the centre of the cell searched, the conveyor's unwrapped and
-    # relative to the moving floor)
+    # Eq. (2): the Probe at flight time t (the level floor's d from the centre of the cell
+    # searched, the conveyor's unwrapped and relative to the moving floor)
     w = fl.w
     ph = w * (fli.s + t)
     sp = math.sin(ph)
@@ -96,11 +101,15 @@ def gap(t, fli, fl, frame):
         d1 = fli.vx - frame.gx * t + frame.Ax * w * cp
         dn = nearest(d, fl.S)
     gn, an = heave(fl, frame)
-    G = fli.y + fli.vy * t - 0.5 * gn * t * t + an * sp + depth(fl.R, dn)
+    # depth and slope side by side, outside the branch below: a shape whose two share their
+    # work (the sine's half angle) computes it once
+    c = depth(fl.R, dn)
+    c1 = slope(fl.R, dn)
+    G = fli.y + fli.vy * t - 0.5 * gn * t * t + an * sp + c
     G1 = fli.vy - gn * t + an * w * cp
     if d1 != 0.0:
-        G1 += slope(fl.R, dn) * d1
-    return G, G1, d, d1
+        G1 += c1 * d1
+    return Probe(G, G1, d, d1, c)
 
 
 @inlined
@@ -126,8 +135,8 @@ def reach(h, ea, eb, fli, fl, frame):
     # inside?, a bound of |d'|); the level floor's bounds read the ends' offsets instead
     if frame is None:
         return 0.0, 0.0, False, 0.0
-    amax, amin, cusp = offset_range(ea[2], eb[2], h, fli.Dx, fl.S)
-    return amax, amin, cusp, max(abs(ea[3]), abs(eb[3])) + 0.5 * fli.Dx * h
+    amax, amin, cusp = offset_range(ea.d, eb.d, h, fli.Dx, fl.S)
+    return amax, amin, cusp, max(abs(ea.d1), abs(eb.d1)) + 0.5 * fli.Dx * h
 
 
 @inlined
@@ -138,7 +147,7 @@ def curvature_cap(ea, eb, rg, fli, fl, frame):
     if frame is None:
         # d' = vx, d'' = 0, d within one cell
         if fli.vx != 0.0:
-            m += fli.vx * fli.vx * curvature_max(fl.R, ea[2], eb[2])
+            m += fli.vx * fli.vx * curvature_max(fl.R, ea.d, eb.d, ea.c, eb.c)
         return m
     amax, _amin, _cusp, D1 = rg
     m += times_or_zero(curvature(fl.R, amax), D1 * D1)
@@ -166,15 +175,11 @@ def pull_cap(G1a, rg, fli, fl, frame):
 
 
 @inlined
-def depth_ends(ea, eb, rg, fli, fl, frame):
-    # (c at a, c at b, a lower bound of c between): the floor's depth, whose kinks the
-    # depth bound carries
+def depth_floor(ea, eb, rg, fli, fl, frame):
+    # a lower bound of the floor's depth c on [a, b], whose kinks the depth bound carries
     if frame is None:
-        ca = depth(fl.R, ea[2])
-        cb = depth(fl.R, eb[2])
-        return ca, cb, depth_min(fl.R, ea[2], eb[2], ca, cb)
-    return (depth(fl.R, nearest(ea[2], fl.S)), depth(fl.R, nearest(eb[2], fl.S)),
-            depth(fl.R, rg[1]))
+        return depth_min(fl.R, ea.d, eb.d, ea.c, eb.c)
+    return depth(fl.R, rg[1])
 
 
 @inlined
@@ -183,8 +188,8 @@ def lower_bound(a, b, ea, eb, fli, fl, frame):
     its ends: the best of three.  The level floor's interval lies in one cell; the
     conveyor's may hold cusps."""
     h = b - a
-    Ga, G1a = ea[0], ea[1]
-    Gb = eb[0]
+    Ga, G1a = ea.G, ea.G1
+    Gb = eb.G
     rg = reach(h, ea, eb, fli, fl, frame)
     # chord minus curvature: G ≥ min(Ga, Gb) − M⁺h²/8; needs only G'' ≤ M, which the concave
     # kinks at the conveyor's cusps respect
@@ -201,10 +206,10 @@ def lower_bound(a, b, ea, eb, fli, fl, frame):
     # peak, where the curvature bound is infinite (a vertical flight over the level floor
     # needs none: its depth is constant)
     if frame is not None or fli.vx != 0.0:
-        ca, cb, cmin = depth_ends(ea, eb, rg, fli, fl, frame)
+        cmin = depth_floor(ea, eb, rg, fli, fl, frame)
         gn, an = heave_bound(fl, frame)
         mf = max(-gn + an * fl.w * fl.w, 0.0)
-        lb = max(lb, min(Ga - ca, Gb - cb) - mf * h * h * 0.125 + cmin)
+        lb = max(lb, min(Ga - ea.c, Gb - eb.c) - mf * h * h * 0.125 + cmin)
     return lb
 
 
@@ -244,7 +249,7 @@ def start_step(h_max, ea, fli, fl, frame):
     (G(0) = 0; ``ea`` = :func:`gap` there), at most h_max (s).
 
     Returns 0 when no positive step is certified (the particle does not separate)."""
-    G1 = ea[1]
+    G1 = ea.G1
     if frame is None:
         sigma = 0.0
         if G1 > 0.0:
@@ -255,14 +260,14 @@ def start_step(h_max, ea, fli, fl, frame):
             sigma = rest_step(sigma, fl.g, fl.A, h_max, fli, fl)
         return min(sigma, h_max)
     S = fl.S
-    dn = nearest(ea[2], S)
+    dn = nearest(ea.d, S)
     # a lift-off within reach of a cusp, or any flight from exactly on it (a bounce there
     # after a contact model's cusp event): the one-arc path below would have r = 0, i.e. a
     # collision at τ = 0 with whichever arc the rounding names, even one the particle leaves
     side = cusp_side(dn, fl.R, S) if fli.lifting or abs(dn) >= 0.5 * S else 0
     if side == 0:
         # both bounds below need G'' bounded below: stop before the nearest cusp's concave kink
-        return circle_step(h_max, G1, (dn, max(0.5 * S - abs(dn), 0.0), 0.5 * S), ea[3], fli,
+        return circle_step(h_max, G1, (dn, max(0.5 * S - abs(dn), 0.0), 0.5 * S), ea.d1, fli,
                            fl, frame)
     # a lift-off from a cusp (bbb.dynamics.liftoff.liftoff_wait: both arcs have let go; a bounce
     # there takes the path above, whose tiny steps resolve a flight across the cusp): both
@@ -270,7 +275,7 @@ def start_step(h_max, ea, fli, fl, frame):
     # (smooth, convex depth), while d stays within r of the cusp: both circles defined (half
     # the way to |e| = R, where the slope is infinite) and the nearest arc one of the two
     R = fl.R
-    d10 = ea[3]
+    d10 = ea.d1
     e2 = dn - side * S
     r = min(0.5 * (R - abs(e2)), 0.5 * S)
     G1b = G1

@@ -54,7 +54,8 @@ def refine_root(a, b, Ga, Gb, fli, fl, frame, tol_t):
     if not (a < t < b):
         t = 0.5 * (a + b)
     for _ in range(200):
-        G, G1, _d, _d1 = gap(t, fli, fl, frame)
+        e = gap(t, fli, fl, frame)
+        G, G1 = e.G, e.G1
         if G > 0.0:
             a = t
             Ga = G
@@ -84,43 +85,40 @@ def search_piece(pa, pb, fli, from_surface, fl, frame, srch, left):
     ``from_surface``: the flight starts on the surface at pa; srch = (tol_t, h_max, stack)."""
     tol_t, h_max, stack = srch
     a = pa
-    Ga, G1a, da, d1a = gap(a, fli, fl, frame)
+    ea = gap(a, fli, fl, frame)
     if from_surface:
         if pb <= pa:
             # zero-length piece (a cusp at τ = 0): only an approach into this arc counts
-            return (a if G1a < 0.0 else NO_COLLISION), left
-        sigma = start_step(min(h_max, pb - pa), (Ga, G1a, da, d1a), fli, fl, frame)
+            return (a if ea.G1 < 0.0 else NO_COLLISION), left
+        sigma = start_step(min(h_max, pb - pa), ea, fli, fl, frame)
         if sigma <= 0.0:
             return a, left
         a = a + sigma
         if a >= pb:
             return NO_COLLISION, left
-        Ga, G1a, da, d1a = gap(a, fli, fl, frame)
-        if Ga <= 0.0:
+        ea = gap(a, fli, fl, frame)
+        if ea.G <= 0.0:
             # separation below rounding: the particle is back on the surface at a > 0
             return a, left
-    elif Ga <= 0.0:
+    elif ea.G <= 0.0:
         return a, left
     n = 0
     h = h_max
     b = min(a + h, pb)
     while True:
-        Gb, G1b, db, d1b = gap(b, fli, fl, frame)
+        eb = gap(b, fli, fl, frame)
         width = b - a
-        if Gb <= 0.0:
+        if eb.G <= 0.0:
             # unique root when G' < 0 on all of [a, b]: G'(a) + M⁺(b-a) < 0
-            M = slope_cap(a, b, (Ga, G1a, da, d1a), (Gb, G1b, db, d1b), fli, fl, frame)
-            if G1a + max(M, 0.0) * width < 0.0 or width <= tol_t:
-                return refine_root(a, b, Ga, Gb, fli, fl, frame, tol_t), left
+            M = slope_cap(a, b, ea, eb, fli, fl, frame)
+            if ea.G1 + max(M, 0.0) * width < 0.0 or width <= tol_t:
+                return refine_root(a, b, ea.G, eb.G, fli, fl, frame, tol_t), left
         else:
-            lb = lower_bound(a, b, (Ga, G1a, da, d1a), (Gb, G1b, db, d1b), fli, fl, frame)
+            lb = lower_bound(a, b, ea, eb, fli, fl, frame)
             # below tol_t a dip is at most M tol_t²/8 deep: far below rounding of y
             if lb > 0.0 or width <= tol_t:
                 a = b
-                Ga = Gb
-                G1a = G1b
-                da = db
-                d1a = d1b
+                ea = eb
                 if n > 0:
                     n -= 1
                     b = stack[n]

@@ -14,13 +14,9 @@ from __future__ import annotations
 
 import argparse
 
-from benchmarks.bits.paper_floor_bits import side_by_side
+from benchmarks.bits.paper_floor_bits import PREAMBLE, side_by_side
 
-SNIPPET = """
-import hashlib, sys
-import numpy as np
-from bbb import Params, simulate
-n, t_max = int(sys.argv[1]), float(sys.argv[2])
+SNIPPET = PREAMBLE + """
 FLOORS = ((0.0, 60.0, 15.0), (5.0, 90.0, 15.0), (5.0, 60.0, 15.0), (-8.0, 110.0, 15.0),
           (3.0, 75.0, 1.1), (2.0, 70.0, float("inf")), (0.0, 90.0, 15.0))
 for contact, mu in (("stick", 0.0), ("slide", 0.0), ("coulomb", 0.05), ("coulomb", 0.3)):
@@ -29,16 +25,9 @@ for contact, mu in (("stick", 0.0), ("slide", 0.0), ("coulomb", 0.05), ("coulomb
             for fam in ("rest", "launched"):
                 p = Params.preset("klages2004", f=f, contact=contact, mu=mu, tilt=tilt,
                                   throw=throw, R=R)
-                r = simulate(p, n, t_max, seed=int(f * 7), initial=fam,
-                             sample_times=np.linspace(0.0, t_max, 201), record_collisions=500,
-                             record_liftoffs=True, _force_conveyor=True)
-                h = hashlib.sha256()
-                for a in (r.positions, r.collisions_dense, r.n_recorded,
-                          *(r.counters[k] for k in sorted(r.counters)),
-                          *(r.contact_time[k] for k in sorted(r.contact_time))):
-                    h.update(np.ascontiguousarray(a).tobytes())
-                print(contact, mu, tilt, throw, R, f, fam, h.hexdigest()[:16],
-                      int(r.counters["collisions"].sum()))
+                r = simulate(p, n, t_max, seed=int(f * 7), initial=fam, sample_times=SAMPLES,
+                             record_collisions=500, record_liftoffs=True, _force_conveyor=True)
+                print(contact, mu, tilt, throw, R, f, fam, digest(r))
 """
 
 

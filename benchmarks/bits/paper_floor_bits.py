@@ -24,24 +24,33 @@ import numpy as np
 
 from benchmarks.common import ROOT, baseline_tree, cpu_name
 
-SNIPPET = """
+#: what every side-by-side snippet starts with: its arguments and the hash of one ensemble
+#: (positions, recorded events, counters, contact times)
+PREAMBLE = """
 import hashlib, sys
 import numpy as np
 from bbb import Params, simulate
 n, t_max = int(sys.argv[1]), float(sys.argv[2])
+SAMPLES = np.linspace(0.0, t_max, 201)
+
+
+def digest(r):
+    h = hashlib.sha256()
+    for a in (r.positions, r.collisions_dense, r.n_recorded,
+              *(r.counters[k] for k in sorted(r.counters)),
+              *(r.contact_time[k] for k in sorted(r.contact_time))):
+        h.update(np.ascontiguousarray(a).tobytes())
+    return h.hexdigest()[:16] + " " + str(int(r.counters["collisions"].sum()))
+"""
+
+SNIPPET = PREAMBLE + """
 for contact, mu in (("stick", 0.0), ("slide", 0.0), ("coulomb", 0.05), ("coulomb", 0.3)):
     for f in (48.0, 50.0, 52.0, 54.0, 56.0, 58.0, 60.0, 62.0, 66.0, 70.0, 80.0, 90.0, 99.0):
         for fam in ("rest", "launched"):
             p = Params.preset("klages2004", f=f, contact=contact, mu=mu)
-            r = simulate(p, n, t_max, seed=int(f * 7), initial=fam,
-                         sample_times=np.linspace(0.0, t_max, 201), record_collisions=500,
-                         record_liftoffs=True)
-            h = hashlib.sha256()
-            for a in (r.positions, r.collisions_dense, r.n_recorded,
-                      *(r.counters[k] for k in sorted(r.counters)),
-                      *(r.contact_time[k] for k in sorted(r.contact_time))):
-                h.update(np.ascontiguousarray(a).tobytes())
-            print(contact, mu, f, fam, h.hexdigest()[:16], int(r.counters["collisions"].sum()))
+            r = simulate(p, n, t_max, seed=int(f * 7), initial=fam, sample_times=SAMPLES,
+                         record_collisions=500, record_liftoffs=True)
+            print(contact, mu, f, fam, digest(r))
 """
 
 

@@ -9,9 +9,10 @@ shape is a small record (the arc's is its radius R, a float; :class:`~.sine.Sine
 - ``depth(sh, d)``, ``slope(sh, d)`` = c'(d), ``curvature(sh, d)`` = c''(d),
   ``normal(sh, d)``: the outward unit normal (c', 1)/√(1 + c'²) of y = −c(d)
 - the certificates the collision search proves with (bbb.dynamics.bounds), each
-  rigorous over an interval [da, db] inside one cell: ``curvature_max(sh, da, db)`` ≥ c''
-  there (inf across a convex kink), ``concavity(sh)`` with c'' ≥ −concavity in every cell,
-  ``depth_min(sh, da, db, ca, cb)`` ≤ c there (ca, cb: c at the ends)
+  rigorous over an interval [da, db] inside one cell (ca, cb: c at its ends):
+  ``curvature_max(sh, da, db, ca, cb)`` ≥ c'' there (inf across a convex kink),
+  ``concavity(sh)`` with c'' ≥ −concavity in every cell, ``depth_min(sh, da, db, ca, cb)``
+  ≤ c there
 - ``valley_depth(sh, S)``: the largest c; ``is_flat(sh)``: the flat floor (c ≡ 0)
 
 Concave kinks (cusps, a sawtooth's valleys) must sit at the cell edges, where the search splits
@@ -69,8 +70,8 @@ def normal(sh, d):
     """The outward unit normal (nx, ny) of the floor at offset d."""
 
 
-def curvature_max(sh, da, db):
-    """An upper bound of c'' (1/mm) on [da, db] within one cell."""
+def curvature_max(sh, da, db, ca, cb):
+    """An upper bound of c'' (1/mm) on [da, db] within one cell; ca, cb are c at its ends."""
 
 
 def concavity(sh):
@@ -93,7 +94,7 @@ overload(depth)(lambda sh, d: _impl(sh, "depth"))
 overload(slope)(lambda sh, d: _impl(sh, "slope"))
 overload(curvature)(lambda sh, d: _impl(sh, "curvature"))
 overload(normal)(lambda sh, d: _impl(sh, "normal"))
-overload(curvature_max)(lambda sh, da, db: _impl(sh, "curvature_max"))
+overload(curvature_max)(lambda sh, da, db, ca, cb: _impl(sh, "curvature_max"))
 overload(concavity)(lambda sh: _impl(sh, "concavity"))
 overload(depth_min)(lambda sh, da, db, ca, cb: _impl(sh, "depth_min"))
 overload(valley_depth)(lambda sh, S: _impl(sh, "valley_depth"))

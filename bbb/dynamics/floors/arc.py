@@ -66,7 +66,7 @@ def normal(sh, d):
 
 
 @inlined
-def curvature_max(sh, da, db):
+def curvature_max(sh, da, db, ca, cb):
     # c'' grows with |d| within a cell
     return curvature(sh, max(abs(da), abs(db)))
 

@@ -55,7 +55,7 @@ def normal(sh, d):
 
 
 @inlined
-def curvature_max(sh, da, db):
+def curvature_max(sh, da, db, ca, cb):
     # straight flanks; the peak's kink is an unbounded convex curvature
     if (da - sh.dp) * (db - sh.dp) <= 0.0:
         return float("inf")

@@ -3,6 +3,10 @@ amplitude (top to valley 2a), k = 2π/S (1/mm) its wavenumber, S its wavelength;
 cell centres, valleys at the cell edges.  Its curvature a k² cos kd changes sign: convex tops,
 concave valleys, so the collision search bounds G'' from below by a k² (``concavity``).
 
+Depth and slope are both taken from the half angle kd/2: c = 2a sin²(kd/2),
+c' = 2ak sin(kd/2) cos(kd/2), so that the gap, which needs both, costs one sine and cosine of
+one argument (computed together); the curvature bound reads the depth, c'' = k² (a − c).
+
 Offsets d (mm) are from the cell centre, |d| ≤ S/2: c grows with |d| and c'' falls with
 |d| there, which the bounds use."""
 
@@ -32,7 +36,9 @@ def depth(sh, d):
 
 @inlined
 def slope(sh, d):
-    return sh.a * sh.k * math.sin(sh.k * d)
+    # a k sin kd as 2 a k sin(kd/2) cos(kd/2): the half angle the depth takes
+    x = 0.5 * sh.k * d
+    return 2.0 * sh.a * sh.k * math.sin(x) * math.cos(x)
 
 
 @inlined
@@ -43,18 +49,18 @@ def curvature(sh, d):
 @inlined
 def normal(sh, d):
     # outward unit normal of y = −c(d): (c', 1)/√(1 + c'²)
-    c1 = sh.a * sh.k * math.sin(sh.k * d)
+    c1 = slope(sh, d)
     r = math.sqrt(1.0 + c1 * c1)
     return c1 / r, 1.0 / r
 
 
 @inlined
-def curvature_max(sh, da, db):
-    # c'' = a k² cos kd falls with |d| within a cell: largest at the smallest |d|
-    top = sh.a * sh.k * sh.k
+def curvature_max(sh, da, db, ca, cb):
+    # c'' = a k² cos kd = k² (a − c) falls with |d| within a cell, where c grows: largest at
+    # the end of smaller depth
     if da * db <= 0.0:
-        return top
-    return top * math.cos(sh.k * min(abs(da), abs(db)))
+        return sh.a * sh.k * sh.k
+    return sh.k * sh.k * (sh.a - min(ca, cb))
 
 
 @inlined
