@@ -175,8 +175,9 @@ def pull_cap(G1a, rg, fli, fl, frame):
 
 
 @inlined
-def depth_floor(ea, eb, rg, fli, fl, frame):
-    # a lower bound of the floor's depth c on [a, b], whose kinks the depth bound carries
+def least_depth(ea, eb, rg, fli, fl, frame):
+    # a lower bound of the floor's depth c on [a, b], whose kinks the depth bound carries (the
+    # ends' depths are the gap's: G − c there is the flight over the floor's tops)
     if frame is None:
         return depth_min(fl.R, ea.d, eb.d, ea.c, eb.c)
     return depth(fl.R, rg[1])
@@ -206,7 +207,7 @@ def lower_bound(a, b, ea, eb, fli, fl, frame):
     # peak, where the curvature bound is infinite (a vertical flight over the level floor
     # needs none: its depth is constant)
     if frame is not None or fli.vx != 0.0:
-        cmin = depth_floor(ea, eb, rg, fli, fl, frame)
+        cmin = least_depth(ea, eb, rg, fli, fl, frame)
         gn, an = heave_bound(fl, frame)
         mf = max(-gn + an * fl.w * fl.w, 0.0)
         lb = max(lb, min(Ga - ea.c, Gb - eb.c) - mf * h * h * 0.125 + cmin)
