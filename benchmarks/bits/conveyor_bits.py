@@ -12,9 +12,7 @@ times; the rows that differ are printed.  Commit the output under benchmarks/res
 
 from __future__ import annotations
 
-import argparse
-
-from benchmarks.bits.paper_floor_bits import PREAMBLE, side_by_side
+from benchmarks.bits.paper_floor_bits import PREAMBLE, cli
 
 SNIPPET = PREAMBLE + """
 FLOORS = ((0.0, 60.0, 15.0), (5.0, 90.0, 15.0), (5.0, 60.0, 15.0), (-8.0, 110.0, 15.0),
@@ -31,15 +29,6 @@ for contact, mu in (("stick", 0.0), ("slide", 0.0), ("coulomb", 0.05), ("coulomb
 """
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--baseline", metavar="REF", required=True)
-    ap.add_argument("--particles", type=int, default=8)
-    ap.add_argument("--t-max", type=float, default=4.0)
-    args = ap.parse_args()
-    side_by_side("conveyor floor", SNIPPET, args.baseline, args.particles, args.t_max,
-                 "contact mu tilt throw R f family hash collisions")
-
-
 if __name__ == "__main__":
-    main()
+    cli(__doc__, "conveyor floor", SNIPPET, 8, 4.0,
+        "contact mu tilt throw R f family hash collisions")

@@ -12,9 +12,7 @@ that differ.  Commit the output under benchmarks/results/.
 
 from __future__ import annotations
 
-import argparse
-
-from benchmarks.bits.paper_floor_bits import PREAMBLE, side_by_side
+from benchmarks.bits.paper_floor_bits import PREAMBLE, cli
 
 SNIPPET = PREAMBLE + """
 SHAPES = (("sine", 0.1, 0.5), ("sine", 0.3, 0.5), ("sine", 0.6, 0.5), ("sawtooth", 0.1, 0.5),
@@ -30,15 +28,6 @@ for floor, depth, peak in SHAPES:
 """
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--baseline", metavar="REF", required=True)
-    ap.add_argument("--particles", type=int, default=8)
-    ap.add_argument("--t-max", type=float, default=5.0)
-    args = ap.parse_args()
-    side_by_side("floor shapes", SNIPPET, args.baseline, args.particles, args.t_max,
-                 "floor depth peak f family hash collisions")
-
-
 if __name__ == "__main__":
-    main()
+    cli(__doc__, "floor shapes", SNIPPET, 8, 5.0,
+        "floor depth peak f family hash collisions")

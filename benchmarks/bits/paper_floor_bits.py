@@ -88,14 +88,17 @@ def side_by_side(what: str, snippet: str, baseline: str, n: int, t_max: float,
           + ("  -> bit-identical" if not differ and len(ref) == len(this) else ""))
 
 
-def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+def cli(doc: str, what: str, snippet: str, particles: int, t_max: float,
+        columns: str | None = None) -> None:
+    """A side-by-side module's command line (its docstring ``doc``): --baseline REF, and the
+    ensembles' size (defaults ``particles`` × ``t_max`` s)."""
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
     ap.add_argument("--baseline", metavar="REF", required=True)
-    ap.add_argument("--particles", type=int, default=16)
-    ap.add_argument("--t-max", type=float, default=10.0)
+    ap.add_argument("--particles", type=int, default=particles)
+    ap.add_argument("--t-max", type=float, default=t_max)
     args = ap.parse_args()
-    side_by_side("paper's floor", SNIPPET, args.baseline, args.particles, args.t_max)
+    side_by_side(what, snippet, args.baseline, args.particles, args.t_max, columns)
 
 
 if __name__ == "__main__":
-    main()
+    cli(__doc__, "paper's floor", SNIPPET, 16, 10.0)
