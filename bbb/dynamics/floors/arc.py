@@ -36,9 +36,7 @@ def slope(sh, d):
     if math.isinf(sh):
         return 0.0
     q = root_r2_d2(d, sh)
-    if q == 0.0:
-        return math.copysign(math.inf, d)
-    return d / q
+    return d / q if q != 0.0 else math.copysign(math.inf, d)
 
 
 @inlined
@@ -47,9 +45,7 @@ def curvature(sh, d):
     if math.isinf(sh):
         return 0.0
     q = root_r2_d2(d, sh)
-    if q == 0.0:
-        return math.inf
-    return sh * sh / (q * q * q)
+    return sh * sh / (q * q * q) if q != 0.0 else math.inf
 
 
 @inlined
