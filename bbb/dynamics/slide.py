@@ -41,6 +41,7 @@ from collections import namedtuple
 
 from ..jit import inlined, jitted
 from .floors import is_flat
+from .options import heave
 
 #: a contact stretch's state (slide's argument and result): the angle θ from the arc's top (rad;
 #: the offset d in mm on a flat floor) q, the tangential speed v (mm/s) relative to the floor,
@@ -73,20 +74,11 @@ def g_eff(s, g, A, w):
 
 
 @inlined
-def frame_forces(fl, frame):
-    # (g, A) of the module doc's equations: the paper's; the conveyor's normal (gy, Ay)
-    # (its along-plane (gx, Ax) the functions here read from the frame)
-    if frame is None:
-        return fl.g, fl.A
-    return frame.gy, frame.Ay
-
-
-@inlined
 def normal_force(q, v, s, fl, frame):
     """N (mm/s²) per unit mass on the floor fl (bbb.dynamics.options.Floor): g_eff cos θ − v²/R
     (g_eff on a flat floor); on a conveyor (``frame`` a Frame, module doc) gx_eff sin θ +
     g_eff cos θ − v²/R."""
-    g, A = frame_forces(fl, frame)
+    g, A = heave(fl, frame)
     w, R = fl.w, fl.R
     flat = is_flat(R)
     if frame is None:
@@ -103,7 +95,7 @@ def normal_force(q, v, s, fl, frame):
 def rates(q, v, s, fl, frame, mu, sgn):
     # contact equation R θ̈ = g_eff sin θ − μ N sgn(v) (docs/physics.md, "Contact models");
     # on a conveyor R θ̈ = g_eff sin θ − gx_eff cos θ − μ N sgn(v) ("Transport")
-    g, A = frame_forces(fl, frame)
+    g, A = heave(fl, frame)
     w, R = fl.w, fl.R
     flat = is_flat(R)
     ge = g_eff(s, g, A, w)
@@ -125,7 +117,7 @@ def rates(q, v, s, fl, frame, mu, sgn):
 def tangential_force(q, s, fl, frame):
     """The tangential force per unit mass at rest (mm/s², positive towards +x), friction
     aside: g_eff sin θ − gx_eff cos θ (−gx_eff on a flat floor)."""
-    g, A = frame_forces(fl, frame)
+    g, A = heave(fl, frame)
     w = fl.w
     flat = is_flat(fl.R)
     if frame is None:
@@ -151,7 +143,7 @@ def rk4(q, v, s, h, fl, frame, mu, sgn):
 def step_bounds(va, vb, h, fl, frame, mu, sin_c):
     """Bounds on a step of length h (s) from speeds va to vb: (a_max ≥ sup|v̇|,
     J ≥ sup|v̈|, L_N ≥ sup|Ṅ|), all on the exact solution through the step."""
-    g, A = frame_forces(fl, frame)
+    g, A = heave(fl, frame)
     w, R = fl.w, fl.R
     flat = is_flat(R)
     gmax = g + A * w * w
@@ -214,8 +206,8 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
     ``frame`` is None on the paper's floor (the branches it decides are pruned at compile
     time, here and in the helpers it passes it to); on a conveyor (a Frame) the forces split
     into the along-plane (gx, Ax) and the normal (gy, Ay), the g, A of the helpers
-    (frame_forces); q, v are relative to the moving floor and the
-    positions written are the lab's, cell·S + d + X_f (bbb.dynamics.bounds).
+    (bbb.dynamics.options.heave); q, v are relative to the moving floor and the positions
+    written are the lab's, cell·S + d + X_f (bbb.dynamics.bounds).
 
     ``start_dir`` (±1) is the direction of a start from rest where the caller knows it (a slip
     up a cusp's wall, or where the pull is ~0 at the slip: μN ≈ 0); 0: the pull's sign then.
@@ -227,7 +219,7 @@ def slide(st, s0, fl, frame, mu, run, io, start_dir=0.0):
     raises): no input makes a stretch crawl without end."""
     q, v, s, tp, cell, isamp = st
     sample_times, pos = io
-    g, A = frame_forces(fl, frame)
+    g, A = heave(fl, frame)
     w, R, S = fl.w, fl.R, fl.S
     T = 2.0 * math.pi / w
     flat = is_flat(R)
